@@ -1,0 +1,48 @@
+# The two commands of the README, each doing all of its set-up on a fresh Debian 12 machine:
+#   make demo   extract the default world and show what the localizer gets from the plan
+#   make test   build everything and run the whole test suite
+BUILD_DIR ?= build
+JOBS ?= $(shell nproc)
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+BIMLOC := $(BUILD_DIR)/sim/bimloc
+DEFAULT_WORLD := site_office
+
+# Every library comes from Debian (see README: Dependencies).
+DEB_PACKAGES := build-essential cmake pkg-config libifcplusplus-dev libeigen3-dev libassimp-dev \
+                nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev
+
+.PHONY: all deps build test demo bench worlds meshes clean
+
+all: build
+
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing Debian packages:$$missing"; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; \
+	fi
+
+build: deps
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo
+	cmake --build $(BUILD_DIR) -j$(JOBS)
+
+test: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
+
+demo: build
+	$(BIMLOC) extract worlds/$(DEFAULT_WORLD).ifc --out $(BUILD_DIR)/demo/$(DEFAULT_WORLD)
+
+bench: build
+	$(BIMLOC) bench extract
+
+# Regenerate the committed plans and meshes (tests check that they are up to date).
+worlds: build
+	$(BIMLOC) worldgen --all --out worlds
+
+meshes: build
+	for w in worlds/*.ifc; do n=$$(basename $$w .ifc); $(BIMLOC) extract $$w --out meshes/$$n; done
+
+clean:
+	rm -rf $(BUILD_DIR)

@@ -1,0 +1,107 @@
+// The building model extracted from an architectural plan: the top two layers of a
+// Situational Graph (paper, section "Building Information Extraction"): storeys, rooms
+// (topological layer) and walls as double-sided planes (metric-semantic layer).
+// All lengths in metres, in the plan's world frame W (z up), whatever the file's unit.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bimloc::bim {
+
+// A plane n·p + d = 0 with |n| = 1.
+struct Plane {
+  Eigen::Vector3d n = Eigen::Vector3d::UnitX();
+  double d = 0.0;
+
+  double signedDistance(const Eigen::Vector3d& p) const { return n.dot(p) + d; }
+};
+
+// The paper's semantic class of a vertical wall: which normal component dominates.
+enum class WallAxis { X, Y };
+const char* toString(WallAxis axis);
+
+// One side of a wall, as the lidar sees it. The normal points out of the wall.
+struct WallFace {
+  Plane plane;
+  WallAxis axis = WallAxis::X;
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();  // face's first corner at the wall's base
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();    // face's last corner at the wall's base
+  double length_m() const { return (end - start).norm(); }
+};
+
+struct Wall {
+  std::string id;        // IFC GlobalId
+  std::string name;
+  std::string ifc_type;  // IfcWall, IfcWallStandardCase, ...
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();  // axis segment at the wall's base
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+  double height_m = 0.0;
+  double thickness_m = 0.0;
+  std::array<WallFace, 2> faces;  // faces[0] on the left of start→end, faces[1] on the right
+  std::string source;             // "mesh" or "profile": where the geometry came from
+  bool approximated = false;      // not a straight box: faces are a best fit (see warnings)
+
+  double length_m() const { return (end - start).norm(); }
+};
+
+// A face of a wall that bounds a room, seen from inside the room.
+struct RoomWall {
+  std::string wall_id;
+  int face = -1;  // index into Wall::faces of the face looking into the room, -1 if unknown
+};
+
+struct Room {
+  std::string id;  // IFC GlobalId of the IfcSpace
+  std::string name;
+  std::string long_name;
+  std::vector<Eigen::Vector2d> footprint;  // counter-clockwise polygon in world XY
+  double area_m2 = 0.0;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // area centroid of the footprint
+  double floor_z = 0.0;                              // world z of the floor of the space
+  double height_m = 0.0;
+  std::vector<RoomWall> walls;  // walls bounding the room
+  std::string topology_source;  // "IfcRelSpaceBoundary" or "geometry"
+};
+
+struct TriangleMesh {
+  std::vector<Eigen::Vector3f> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  bool empty() const { return triangles.empty(); }
+};
+
+struct Storey {
+  std::string id;  // IFC GlobalId
+  std::string name;
+  double elevation_m = 0.0;
+  std::string elevation_source;  // "Elevation" or "placement"
+  std::vector<Room> rooms;
+  std::vector<Wall> walls;
+  TriangleMesh mesh;  // every physical element, floor below and ceiling above; no spaces
+
+  const Wall* findWall(const std::string& wall_id) const;
+  const Room* findRoom(const std::string& name_or_id) const;
+  std::size_t wallPlaneCount() const { return 2 * walls.size(); }
+};
+
+struct ExtractionTimes {
+  double parse_s = 0.0;
+  double geometry_s = 0.0;
+  double model_s = 0.0;  // storeys, rooms, walls, topology, meshes
+};
+
+struct Building {
+  std::string file;    // the path it was read from
+  std::string schema;  // "IFC2X3" or "IFC4"
+  std::vector<Storey> storeys;  // in height order
+  std::vector<std::string> warnings;
+  ExtractionTimes times;
+
+  const Storey* findStorey(const std::string& name_or_index) const;
+};
+
+}  // namespace bimloc::bim

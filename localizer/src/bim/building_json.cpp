@@ -1,0 +1,149 @@
+#include <bimloc/bim/building_json.hpp>
+
+#include <stdexcept>
+
+namespace bimloc::bim {
+namespace {
+
+using nlohmann::json;
+
+json vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+json vec(const Eigen::Vector2d& v) { return json::array({v.x(), v.y()}); }
+
+const json& field(const json& j, const char* key, const std::string& where) {
+  if (!j.is_object() || !j.contains(key)) throw std::runtime_error(where + ": missing field '" + key + "'");
+  return j.at(key);
+}
+
+Eigen::Vector3d vec3(const json& j, const std::string& where) {
+  if (!j.is_array() || j.size() != 3) throw std::runtime_error(where + ": expected [x, y, z]");
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+Eigen::Vector2d vec2(const json& j, const std::string& where) {
+  if (!j.is_array() || j.size() != 2) throw std::runtime_error(where + ": expected [x, y]");
+  return {j[0].get<double>(), j[1].get<double>()};
+}
+
+json faceJson(const WallFace& f) {
+  return {{"n", vec(f.plane.n)}, {"d", f.plane.d}, {"axis", toString(f.axis)}, {"start", vec(f.start)}, {"end", vec(f.end)}};
+}
+
+WallFace faceFromJson(const json& j, const std::string& where) {
+  WallFace f;
+  f.plane.n = vec3(field(j, "n", where), where + ".n");
+  f.plane.d = field(j, "d", where).get<double>();
+  f.axis = field(j, "axis", where).get<std::string>() == "x" ? WallAxis::X : WallAxis::Y;
+  f.start = vec3(field(j, "start", where), where + ".start");
+  f.end = vec3(field(j, "end", where), where + ".end");
+  return f;
+}
+
+json wallJson(const Wall& w) {
+  return {{"id", w.id}, {"name", w.name}, {"ifc_type", w.ifc_type}, {"start", vec(w.start)}, {"end", vec(w.end)},
+          {"length_m", w.length_m()}, {"height_m", w.height_m}, {"thickness_m", w.thickness_m},
+          {"source", w.source}, {"approximated", w.approximated},
+          {"faces", json::array({faceJson(w.faces[0]), faceJson(w.faces[1])})}};
+}
+
+Wall wallFromJson(const json& j, const std::string& where) {
+  Wall w;
+  w.id = field(j, "id", where).get<std::string>();
+  w.name = j.value("name", "");
+  w.ifc_type = j.value("ifc_type", "");
+  w.start = vec3(field(j, "start", where), where + ".start");
+  w.end = vec3(field(j, "end", where), where + ".end");
+  w.height_m = field(j, "height_m", where).get<double>();
+  w.thickness_m = field(j, "thickness_m", where).get<double>();
+  w.source = j.value("source", "");
+  w.approximated = j.value("approximated", false);
+  const json& faces = field(j, "faces", where);
+  if (!faces.is_array() || faces.size() != 2) throw std::runtime_error(where + ".faces: expected two faces");
+  for (std::size_t f = 0; f < 2; ++f) w.faces[f] = faceFromJson(faces[f], where + ".faces[" + std::to_string(f) + "]");
+  return w;
+}
+
+json roomJson(const Room& r) {
+  json footprint = json::array(), walls = json::array();
+  for (const auto& p : r.footprint) footprint.push_back(vec(p));
+  for (const auto& w : r.walls) walls.push_back({{"wall", w.wall_id}, {"face", w.face}});
+  return {{"id", r.id}, {"name", r.name}, {"long_name", r.long_name}, {"footprint", footprint},
+          {"area_m2", r.area_m2}, {"centre", vec(r.centre)}, {"floor_z_m", r.floor_z}, {"height_m", r.height_m},
+          {"walls", walls}, {"topology_source", r.topology_source}};
+}
+
+Room roomFromJson(const json& j, const std::string& where) {
+  Room r;
+  r.id = field(j, "id", where).get<std::string>();
+  r.name = j.value("name", "");
+  r.long_name = j.value("long_name", "");
+  for (const auto& p : field(j, "footprint", where)) r.footprint.push_back(vec2(p, where + ".footprint"));
+  r.area_m2 = field(j, "area_m2", where).get<double>();
+  r.centre = vec2(field(j, "centre", where), where + ".centre");
+  r.floor_z = j.value("floor_z_m", 0.0);
+  r.height_m = j.value("height_m", 0.0);
+  for (const auto& w : field(j, "walls", where))
+    r.walls.push_back({field(w, "wall", where + ".walls").get<std::string>(), w.value("face", -1)});
+  r.topology_source = j.value("topology_source", "");
+  return r;
+}
+
+}  // namespace
+
+nlohmann::json toJson(const Building& building) {
+  json storeys = json::array();
+  for (const auto& s : building.storeys) {
+    json walls = json::array(), rooms = json::array();
+    for (const auto& w : s.walls) walls.push_back(wallJson(w));
+    for (const auto& r : s.rooms) rooms.push_back(roomJson(r));
+    storeys.push_back({{"id", s.id}, {"name", s.name}, {"elevation_m", s.elevation_m},
+                       {"elevation_source", s.elevation_source}, {"mesh_triangles", s.mesh.triangles.size()},
+                       {"walls", walls}, {"rooms", rooms}});
+  }
+  return {{"format", "bimloc.building"}, {"version", kBuildingJsonVersion}, {"units", "m"},
+          {"frame", "map (the plan's world frame, z up)"}, {"file", building.file}, {"schema", building.schema},
+          {"storeys", storeys}, {"warnings", building.warnings}};
+}
+
+Building buildingFromJson(const nlohmann::json& doc) {
+  if (!doc.is_object() || doc.value("format", "") != "bimloc.building")
+    throw std::runtime_error("not a bimloc building document (format is not 'bimloc.building')");
+  const int version = doc.value("version", 0);
+  if (version != kBuildingJsonVersion)
+    throw std::runtime_error("building document version " + std::to_string(version) + " is not supported (expected " +
+                             std::to_string(kBuildingJsonVersion) + ")");
+  Building b;
+  b.file = doc.value("file", "");
+  b.schema = doc.value("schema", "");
+  b.warnings = doc.value("warnings", std::vector<std::string>{});
+  const json& storeys = field(doc, "storeys", "building");
+  for (std::size_t i = 0; i < storeys.size(); ++i) {
+    const std::string where = "storeys[" + std::to_string(i) + "]";
+    const json& sj = storeys[i];
+    Storey s;
+    s.id = sj.value("id", "");
+    s.name = field(sj, "name", where).get<std::string>();
+    s.elevation_m = field(sj, "elevation_m", where).get<double>();
+    s.elevation_source = sj.value("elevation_source", "");
+    const json& walls = field(sj, "walls", where);
+    for (std::size_t k = 0; k < walls.size(); ++k)
+      s.walls.push_back(wallFromJson(walls[k], where + ".walls[" + std::to_string(k) + "]"));
+    const json& rooms = field(sj, "rooms", where);
+    for (std::size_t k = 0; k < rooms.size(); ++k)
+      s.rooms.push_back(roomFromJson(rooms[k], where + ".rooms[" + std::to_string(k) + "]"));
+    b.storeys.push_back(std::move(s));
+  }
+  return b;
+}
+
+nlohmann::json extractionSummary(const Building& building, double seconds) {
+  json storeys = json::array();
+  for (const auto& s : building.storeys)
+    storeys.push_back({{"name", s.name}, {"elevation", s.elevation_m}, {"rooms", s.rooms.size()},
+                       {"walls", s.walls.size()}, {"wall_planes", s.wallPlaneCount()},
+                       {"mesh_triangles", s.mesh.triangles.size()}});
+  return {{"file", building.file}, {"schema", building.schema}, {"seconds", seconds},
+          {"storeys", storeys}, {"warnings", building.warnings}};
+}
+
+}  // namespace bimloc::bim

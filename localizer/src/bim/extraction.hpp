@@ -1,0 +1,36 @@
+// The interpretation steps that turn a RawModel into the building model, each a pure
+// function of plain data (tested without any IFC file).
+#pragma once
+
+#include "raw_model.hpp"
+
+#include <bimloc/bim/building.hpp>
+#include <bimloc/bim/ifc_reader.hpp>
+
+#include <optional>
+#include <string>
+
+namespace bimloc::bim::detail {
+
+// A wall as a straight box: axis, thickness, height and its two faces (paper Eq. 1 and 2).
+// Returns nothing and says why in `problem` when the product has no usable geometry.
+std::optional<Wall> wallFromGeometry(const RawProduct& product, std::string& problem);
+
+// A room's footprint, area and centre from its space's body.
+std::optional<Room> roomFromGeometry(const RawProduct& space, std::string& problem);
+
+// Does `face` lie on the footprint edge a→b of a counter-clockwise room polygon, looking in?
+bool faceBoundsEdge(const WallFace& face, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                    const ExtractOptions& options);
+
+// Fills Room::walls for every room of the storey: IfcRelSpaceBoundary where the file has
+// it for that room, otherwise the wall faces lying on the room's footprint.
+void linkRoomsToWalls(Storey& storey, const std::vector<SpaceBoundary>& boundaries,
+                      const ExtractOptions& options);
+
+// Triangles of a vertical prism (for bodies read from their extrusion).
+TriangleMesh prismMesh(const Extrusion& extrusion);
+
+void appendMesh(TriangleMesh& target, const TriangleMesh& source);
+
+}  // namespace bimloc::bim::detail

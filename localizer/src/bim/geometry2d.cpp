@@ -1,0 +1,128 @@
+#include <bimloc/bim/geometry2d.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace bimloc::bim {
+namespace {
+
+double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+}
+
+}  // namespace
+
+double signedArea(const Polygon2& polygon) {
+  double twice = 0.0;
+  for (std::size_t i = 0, n = polygon.size(); i < n; ++i) {
+    const auto& a = polygon[i];
+    const auto& b = polygon[(i + 1) % n];
+    twice += a.x() * b.y() - b.x() * a.y();
+  }
+  return 0.5 * twice;
+}
+
+Eigen::Vector2d areaCentroid(const Polygon2& polygon) {
+  if (polygon.empty()) return Eigen::Vector2d::Zero();
+  // Relative to the first vertex, for precision far from the origin.
+  const Eigen::Vector2d o = polygon.front();
+  double twice_area = 0.0;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (std::size_t i = 0, n = polygon.size(); i < n; ++i) {
+    const Eigen::Vector2d a = polygon[i] - o, b = polygon[(i + 1) % n] - o;
+    const double w = a.x() * b.y() - b.x() * a.y();
+    twice_area += w;
+    sum += w * (a + b);
+  }
+  if (std::abs(twice_area) < 1e-12) {
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (const auto& p : polygon) mean += p;
+    return mean / static_cast<double>(polygon.size());
+  }
+  return o + sum / (3.0 * twice_area);
+}
+
+bool pointInPolygon(const Polygon2& polygon, const Eigen::Vector2d& p) {
+  bool inside = false;
+  for (std::size_t i = 0, n = polygon.size(), j = n - 1; i < n; j = i++) {
+    const auto& a = polygon[i];
+    const auto& b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+  }
+  return inside;
+}
+
+Polygon2 convexHull(std::vector<Eigen::Vector2d> points) {
+  // Andrew's monotone chain.
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  if (points.size() < 3) return points;
+  Polygon2 hull(2 * points.size());
+  std::size_t k = 0;
+  for (const auto& p : points) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p) <= 1e-12) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 1e-12) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+Rectangle2 minAreaRectangle(const Polygon2& hull) {
+  Rectangle2 best;
+  double best_area = std::numeric_limits<double>::infinity();
+  // The minimum-area rectangle has a side collinear with a hull edge.
+  for (std::size_t i = 0, n = hull.size(); i < n; ++i) {
+    Eigen::Vector2d u = hull[(i + 1) % n] - hull[i];
+    if (u.norm() < 1e-9) continue;
+    u.normalize();
+    const Eigen::Vector2d v(-u.y(), u.x());
+    double umin = 1e300, umax = -1e300, vmin = 1e300, vmax = -1e300;
+    for (const auto& p : hull) {
+      umin = std::min(umin, p.dot(u)), umax = std::max(umax, p.dot(u));
+      vmin = std::min(vmin, p.dot(v)), vmax = std::max(vmax, p.dot(v));
+    }
+    const double area = (umax - umin) * (vmax - vmin);
+    if (area < best_area - 1e-12) {
+      best_area = area;
+      const bool u_long = umax - umin >= vmax - vmin;
+      best.axis = u_long ? u : v;
+      best.length = u_long ? umax - umin : vmax - vmin;
+      best.width = u_long ? vmax - vmin : umax - umin;
+      best.centre = 0.5 * (umin + umax) * u + 0.5 * (vmin + vmax) * v;
+    }
+  }
+  return best;
+}
+
+Polygon2 simplifyPolygon(const Polygon2& polygon, double tol_m) {
+  Polygon2 out;
+  for (const auto& p : polygon)
+    if (out.empty() || (p - out.back()).norm() > tol_m) out.push_back(p);
+  while (out.size() > 1 && (out.front() - out.back()).norm() <= tol_m) out.pop_back();
+  // Remove vertices lying on the segment between their neighbours, until none is left.
+  bool changed = true;
+  while (changed && out.size() > 3) {
+    changed = false;
+    for (std::size_t i = 0; i < out.size() && out.size() > 3; ++i) {
+      const auto& a = out[(i + out.size() - 1) % out.size()];
+      const auto& b = out[(i + 1) % out.size()];
+      const double len = (b - a).norm();
+      if (len > 0 && std::abs(cross(a, b, out[i])) / len < tol_m && (out[i] - a).dot(b - a) > 0 &&
+          (out[i] - b).dot(a - b) > 0) {
+        out.erase(out.begin() + static_cast<std::ptrdiff_t>(i));
+        changed = true;
+      }
+    }
+  }
+  if (signedArea(out) < 0) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace bimloc::bim

@@ -1,0 +1,236 @@
+// The only translation unit that includes IFC++: it is slow to compile, so everything else
+// works on the RawModel it produces.
+#include "ifc_geometry.hpp"
+
+#include "utf8.hpp"
+
+#include <bimloc/bim/ifc_reader.hpp>
+
+#include <ifcpp/IFC4/include/IfcBuildingStorey.h>
+#include <ifcpp/IFC4/include/IfcFeatureElement.h>
+#include <ifcpp/IFC4/include/IfcGloballyUniqueId.h>
+#include <ifcpp/IFC4/include/IfcLabel.h>
+#include <ifcpp/IFC4/include/IfcLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcRelAggregates.h>
+#include <ifcpp/IFC4/include/IfcRelContainedInSpatialStructure.h>
+#include <ifcpp/IFC4/include/IfcRelSpaceBoundary.h>
+#include <ifcpp/IFC4/include/IfcSpace.h>
+#include <ifcpp/IFC4/include/IfcVirtualElement.h>
+#include <ifcpp/IFC4/include/IfcWall.h>
+#include <ifcpp/geometry/Carve/GeometryConverter.h>
+#include <ifcpp/model/BuildingModel.h>
+#include <ifcpp/model/UnitConverter.h>
+#include <ifcpp/reader/ReaderSTEP.h>
+
+#include "ifc_profile.hpp"
+
+#include <carve/triangulator.hpp>
+
+#include <chrono>
+#include <unordered_map>
+
+namespace bimloc::bim::detail {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// IFC++ reports problems through a callback; keep the errors, drop the chatter.
+struct MessageSink {
+  std::vector<std::string> errors;
+  static void collect(void* self, shared_ptr<StatusCallback::Message> m) {
+    if (!m || m->m_message_type != StatusCallback::MESSAGE_TYPE_ERROR) return;
+    auto* sink = static_cast<MessageSink*>(self);
+    if (sink->errors.size() < 1000) sink->errors.push_back(utf8(m->m_message_text));
+  }
+};
+
+std::string label(const shared_ptr<IfcLabel>& l) { return l ? utf8(l->m_value) : std::string(); }
+
+std::string globalId(const shared_ptr<IfcRoot>& root) {
+  return root && root->m_GlobalId ? utf8(root->m_GlobalId->m_value) : std::string();
+}
+
+// Maps every object to the spatial element or object that contains or aggregates it.
+std::unordered_map<int, int> parentMap(const BuildingModel& model) {
+  std::unordered_map<int, int> parent;
+  for (const auto& [id, entity] : model.getMapIfcEntities()) {
+    if (auto rel = dynamic_pointer_cast<IfcRelContainedInSpatialStructure>(entity)) {
+      if (!rel->m_RelatingStructure) continue;
+      for (const auto& element : rel->m_RelatedElements)
+        if (element) parent.emplace(element->m_entity_id, rel->m_RelatingStructure->m_entity_id);
+    } else if (auto agg = dynamic_pointer_cast<IfcRelAggregates>(entity)) {
+      if (!agg->m_RelatingObject) continue;
+      for (const auto& object : agg->m_RelatedObjects)
+        if (object) parent.emplace(object->m_entity_id, agg->m_RelatingObject->m_entity_id);
+    }
+  }
+  return parent;
+}
+
+int storeyOf(int entity_id, const std::unordered_map<int, int>& parent,
+             const std::unordered_map<int, int>& storey_index) {
+  for (int hops = 0; hops < 64; ++hops) {  // bounded: a broken file may hold a cycle
+    if (auto s = storey_index.find(entity_id); s != storey_index.end()) return s->second;
+    auto p = parent.find(entity_id);
+    if (p == parent.end()) return -1;
+    entity_id = p->second;
+  }
+  return -1;
+}
+
+Eigen::Vector3d toWorld(const carve::math::Matrix& T, const carve::geom::vector<3>& v) {
+  const carve::geom::vector<3> w = T * v;
+  return {w.x, w.y, w.z};
+}
+
+void appendMeshSet(const carve::mesh::MeshSet<3>& meshset, const carve::math::Matrix& T,
+                   TriangleMesh& out) {
+  for (const auto* mesh : meshset.meshes) {
+    for (const auto* face : mesh->faces) {
+      std::vector<carve::geom::vector<3>> corners;
+      const auto* e = face->edge;
+      for (size_t i = 0; i < face->nVertices(); ++i, e = e->next) corners.push_back(e->vert->v);
+      if (corners.size() < 3) continue;
+      const auto base = static_cast<std::uint32_t>(out.vertices.size());
+      for (const auto& c : corners) out.vertices.push_back(toWorld(T, c).cast<float>());
+      if (corners.size() == 3) {
+        out.triangles.push_back({base, base + 1, base + 2});
+        continue;
+      }
+      // Faces after CSG may be non-convex polygons: ear-clip them in the face's own plane.
+      std::vector<carve::geom2d::P2> projected;
+      face->getProjectedVertices(projected);
+      std::vector<carve::triangulate::tri_idx> tris;
+      try {
+        carve::triangulate::triangulate(projected, tris);
+      } catch (...) {
+        tris.clear();
+        for (std::uint32_t i = 1; i + 1 < corners.size(); ++i) tris.push_back({0, i, i + 1});
+      }
+      for (const auto& t : tris)
+        out.triangles.push_back({base + static_cast<std::uint32_t>(t.a), base + static_cast<std::uint32_t>(t.b),
+                                 base + static_cast<std::uint32_t>(t.c)});
+    }
+  }
+}
+
+// The product's body in world coordinates. Prefers the 'Body' representation; other
+// representations (Box, FootPrint, Axis) are only used when there is no body at all.
+TriangleMesh worldMesh(ProductShapeData& shape) {
+  const carve::math::Matrix T = shape.getTransform();
+  TriangleMesh body, other;
+  for (const auto& rep : shape.m_vec_representations) {
+    if (!rep) continue;
+    const bool is_body = rep->m_representation_identifier == L"Body" || rep->m_representation_identifier.empty();
+    TriangleMesh& target = is_body ? body : other;
+    for (const auto& item : rep->m_vec_item_data) {
+      if (!item) continue;
+      for (const auto& ms : item->m_meshsets)
+        if (ms) appendMeshSet(*ms, T, target);
+      for (const auto& ms : item->m_meshsets_open)
+        if (ms) appendMeshSet(*ms, T, target);
+    }
+  }
+  return body.empty() ? other : body;
+}
+
+RawProduct makeProduct(const shared_ptr<IfcProduct>& product, ProductShapeData& shape, int storey) {
+  RawProduct raw;
+  raw.entity_id = product->m_entity_id;
+  raw.global_id = globalId(product);
+  raw.name = label(product->m_Name);
+  raw.ifc_class = product->className();
+  raw.storey = storey;
+  raw.mesh = worldMesh(shape);
+  return raw;
+}
+
+}  // namespace
+
+RawModel readRawModel(const PlanText& plan, const std::string& path) {
+  RawModel raw;
+  raw.schema = plan.schema;
+  MessageSink sink;
+
+  const auto t_parse = Clock::now();
+  shared_ptr<BuildingModel> model(new BuildingModel());
+  shared_ptr<ReaderSTEP> reader(new ReaderSTEP());
+  reader->setMessageCallBack(&sink, &MessageSink::collect);
+  model->setMessageCallBack(&sink, &MessageSink::collect);
+  try {
+    std::string text = plan.text;  // IFC++ edits the buffer in place
+    reader->loadModelFromString(text, model);
+  } catch (const std::exception& e) {
+    throw BimError(path + ": IFC parse error: " + e.what());
+  }
+  if (model->getMapIfcEntities().empty())
+    throw BimError(path + ": no IFC entities could be read" +
+                   (sink.errors.empty() ? std::string() : " (" + sink.errors.front() + ")"));
+  raw.length_unit_m = model->getUnitConverter() ? model->getUnitConverter()->getLengthInMeterFactor() : 1.0;
+  raw.parse_s = secondsSince(t_parse);
+
+  const auto t_geometry = Clock::now();
+  GeometryConverter converter(model);
+  converter.setMessageCallBack(&sink, &MessageSink::collect);
+  try {
+    converter.convertGeometry();
+  } catch (const std::exception& e) {
+    raw.warnings.push_back(std::string("geometry conversion stopped early: ") + e.what());
+  } catch (...) {
+    raw.warnings.push_back("geometry conversion stopped early: unknown error");
+  }
+  const auto parent = parentMap(*model);
+  ProfileReader profiles(converter.getRepresentationConverter()->getPlacementConverter(), raw.length_unit_m);
+
+  // Storeys first: every product is filed under one of them.
+  std::unordered_map<int, int> storey_index;
+  auto& shapes = converter.getShapeInputData();
+  for (const auto& [id, entity] : model->getMapIfcEntities()) {
+    auto storey = dynamic_pointer_cast<IfcBuildingStorey>(entity);
+    if (!storey) continue;
+    RawStorey s;
+    s.entity_id = id;
+    s.global_id = globalId(storey);
+    s.name = label(storey->m_Name);
+    if (storey->m_Elevation) s.elevation_m = storey->m_Elevation->m_value * raw.length_unit_m;
+    s.placement_z_m = profiles.placementOrigin(storey->m_ObjectPlacement).z();
+    storey_index[id] = static_cast<int>(raw.storeys.size());
+    raw.storeys.push_back(s);
+  }
+
+  for (auto& [id, shape] : shapes) {
+    if (!shape) continue;
+    auto product = dynamic_pointer_cast<IfcProduct>(shape->m_ifc_object_definition.lock());
+    if (!product) continue;
+    const bool is_wall = dynamic_pointer_cast<IfcWall>(product) != nullptr;
+    const bool is_space = dynamic_pointer_cast<IfcSpace>(product) != nullptr;
+    const bool is_element = dynamic_pointer_cast<IfcElement>(product) &&
+                            !dynamic_pointer_cast<IfcFeatureElement>(product) &&
+                            !dynamic_pointer_cast<IfcVirtualElement>(product);
+    if (!is_wall && !is_space && !is_element) continue;
+    RawProduct p = makeProduct(product, *shape, storeyOf(id, parent, storey_index));
+    // The converter skips some bodies (e.g. profiles over IfcIndexedPolyCurve): read the
+    // extrusion ourselves. Spaces always: their profile is the exact room footprint.
+    if (p.mesh.empty() || is_space) p.extrusion = profiles.bodyExtrusion(product, p.geometry_problem);
+    if (is_space) p.long_name = label(dynamic_pointer_cast<IfcSpace>(product)->m_LongName);
+    if (is_wall) raw.walls.push_back(std::move(p));
+    else if (is_space) raw.spaces.push_back(std::move(p));
+    else raw.elements.push_back(std::move(p));
+  }
+
+  for (const auto& [id, entity] : model->getMapIfcEntities()) {
+    auto rel = dynamic_pointer_cast<IfcRelSpaceBoundary>(entity);
+    if (!rel || !rel->m_RelatedBuildingElement) continue;
+    auto space = dynamic_pointer_cast<IfcSpace>(rel->m_RelatingSpace);
+    if (!space) continue;
+    raw.space_boundaries.push_back({globalId(space), globalId(rel->m_RelatedBuildingElement)});
+  }
+  raw.geometry_s = secondsSince(t_geometry);
+  return raw;
+}
+
+}  // namespace bimloc::bim::detail

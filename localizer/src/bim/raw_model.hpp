@@ -1,0 +1,64 @@
+// The plan as read from IFC, before any interpretation: products with their world-frame
+// geometry and the relations between them. Free of IFC++ types, so that everything after
+// the reading (walls, rooms, topology, meshes) compiles fast and is testable on its own.
+#pragma once
+
+#include <bimloc/bim/building.hpp>
+
+#include <Eigen/Core>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bimloc::bim::detail {
+
+// An extruded profile read from the IFC attributes, for the elements whose body the
+// geometry converter could not mesh: footprint polygon in world XY and a z range.
+struct Extrusion {
+  std::vector<Eigen::Vector2d> footprint;  // the profile's outline at the base, world XY
+  std::vector<Eigen::Vector3d> corners;    // every corner of the prism, world frame
+  double z_min = 0.0;
+  double z_max = 0.0;
+  bool vertical = true;  // extruded along world z
+};
+
+struct RawProduct {
+  int entity_id = 0;
+  std::string global_id;
+  std::string name;
+  std::string long_name;  // IfcSpace only
+  std::string ifc_class;  // e.g. IfcWallStandardCase
+  int storey = -1;        // index into RawModel::storeys, -1 when outside the spatial tree
+  TriangleMesh mesh;      // world frame, metres
+  std::optional<Extrusion> extrusion;
+  std::string geometry_problem;  // why there is neither mesh nor extrusion
+};
+
+struct RawStorey {
+  int entity_id = 0;
+  std::string global_id;
+  std::string name;
+  std::optional<double> elevation_m;  // the Elevation attribute, when set
+  double placement_z_m = 0.0;         // world z of the storey's placement
+};
+
+struct SpaceBoundary {
+  std::string space_id;    // GlobalId of the IfcSpace
+  std::string element_id;  // GlobalId of the bounding element
+};
+
+struct RawModel {
+  std::string schema;
+  double length_unit_m = 1.0;
+  std::vector<RawStorey> storeys;
+  std::vector<RawProduct> walls;     // IfcWall and subtypes (curtain walls excluded)
+  std::vector<RawProduct> spaces;    // IfcSpace
+  std::vector<RawProduct> elements;  // every other physical element, for the storey meshes
+  std::vector<SpaceBoundary> space_boundaries;
+  std::vector<std::string> warnings;
+  double parse_s = 0.0;
+  double geometry_s = 0.0;
+};
+
+}  // namespace bimloc::bim::detail

@@ -1,0 +1,18 @@
+// The `bimloc` subcommands. Each file registers one subcommand on the application; its
+// callback throws std::exception with a one-line message on failure (main prints it).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace bimloc::cli {
+
+// Raised by a subcommand that has already printed its result and only needs an exit code.
+struct ExitCode {
+  int code;
+};
+
+}  // namespace bimloc::cli
+
+void addExtractCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
+void addWorldgenCommand(CLI::App& app);

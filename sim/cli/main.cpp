@@ -1,0 +1,29 @@
+// bimloc: one binary, git-style subcommands.
+#include "sim/cli/commands.hpp"
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"bimloc: robot localization from building plans (BIM/IFC), and the simulator that tests it.\n"
+               "Run 'bimloc SUBCOMMAND --help' for the options of each subcommand."};
+  app.require_subcommand(1);
+  addExtractCommand(app);
+  addWorldgenCommand(app);
+  addBenchCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const bimloc::cli::ExitCode& e) {
+    return e.code;
+  } catch (const std::exception& e) {
+    std::string name = "bimloc";
+    for (const CLI::App* sub = &app; !sub->get_subcommands().empty();) {
+      sub = sub->get_subcommands().front();
+      name += " " + sub->get_name();
+    }
+    std::cerr << name << ": error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

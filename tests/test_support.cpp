@@ -1,0 +1,47 @@
+#include "test_support.hpp"
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace bimloc::test {
+namespace fs = std::filesystem;
+
+std::string sharedPlan(const std::string& file_name) {
+  const fs::path p = fs::path(BIMLOC_SHARED_IFC_DIR) / file_name;
+  return fs::exists(p) ? p.string() : std::string();
+}
+
+std::string tempDir(const std::string& tag) {
+  static int counter = 0;
+  const fs::path p = fs::temp_directory_path() /
+                     ("bimloc-test-" + tag + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p.string();
+}
+
+CommandResult runBimloc(const std::string& args) {
+  const std::string dir = tempDir("cmd");
+  const std::string out = dir + "/out.txt", err = dir + "/err.txt";
+  const std::string cmd = std::string("'") + BIMLOC_EXE + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
+  const int status = std::system(cmd.c_str());
+  CommandResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const auto slurp = [](const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  r.out = slurp(out);
+  r.err = slurp(err);
+  fs::remove_all(dir);
+  return r;
+}
+
+}  // namespace bimloc::test

@@ -1,0 +1,27 @@
+// Shared helpers of the test suite: where the data is, and running the bimloc binary.
+#pragma once
+
+#include <string>
+
+namespace bimloc::test {
+
+// Path of a shared real plan, or "" when ../shared/ifc is absent (the test then skips).
+std::string sharedPlan(const std::string& file_name);
+
+// A fresh empty directory under the system's temporary directory.
+std::string tempDir(const std::string& tag);
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+// Runs the bimloc binary with the given argument string (shell-quoted by the caller).
+CommandResult runBimloc(const std::string& args);
+
+}  // namespace bimloc::test
+
+// Skips the current test with a message when a shared plan is missing.
+#define BIMLOC_REQUIRE_SHARED(var, file)                                                    \
+  const std::string var = ::bimloc::test::sharedPlan(file);                                 \
+  if (var.empty()) GTEST_SKIP() << "../shared/ifc not found: skipping the test on " << file
