@@ -8,7 +8,7 @@ BIMLOC := $(BUILD_DIR)/sim/bimloc
 DEFAULT_WORLD := site_office
 
 # Every library comes from Debian (see README: Dependencies).
-DEB_PACKAGES := build-essential cmake pkg-config libifcplusplus-dev libeigen3-dev libassimp-dev \
+DEB_PACKAGES := build-essential cmake pkg-config libifcplusplus-dev libboost-dev libeigen3-dev libassimp-dev \
                 nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev
 
 .PHONY: all deps build test demo bench worlds meshes clean

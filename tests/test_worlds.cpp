@@ -8,6 +8,8 @@
 #include <bimloc/bim/geometry2d.hpp>
 #include <bimloc/bim/ifc_reader.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -134,4 +136,18 @@ TEST(Worlds, GeneratorIsDeterministicAndHasTheDefaultWorld) {
   EXPECT_GE(names.size(), 3u);
   for (const auto& name : names) EXPECT_EQ(worldgen::writeIfc4(worldgen::makeWorld(name)), worldgen::writeIfc4(worldgen::makeWorld(name)));
   EXPECT_THROW(worldgen::makeWorld("no_such_world"), std::invalid_argument);
+}
+
+TEST(Worlds, CommittedMeshesAreWhatExtractionGives) {
+  for (const auto& name : worldgen::worldNames()) {
+    std::ifstream in(std::string(BIMLOC_WORLDS_DIR) + "/../meshes/" + name + "/building.json");
+    ASSERT_TRUE(in) << "meshes/" << name << " is missing: run 'make meshes'";
+    const auto doc = nlohmann::json::parse(in);
+    const bim::Building b = bim::readIfc(std::string(BIMLOC_WORLDS_DIR) + "/" + name + ".ifc");
+    ASSERT_EQ(doc["storeys"].size(), b.storeys.size()) << name;
+    for (std::size_t s = 0; s < b.storeys.size(); ++s) {
+      EXPECT_EQ(doc["storeys"][s]["mesh_triangles"], b.storeys[s].mesh.triangles.size()) << name << ": run 'make meshes'";
+      EXPECT_EQ(doc["storeys"][s]["walls"].size(), b.storeys[s].walls.size()) << name;
+    }
+  }
 }

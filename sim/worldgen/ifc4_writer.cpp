@@ -1,9 +1,9 @@
 #include "sim/worldgen/ifc4_writer.hpp"
 
+#include "sim/worldgen/ifc_items.hpp"
 #include "sim/worldgen/spec_check.hpp"
 #include "sim/worldgen/step_file.hpp"
 
-#include <Eigen/Geometry>
 #include <cstdint>
 
 namespace bimloc::worldgen {
@@ -15,6 +15,7 @@ using step::real;
 using step::ref;
 using step::refs;
 using step::str;
+using namespace ifc;  // the geometric items
 
 constexpr const char* kTimestamp = "2026-01-01T00:00:00";
 // The opening box reaches this far past both wall faces and below the floor, so that the
@@ -41,81 +42,14 @@ std::string seedOf(const WorldSpec& spec, const char* kind, std::size_t storey,
   return spec.name + "/" + kind + "/" + std::to_string(storey) + "/" + std::to_string(index);
 }
 
-// The shared geometric items and contexts, and the file being written.
-struct Writer {
-  step::File file;
-  int dir_z = 0, dir_x = 0, origin_axes = 0;
-  int body_context = 0, axis_context = 0;
+// The file being written, with the shared items, and the world it describes.
+struct Writer : ifc::ItemWriter {
   const WorldSpec* spec = nullptr;
 
   std::string id(const char* kind, std::size_t storey, std::size_t index) const {
     return str(globalId(seedOf(*spec, kind, storey, index)));
   }
 };
-
-int point2(Writer& w, const Vector2d& p) {
-  return w.file.add("IFCCARTESIANPOINT", {step::reals({p.x(), p.y()})});
-}
-
-int point3(Writer& w, const Vector3d& p) {
-  return w.file.add("IFCCARTESIANPOINT", {step::reals({p.x(), p.y(), p.z()})});
-}
-
-int direction(Writer& w, const Vector3d& d) {
-  return w.file.add("IFCDIRECTION", {step::reals({d.x(), d.y(), d.z()})});
-}
-
-// Axes at `location` with local z along `z` and local x along `x`.
-int axes(Writer& w, const Vector3d& location, const Vector3d& z, const Vector3d& x) {
-  const int zd = z == Vector3d::UnitZ() ? w.dir_z : direction(w, z);
-  const int xd = x == Vector3d::UnitX() ? w.dir_x : direction(w, x);
-  return w.file.add("IFCAXIS2PLACEMENT3D", {ref(point3(w, location)), ref(zd), ref(xd)});
-}
-
-int translation(Writer& w, const Vector3d& location) {
-  return axes(w, location, Vector3d::UnitZ(), Vector3d::UnitX());
-}
-
-int localPlacement(Writer& w, int relative_to, int axes_id) {
-  return w.file.add("IFCLOCALPLACEMENT",
-                    {relative_to ? ref(relative_to) : step::unset(), ref(axes_id)});
-}
-
-int polyline(Writer& w, const std::vector<Vector2d>& points, bool closed) {
-  std::vector<int> ids;
-  for (const Vector2d& p : points) ids.push_back(point2(w, p));
-  if (closed) ids.push_back(ids.front());  // IFC closes a polyline by repeating the start
-  return w.file.add("IFCPOLYLINE", {refs(ids)});
-}
-
-int polygonProfile(Writer& w, const std::vector<Vector2d>& polygon) {
-  return w.file.add("IFCARBITRARYCLOSEDPROFILEDEF",
-                    {".AREA.", step::unset(), ref(polyline(w, polygon, true))});
-}
-
-// Rectangle xdim × ydim centred on `centre` of the profile plane.
-int rectangleProfile(Writer& w, const Vector2d& centre, double xdim, double ydim) {
-  const int position =
-      w.file.add("IFCAXIS2PLACEMENT2D", {ref(point2(w, centre)), step::unset()});
-  return w.file.add("IFCRECTANGLEPROFILEDEF",
-                    {".AREA.", step::unset(), ref(position), real(xdim), real(ydim)});
-}
-
-int extrusion(Writer& w, int profile, int position, double depth) {
-  return w.file.add("IFCEXTRUDEDAREASOLID",
-                    {ref(profile), ref(position), ref(w.dir_z), real(depth)});
-}
-
-int representation(Writer& w, int context, const char* identifier, const char* type,
-                   int item) {
-  return w.file.add("IFCSHAPEREPRESENTATION",
-                    {ref(context), str(identifier), str(type), refs({item})});
-}
-
-int bodyShape(Writer& w, int solid) {
-  const int body = representation(w, w.body_context, "Body", "SweptSolid", solid);
-  return w.file.add("IFCPRODUCTDEFINITIONSHAPE", {step::unset(), step::unset(), refs({body})});
-}
 
 // IfcRoot's first four attributes: GlobalId, OwnerHistory ($, allowed in IFC4), Name,
 // Description.

@@ -1,11 +1,19 @@
 #include "extraction.hpp"
 
+#include <Eigen/Geometry>
+
 namespace bimloc::bim::detail {
 
 void appendMesh(TriangleMesh& target, const TriangleMesh& source) {
   const auto base = static_cast<std::uint32_t>(target.vertices.size());
   target.vertices.insert(target.vertices.end(), source.vertices.begin(), source.vertices.end());
-  for (const auto& t : source.triangles) target.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  for (const auto& t : source.triangles) {
+    // Zero-area triangles (slivers left by the CSG of openings) hit nothing: drop them, so
+    // a mesh file holds exactly the triangles a ray caster can use.
+    const Eigen::Vector3f& a = source.vertices[t[0]];
+    if ((source.vertices[t[1]] - a).cross(source.vertices[t[2]] - a).norm() < 1e-12f) continue;
+    target.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
 }
 
 TriangleMesh prismMesh(const Extrusion& extrusion) {
