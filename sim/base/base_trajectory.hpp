@@ -1,0 +1,53 @@
+// The simulated legged base: a kinematic Spot-like body that follows a motion script within
+// speed, turn-rate and acceleration limits, with gait-induced body motion. Ground truth at
+// any instant. Bullet keeps the script honest when it is planned.
+#pragma once
+
+#include "sim/base/motion_config.hpp"
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace bimloc::sim {
+
+class World;
+
+struct Pose2 {
+  double x = 0.0, y = 0.0, yaw = 0.0;  // map frame, metres and radians
+};
+
+class BaseTrajectory {
+ public:
+  // Plans the motion from `start` on `storey`: expands the script (waypoints, a tour through
+  // rooms and their doors, a random walk in a room) into a path, checks every segment with a
+  // Bullet sweep of the body, and times it under the limits. Throws std::runtime_error naming
+  // the segment and the contact point for a path through a wall.
+  static BaseTrajectory plan(const World& world, std::size_t storey, const Pose2& start, const MotionConfig& motion,
+                             double duration_s, std::uint64_t seed);
+
+  double duration_s() const;
+  // When the script itself ends: the base stands still from then on. May be later than
+  // duration_s() (a tour cut short), which the caller may want to report.
+  double script_duration_s() const;
+  // Ground truth map -> base_link at time t (clamped to [0, duration]): planar motion, the
+  // floor height under the body, and the gait's bob, roll and pitch.
+  Eigen::Isometry3d T_map_base(double t_s) const;
+  // The planar path (x, y, yaw) at its corners, for drawing and tests: the start pose, then
+  // every corner with the heading the base arrives with (it then turns in place).
+  const std::vector<Pose2>& corners() const;
+  // Distance walked by time t (metres).
+  double distance_m(double t_s) const;
+
+  BaseTrajectory(BaseTrajectory&&) noexcept;
+  BaseTrajectory& operator=(BaseTrajectory&&) noexcept;
+  ~BaseTrajectory();
+
+ private:
+  struct Impl;
+  explicit BaseTrajectory(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace bimloc::sim

@@ -1,0 +1,38 @@
+// How the simulated legged base moves: the script and the limits of a Spot-like body.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bimloc::sim {
+
+struct Waypoint {
+  Eigen::Vector2d xy = Eigen::Vector2d::Zero();  // map frame, metres
+  std::optional<double> yaw_rad;                 // turn in place to this heading on arrival
+};
+
+struct GaitConfig {
+  double step_frequency_hz = 2.0;  // Spot's trot is about 2 steps per second
+  double bob_amplitude_m = 0.01;   // body height oscillation at the step frequency
+  double roll_amplitude_deg = 1.0;
+  double pitch_amplitude_deg = 0.5;
+  double body_height_m = 0.5;      // base_link above the floor (Spot standing)
+};
+
+struct MotionConfig {
+  enum class Kind { Stand, Waypoints, Tour, RandomWalk };
+  Kind kind = Kind::Stand;
+  std::vector<Waypoint> waypoints;  // Kind::Waypoints
+  std::vector<std::string> rooms;   // Kind::Tour: room names or ids, visited in order through the doors
+  std::string walk_room;            // Kind::RandomWalk: the room to wander in (default: the start room)
+  double max_speed_mps = 0.8;
+  double max_turn_rate_dps = 60.0;
+  double max_accel_mps2 = 0.5;
+  double max_turn_accel_dps2 = 120.0;  // turns ramp up and down too: full turn rate in 0.5 s
+  double body_radius_m = 0.3;       // Spot is about 1.1 x 0.5 m: a 0.3 m circle clears door frames
+  GaitConfig gait;
+};
+
+}  // namespace bimloc::sim

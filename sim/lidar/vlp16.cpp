@@ -1,0 +1,97 @@
+#include "sim/lidar/vlp16.hpp"
+
+#include "sim/world/world.hpp"
+
+#include <cmath>
+#include <random>
+
+namespace bimloc::sim {
+namespace {
+
+// Reference: VLP-16 User Manual rev. A (../shared/reference.md), in firing order.
+constexpr double kElevationDeg[kVlp16Lasers] = {-15, 1, -13, 3, -11, 5, -9, 7, -7, 9, -5, 11, -3, 13, -1, 15};
+constexpr double kOffsetMm[kVlp16Lasers] = {11.2, -0.7, 9.7, -2.2, 8.1, -3.7, 6.6, -5.1,
+                                            5.1,  -6.6, 3.7, -8.1, 2.2, -9.7, 0.7, -11.2};
+
+// splitmix64: a well-mixed per-turn seed from (scenario seed, turn index).
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// Intensity from the incidence angle (Lambertian), on the driver's 0..255 scale; a matte
+// wall seen head-on returns about 100, as painted plaster does on a real VLP-16.
+float intensity(const Eigen::Vector3f& dir, const Eigen::Vector3f& normal) {
+  return 100.0f * std::max(0.0f, -dir.dot(normal));
+}
+
+}  // namespace
+
+double vlp16ElevationDeg(int laser) { return kElevationDeg[laser]; }
+double vlp16VerticalOffsetM(int laser) { return 1e-3 * kOffsetMm[laser]; }
+std::uint16_t vlp16Ring(int laser) { return static_cast<std::uint16_t>((kElevationDeg[laser] + 15) / 2); }
+
+Vlp16::Vlp16(const Vlp16Config& config) : config_(config) {
+  cycles_ = static_cast<int>(std::floor(turnPeriod_s() / kVlp16CyclePeriod_s));
+  for (int k = 0; k < kVlp16Lasers; ++k) offsets_[k] = Eigen::Vector3d(0, 0, vlp16VerticalOffsetM(k));
+}
+
+LidarScan Vlp16::scan(const World& world, std::size_t storey, const std::function<Eigen::Isometry3d(double)>& T_map_base,
+                      double t0_s, std::uint64_t seed, std::uint64_t turn_index, RayRecord* rays) const {
+  LidarScan out;
+  out.stamp_s = t0_s;
+  out.points.reserve(static_cast<std::size_t>(cycles_) * kVlp16Lasers);
+  std::mt19937_64 rng(mix(seed ^ mix(turn_index)));
+  std::normal_distribution<float> noise(0.0f, static_cast<float>(config_.range_noise_sigma_m));
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  const double omega = 2.0 * M_PI * config_.rpm / 60.0;  // rad/s, clockwise seen from above
+  const float t_min = 0.05f, t_max = static_cast<float>(config_.max_range_m + 1.0);
+  std::array<double, kVlp16Lasers> cos_el, sin_el;
+  for (int k = 0; k < kVlp16Lasers; ++k) {
+    cos_el[k] = std::cos(kElevationDeg[k] * M_PI / 180.0);
+    sin_el[k] = std::sin(kElevationDeg[k] * M_PI / 180.0);
+  }
+  const Eigen::Isometry3d T_static = T_map_base(t0_s) * config_.T_base_lidar;
+
+  Eigen::Vector3f origins[kVlp16Lasers], dirs[kVlp16Lasers], local_dirs[kVlp16Lasers];
+  float times[kVlp16Lasers];
+  RayHit hits[kVlp16Lasers];
+  for (int c = 0; c < cycles_; ++c) {
+    const double t_cycle = c * kVlp16CyclePeriod_s;
+    // The cycle is cast from the sensor's pose at its own instant (motion distortion).
+    const Eigen::Isometry3d T_map_lidar =
+        config_.motion_distortion ? T_map_base(t0_s + t_cycle) * config_.T_base_lidar : T_static;
+    const Eigen::Matrix3f R = T_map_lidar.linear().cast<float>();
+    for (int k = 0; k < kVlp16Lasers; ++k) {
+      times[k] = static_cast<float>(t_cycle + k * kVlp16FiringPeriod_s);
+      const double yaw = -omega * times[k];  // the head keeps turning between firings
+      local_dirs[k] = Eigen::Vector3d(cos_el[k] * std::cos(yaw), cos_el[k] * std::sin(yaw), sin_el[k]).cast<float>();
+      origins[k] = (T_map_lidar * offsets_[k]).cast<float>();
+      dirs[k] = R * local_dirs[k];
+    }
+    if (config_.use_packets) {
+      world.castRays16(storey, origins, dirs, t_min, t_max, hits);
+    } else {
+      for (int k = 0; k < kVlp16Lasers; ++k) hits[k] = world.castRay(storey, origins[k], dirs[k], t_min, t_max);
+    }
+    if (rays) {
+      rays->origins.insert(rays->origins.end(), origins, origins + kVlp16Lasers);
+      rays->directions.insert(rays->directions.end(), dirs, dirs + kVlp16Lasers);
+    }
+    for (int k = 0; k < kVlp16Lasers; ++k) {
+      if (!hits[k].hit()) continue;
+      // Noise and dropout are drawn for every return, kept or not, so that the random
+      // sequence does not depend on the range limits.
+      const float range = hits[k].range_m + noise(rng);
+      const bool dropped = uniform(rng) < config_.dropout_probability;
+      if (dropped || range < config_.min_range_m || range > config_.max_range_m) continue;
+      const Eigen::Vector3f p = offsets_[k].cast<float>() + range * local_dirs[k];
+      out.points.push_back({p.x(), p.y(), p.z(), intensity(dirs[k], hits[k].normal), vlp16Ring(k), times[k]});
+    }
+  }
+  return out;
+}
+
+}  // namespace bimloc::sim

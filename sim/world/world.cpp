@@ -1,0 +1,272 @@
+#include "sim/world/world.hpp"
+
+#include "sim/world/mesh_io.hpp"
+
+#include <bimloc/bim/building_json.hpp>
+#include <bimloc/bim/ifc_reader.hpp>
+
+#include <btBulletCollisionCommon.h>
+#include <embree3/rtcore.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+
+namespace bimloc::sim {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// One storey's Bullet collision world. Bullet keeps raw pointers between these objects, so
+// they live together, in this order, and are never moved.
+struct BulletStorey {
+  std::unique_ptr<btTriangleIndexVertexArray> arrays;
+  std::unique_ptr<btBvhTriangleMeshShape> shape;
+  std::unique_ptr<btDefaultCollisionConfiguration> config;
+  std::unique_ptr<btCollisionDispatcher> dispatcher;
+  std::unique_ptr<btDbvtBroadphase> broadphase;
+  std::unique_ptr<btCollisionWorld> world;
+  std::unique_ptr<btCollisionObject> object;
+};
+
+Eigen::Vector3f normalFacing(const Eigen::Vector3f& ng, const Eigen::Vector3f& dir) {
+  const Eigen::Vector3f n = ng.normalized();
+  return n.dot(dir) > 0 ? -n : n;
+}
+
+}  // namespace
+
+bool RayHit::hit() const { return range_m < kInf; }
+
+struct World::Impl {
+  std::string source;
+  bim::Building building;
+  RTCDevice device = nullptr;
+  std::vector<RTCScene> scenes;
+  std::vector<std::unique_ptr<BulletStorey>> bullet;
+
+  ~Impl() {
+    for (RTCScene s : scenes) rtcReleaseScene(s);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  void build() {
+    device = rtcNewDevice(nullptr);
+    if (!device) throw std::runtime_error(source + ": cannot create an Embree device");
+    for (auto& storey : building.storeys) {
+      const auto& mesh = storey.mesh;
+      RTCScene scene = rtcNewScene(device);
+      // Robust: rays graze wall corners and door jambs all the time.
+      rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+      if (!mesh.empty()) {
+        RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                              3 * sizeof(float), mesh.vertices.size()));
+        for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+          for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.vertices[i][k];
+        auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), mesh.triangles.size()));
+        for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+          for (int k = 0; k < 3; ++k) t[3 * i + k] = mesh.triangles[i][k];
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometry(scene, geometry);
+        rtcReleaseGeometry(geometry);
+      }
+      rtcCommitScene(scene);
+      scenes.push_back(scene);
+      bullet.push_back(makeBullet(storey.mesh));
+    }
+  }
+
+  static std::unique_ptr<BulletStorey> makeBullet(bim::TriangleMesh& mesh) {
+    auto b = std::make_unique<BulletStorey>();
+    b->config = std::make_unique<btDefaultCollisionConfiguration>();
+    b->dispatcher = std::make_unique<btCollisionDispatcher>(b->config.get());
+    b->broadphase = std::make_unique<btDbvtBroadphase>();
+    b->world = std::make_unique<btCollisionWorld>(b->dispatcher.get(), b->broadphase.get(), b->config.get());
+    if (mesh.empty()) return b;
+    // Bullet reads the mesh in place: vertices as float triples, indices as int triples.
+    static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "packed vertices");
+    b->arrays = std::make_unique<btTriangleIndexVertexArray>(
+        static_cast<int>(mesh.triangles.size()), reinterpret_cast<int*>(mesh.triangles.data()), 3 * sizeof(int),
+        static_cast<int>(mesh.vertices.size()), reinterpret_cast<btScalar*>(mesh.vertices.data()), 3 * sizeof(float));
+    b->shape = std::make_unique<btBvhTriangleMeshShape>(b->arrays.get(), true);
+    b->object = std::make_unique<btCollisionObject>();
+    b->object->setCollisionShape(b->shape.get());
+    b->world->addCollisionObject(b->object.get());
+    b->world->updateAabbs();
+    return b;
+  }
+};
+
+World::World(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+World::~World() = default;
+
+World World::fromPlan(const std::string& ifc_path) {
+  auto impl = std::make_unique<Impl>();
+  impl->source = ifc_path;
+  impl->building = bim::readIfc(ifc_path);
+  impl->build();
+  return World(std::move(impl));
+}
+
+World World::fromExtractDir(const std::string& dir) {
+  const std::string json_path = (fs::path(dir) / "building.json").string();
+  std::ifstream in(json_path);
+  if (!in) throw std::runtime_error(json_path + ": cannot open (is this a folder written by 'bimloc extract --out'?)");
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(json_path + ": " + e.what());
+  }
+  auto impl = std::make_unique<Impl>();
+  impl->source = dir;
+  try {
+    impl->building = bim::buildingFromJson(doc);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(json_path + ": " + e.what());
+  }
+  for (std::size_t s = 0; s < impl->building.storeys.size(); ++s) {
+    const auto& mesh = doc["storeys"][s]["mesh"];
+    if (mesh.is_string()) impl->building.storeys[s].mesh = loadMesh((fs::path(dir) / mesh.get<std::string>()).string());
+  }
+  impl->build();
+  return World(std::move(impl));
+}
+
+World World::fromMesh(const std::string& mesh_path) {
+  auto impl = std::make_unique<Impl>();
+  impl->source = mesh_path;
+  bim::Storey storey;
+  storey.name = fs::path(mesh_path).stem().string();
+  storey.mesh = loadMesh(mesh_path);
+  impl->building.file = mesh_path;
+  impl->building.storeys.push_back(std::move(storey));
+  impl->build();
+  return World(std::move(impl));
+}
+
+World World::load(const std::string& path) {
+  if (fs::is_directory(path)) return fromExtractDir(path);
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".ifc") return fromPlan(path);
+  return fromMesh(path);
+}
+
+const std::string& World::source() const { return impl_->source; }
+const bim::Building& World::building() const { return impl_->building; }
+std::size_t World::storeyCount() const { return impl_->building.storeys.size(); }
+std::size_t World::triangleCount(std::size_t storey) const {
+  return impl_->building.storeys.at(storey).mesh.triangles.size();
+}
+
+std::size_t World::storeyIndex(const std::string& name_or_index) const {
+  const auto& storeys = impl_->building.storeys;
+  if (const bim::Storey* s = impl_->building.findStorey(name_or_index))
+    return static_cast<std::size_t>(s - storeys.data());
+  std::string names;
+  for (std::size_t i = 0; i < storeys.size(); ++i)
+    names += (i ? ", " : "") + std::to_string(i) + " '" + storeys[i].name + "'";
+  throw std::invalid_argument("no storey '" + name_or_index + "' (storeys: " + names + ")");
+}
+
+void* World::embreeScene(std::size_t storey) const { return impl_->scenes.at(storey); }
+
+RayHit World::castRay(std::size_t storey, const Eigen::Vector3f& origin, const Eigen::Vector3f& dir, float t_min,
+                      float t_max) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray.org_x = origin.x(), rh.ray.org_y = origin.y(), rh.ray.org_z = origin.z();
+  rh.ray.dir_x = dir.x(), rh.ray.dir_y = dir.y(), rh.ray.dir_z = dir.z();
+  rh.ray.tnear = t_min, rh.ray.tfar = t_max;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scenes.at(storey), &context, &rh);
+  RayHit hit;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+    hit.range_m = kInf;
+    return hit;
+  }
+  hit.range_m = rh.ray.tfar;
+  hit.normal = normalFacing({rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}, dir);
+  return hit;
+}
+
+void World::castRays16(std::size_t storey, const Eigen::Vector3f origins[16], const Eigen::Vector3f dirs[16], float t_min,
+                       float t_max, RayHit hits[16]) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // nearly one origin, a fan of directions
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[16];
+  for (int i = 0; i < 16; ++i) {
+    valid[i] = -1;
+    rh.ray.org_x[i] = origins[i].x(), rh.ray.org_y[i] = origins[i].y(), rh.ray.org_z[i] = origins[i].z();
+    rh.ray.dir_x[i] = dirs[i].x(), rh.ray.dir_y[i] = dirs[i].y(), rh.ray.dir_z[i] = dirs[i].z();
+    rh.ray.tnear[i] = t_min, rh.ray.tfar[i] = t_max;
+    rh.ray.mask[i] = 0xFFFFFFFFu, rh.ray.time[i] = 0.0f, rh.ray.flags[i] = 0, rh.ray.id[i] = static_cast<unsigned>(i);
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, impl_->scenes.at(storey), &context, &rh);
+  for (int i = 0; i < 16; ++i) {
+    if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
+      hits[i].range_m = kInf;
+      continue;
+    }
+    hits[i].range_m = rh.ray.tfar[i];
+    hits[i].normal = normalFacing({rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]}, dirs[i]);
+  }
+}
+
+RayHit World::bulletRay(std::size_t storey, const Eigen::Vector3d& from, const Eigen::Vector3d& to) const {
+  const btVector3 a(btScalar(from.x()), btScalar(from.y()), btScalar(from.z()));
+  const btVector3 b(btScalar(to.x()), btScalar(to.y()), btScalar(to.z()));
+  btCollisionWorld::ClosestRayResultCallback callback(a, b);
+  impl_->bullet.at(storey)->world->rayTest(a, b, callback);
+  RayHit hit;
+  if (!callback.hasHit()) {
+    hit.range_m = kInf;
+    return hit;
+  }
+  hit.range_m = static_cast<float>(callback.m_closestHitFraction * (to - from).norm());
+  const btVector3& n = callback.m_hitNormalWorld;
+  hit.normal = normalFacing({float(n.x()), float(n.y()), float(n.z())}, (to - from).cast<float>());
+  return hit;
+}
+
+bool World::sweepClear(std::size_t storey, const Eigen::Vector3d& from, const Eigen::Vector3d& to, double radius_m,
+                       Eigen::Vector3d* contact) const {
+  const auto& b = *impl_->bullet.at(storey);
+  if (!b.object) return true;
+  btSphereShape sphere{static_cast<btScalar>(radius_m)};
+  btTransform start, end;
+  start.setIdentity(), end.setIdentity();
+  start.setOrigin(btVector3(btScalar(from.x()), btScalar(from.y()), btScalar(from.z())));
+  end.setOrigin(btVector3(btScalar(to.x()), btScalar(to.y()), btScalar(to.z())));
+  btCollisionWorld::ClosestConvexResultCallback callback(start.getOrigin(), end.getOrigin());
+  b.world->convexSweepTest(&sphere, start, end, callback);
+  if (!callback.hasHit()) return true;
+  if (contact) {
+    const btVector3& p = callback.m_hitPointWorld;
+    *contact = Eigen::Vector3d(p.x(), p.y(), p.z());
+  }
+  return false;
+}
+
+bool World::floorBelow(std::size_t storey, const Eigen::Vector3d& from, double max_drop_m, double* floor_z) const {
+  const Eigen::Vector3d down(0, 0, -1);
+  const RayHit hit = bulletRay(storey, from, from + max_drop_m * down);
+  if (!hit.hit()) return false;
+  if (floor_z) *floor_z = from.z() - hit.range_m;
+  return true;
+}
+
+}  // namespace bimloc::sim

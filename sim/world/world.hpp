@@ -1,0 +1,66 @@
+// The simulated building: one Embree scene per storey for the lidar, and one Bullet
+// collision world of the same mesh for the base. Built from an IFC plan (through the
+// extraction), from the output folder of `bimloc extract`, or from a single mesh file.
+#pragma once
+
+#include <bimloc/bim/building.hpp>
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+namespace bimloc::sim {
+
+struct RayHit {
+  float range_m = 0.0f;  // +inf when the ray hits nothing within its range
+  Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // unit geometric normal, facing the ray
+  bool hit() const;
+};
+
+class World {
+ public:
+  // An IFC plan: extraction, then the storey meshes.
+  static World fromPlan(const std::string& ifc_path);
+  // A folder written by `bimloc extract --out` (building.json + storey meshes).
+  static World fromExtractDir(const std::string& dir);
+  // One mesh file (PLY, OBJ, glTF, STL, DAE) as a single storey at elevation 0, no rooms.
+  static World fromMesh(const std::string& mesh_path);
+  // Any of the three, by what the path is.
+  static World load(const std::string& path);
+
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  ~World();
+
+  const std::string& source() const;
+  const bim::Building& building() const;  // storeys, rooms, walls (no rooms for a mesh world)
+  std::size_t storeyCount() const;
+  // Index of a storey by name, GlobalId or index; throws std::invalid_argument listing them.
+  std::size_t storeyIndex(const std::string& name_or_index) const;
+  std::size_t triangleCount(std::size_t storey) const;
+
+  // Embree: the first hit of the ray origin + t dir (dir unit), t in [t_min, t_max].
+  RayHit castRay(std::size_t storey, const Eigen::Vector3f& origin, const Eigen::Vector3f& dir,
+                 float t_min, float t_max) const;
+  // Embree, 16 rays in one packet (a VLP-16 firing: nearly one origin, a vertical fan).
+  void castRays16(std::size_t storey, const Eigen::Vector3f origins[16], const Eigen::Vector3f dirs[16],
+                  float t_min, float t_max, RayHit hits[16]) const;
+  // The bare Embree scene handle (RTCScene), for the benchmark's plain loop.
+  void* embreeScene(std::size_t storey) const;
+
+  // Bullet: the same ray through btCollisionWorld::rayTest (the second implementation).
+  RayHit bulletRay(std::size_t storey, const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
+  // Bullet: can a sphere of radius_m move from `from` to `to` without touching the mesh?
+  // On contact, `contact` (if given) receives the first point touched.
+  bool sweepClear(std::size_t storey, const Eigen::Vector3d& from, const Eigen::Vector3d& to, double radius_m,
+                  Eigen::Vector3d* contact = nullptr) const;
+  // Bullet: z of the first surface below `from` (the floor under the base), if any within max_drop_m.
+  bool floorBelow(std::size_t storey, const Eigen::Vector3d& from, double max_drop_m, double* floor_z) const;
+
+ private:
+  struct Impl;
+  explicit World(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace bimloc::sim

@@ -1,0 +1,144 @@
+// The VLP-16 model against the manual's geometry and against analytic ranges in a box room,
+// standing still and turning (motion distortion).
+#include "sim_fixtures.hpp"
+
+#include "sim/lidar/vlp16.hpp"
+#include "sim/world/world.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+using namespace bimloc;
+
+namespace {
+
+const Eigen::Vector3d kBox(10, 8, 3);
+
+sim::Vlp16Config noiseFree() {
+  sim::Vlp16Config c;
+  c.range_noise_sigma_m = 0.0;
+  c.T_base_lidar = Eigen::Isometry3d::Identity();
+  return c;
+}
+
+// The base standing (or turning at yaw_rate) at the box's centre, 1.2 m above the floor.
+std::function<Eigen::Isometry3d(double)> turningBase(double yaw_rate) {
+  return [yaw_rate](double t) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(5, 4, 1.2);
+    T.linear() = Eigen::AngleAxisd(yaw_rate * t, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return T;
+  };
+}
+
+// The firing instant of a point, from its time field, and the laser's direction in the
+// sensor frame at that instant (clockwise spin from +x).
+Eigen::Vector3d laserDirection(const sim::LidarPoint& p, double rpm) {
+  const double el = (-15.0 + 2.0 * p.ring) * M_PI / 180.0;
+  const double yaw = -2 * M_PI * rpm / 60.0 * p.time;
+  return {std::cos(el) * std::cos(yaw), std::cos(el) * std::sin(yaw), std::sin(el)};
+}
+
+double laserOffset(std::uint16_t ring) {
+  for (int k = 0; k < 16; ++k)
+    if (sim::vlp16Ring(k) == ring) return sim::vlp16VerticalOffsetM(k);
+  return 0.0;
+}
+
+}  // namespace
+
+TEST(Vlp16, ManualGeometry) {
+  std::set<double> angles;
+  for (int k = 0; k < 16; ++k) {
+    angles.insert(sim::vlp16ElevationDeg(k));
+    EXPECT_DOUBLE_EQ(sim::vlp16ElevationDeg(k), -15.0 + 2.0 * sim::vlp16Ring(k));
+  }
+  EXPECT_EQ(angles.size(), 16u);
+  EXPECT_DOUBLE_EQ(sim::vlp16ElevationDeg(0), -15.0);
+  EXPECT_DOUBLE_EQ(sim::vlp16ElevationDeg(1), 1.0);
+  EXPECT_NEAR(sim::vlp16VerticalOffsetM(0), 0.0112, 1e-12);
+  EXPECT_NEAR(sim::vlp16VerticalOffsetM(15), -0.0112, 1e-12);
+  for (const auto& [rpm, step] : {std::pair{300.0, 0.1}, {600.0, 0.2}, {1200.0, 0.4}}) {
+    sim::Vlp16Config c;
+    c.rpm = rpm;
+    const sim::Vlp16 lidar(c);
+    EXPECT_NEAR(lidar.azimuthStepDeg(), step, 0.002) << rpm;  // the manual's rounded 0.1 / 0.2 / 0.4 deg
+    EXPECT_EQ(lidar.cyclesPerTurn(), static_cast<int>(60.0 / rpm / 55.296e-6)) << rpm;
+  }
+}
+
+TEST(Vlp16, EveryReturnInABoxRoomIsAnalyticAndCarriesItsFiringTime) {
+  const sim::World world = sim::World::fromMesh(test::boxRoomFile(kBox.cast<float>()));
+  const sim::Vlp16 lidar(noiseFree());
+  const auto scan = lidar.scan(world, 0, turningBase(0.0), 0.0, 1, 0);
+  // A closed room: no misses, so exactly 16 points per cycle (1808 cycles at 600 rpm).
+  EXPECT_EQ(lidar.cyclesPerTurn(), 1808);
+  ASSERT_EQ(scan.points.size(), 16u * 1808u);
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+    const auto& p = scan.points[i];
+    const int cycle = static_cast<int>(i / 16), firing = static_cast<int>(i % 16);
+    EXPECT_NEAR(p.time, cycle * 55.296e-6 + firing * 2.304e-6, 1e-7);
+    EXPECT_EQ(p.ring, sim::vlp16Ring(firing));
+    const Eigen::Vector3d d = laserDirection(p, 600.0);
+    const Eigen::Vector3d o(0, 0, laserOffset(p.ring));
+    const Eigen::Vector3d local(p.x, p.y, p.z);
+    const double range = (local - o).norm();
+    ASSERT_NEAR(range, test::boxRange(kBox, Eigen::Vector3d(5, 4, 1.2) + o, d), 1e-3);
+    EXPECT_GE(p.intensity, 0.0f);
+    EXPECT_LE(p.intensity, 255.0f);
+  }
+}
+
+TEST(Vlp16, TurningBaseGivesThePredictedSkewAndTheSwitchRemovesIt) {
+  const sim::World world = sim::World::fromMesh(test::boxRoomFile(kBox.cast<float>()));
+  const double yaw_rate = 1.0;  // rad/s: the base turns 0.1 rad (5.7 deg) during the turn
+  auto config = noiseFree();
+  const auto skewed = sim::Vlp16(config).scan(world, 0, turningBase(yaw_rate), 0.0, 1, 0);
+  config.motion_distortion = false;
+  const auto still = sim::Vlp16(config).scan(world, 0, turningBase(yaw_rate), 0.0, 1, 0);
+  double max_skew_effect = 0.0;
+  for (const auto& p : skewed.points) {
+    const Eigen::Vector3d o(0, 0, laserOffset(p.ring));
+    const double range = (Eigen::Vector3d(p.x, p.y, p.z) - o).norm();
+    // Analytic: the point fired at time t left the sensor while the base had turned by yaw_rate * t.
+    const Eigen::Vector3d d_world = Eigen::AngleAxisd(yaw_rate * p.time, Eigen::Vector3d::UnitZ()) * laserDirection(p, 600.0);
+    ASSERT_NEAR(range, test::boxRange(kBox, Eigen::Vector3d(5, 4, 1.2) + o, d_world), 1e-3);
+    max_skew_effect = std::max(max_skew_effect, std::abs(range - test::boxRange(kBox, Eigen::Vector3d(5, 4, 1.2) + o,
+                                                                             laserDirection(p, 600.0))));
+  }
+  EXPECT_GT(max_skew_effect, 0.2);  // the skew is real: tens of centimetres at the room's corners
+  for (const auto& p : still.points) {
+    const Eigen::Vector3d o(0, 0, laserOffset(p.ring));
+    ASSERT_NEAR((Eigen::Vector3d(p.x, p.y, p.z) - o).norm(),
+                test::boxRange(kBox, Eigen::Vector3d(5, 4, 1.2) + o, laserDirection(p, 600.0)), 1e-3);
+  }
+}
+
+TEST(Vlp16, NoiseDropoutAndRangeLimitsBehaveAsConfigured) {
+  const sim::World world = sim::World::fromMesh(test::boxRoomFile(kBox.cast<float>()));
+  auto config = noiseFree();
+  config.range_noise_sigma_m = 0.02;
+  config.dropout_probability = 0.25;
+  const auto scan = sim::Vlp16(config).scan(world, 0, turningBase(0.0), 0.0, 7, 3);
+  const double kept = double(scan.points.size()) / (16 * 1808);
+  EXPECT_NEAR(kept, 0.75, 0.01);
+  double sum = 0, sum2 = 0;
+  for (const auto& p : scan.points) {
+    const Eigen::Vector3d o(0, 0, laserOffset(p.ring));
+    const double e = (Eigen::Vector3d(p.x, p.y, p.z) - o).norm() -
+                     test::boxRange(kBox, Eigen::Vector3d(5, 4, 1.2) + o, laserDirection(p, 600.0));
+    sum += e, sum2 += e * e;
+  }
+  const double n = double(scan.points.size());
+  EXPECT_NEAR(sum / n, 0.0, 0.001);
+  EXPECT_NEAR(std::sqrt(sum2 / n - (sum / n) * (sum / n)), 0.02, 0.001);
+  // Same seed and turn: the same scan; another turn index: another noise draw.
+  const auto again = sim::Vlp16(config).scan(world, 0, turningBase(0.0), 0.0, 7, 3);
+  ASSERT_EQ(again.points.size(), scan.points.size());
+  EXPECT_EQ(again.points[100].x, scan.points[100].x);
+  config.max_range_m = 4.0;
+  for (const auto& p : sim::Vlp16(config).scan(world, 0, turningBase(0.0), 0.0, 7, 3).points)
+    EXPECT_LE(std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z), 4.0 + 0.02);
+}
