@@ -26,6 +26,9 @@ const Expected kPlans[] = {
     {"revit_quantities.ifc", "IFC2X3", 1, 7, 10},  {"ExampleHOM.ifc", "IFC4", 3, 11, 20},
 };
 
+// Printed in test names and failures as the file name, not as bytes.
+void PrintTo(const Expected& e, std::ostream* os) { *os << e.file; }
+
 // Plans are read once per test binary: the suite reads each several times otherwise.
 const Building& plan(const std::string& path) {
   static std::map<std::string, Building> cache;

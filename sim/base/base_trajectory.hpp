@@ -8,11 +8,26 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace bimloc::sim {
 
 class World;
+
+// A motion the body cannot make. `where` tells the scenario loader which line to blame:
+// the start (the body does not fit there), segment `segment` (1-based: the segment ending at
+// the script's segment-th point, so for waypoints at waypoint number `segment`), or the script
+// as a whole (an unknown room, no path to a room).
+class MotionError : public std::runtime_error {
+ public:
+  enum class Where { Start, Segment, Script };
+  MotionError(const std::string& message, Where where_, int segment_ = 0)
+      : std::runtime_error(message), where(where_), segment(segment_) {}
+  Where where;
+  int segment;
+};
 
 struct Pose2 {
   double x = 0.0, y = 0.0, yaw = 0.0;  // map frame, metres and radians
@@ -22,8 +37,8 @@ class BaseTrajectory {
  public:
   // Plans the motion from `start` on `storey`: expands the script (waypoints, a tour through
   // rooms and their doors, a random walk in a room) into a path, checks every segment with a
-  // Bullet sweep of the body, and times it under the limits. Throws std::runtime_error naming
-  // the segment and the contact point for a path through a wall.
+  // Bullet sweep of the body, and times it under the limits. Throws MotionError (a
+  // std::runtime_error) naming the segment and the contact point for a path through a wall.
   static BaseTrajectory plan(const World& world, std::size_t storey, const Pose2& start, const MotionConfig& motion,
                              double duration_s, std::uint64_t seed);
 

@@ -92,11 +92,9 @@ void run(BenchArgs args) {
 
 }  // namespace
 
-void addBenchCommand(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks, each against a reference measured in the same run.");
-  bench->require_subcommand(1);
+void addBenchExtractCommand(CLI::App& bench) {
   auto args = std::make_shared<BenchArgs>();
-  CLI::App* extract = bench->add_subcommand(
+  CLI::App* extract = bench.add_subcommand(
       "extract", "Extraction time per plan: IFC parse, geometry, model, export (default: ../shared/ifc/*.ifc and worlds/*.ifc).");
   extract->add_option("plans", args->plans, "IFC files to measure");
   extract->add_option("--repeat", args->repeat, "runs per plan (the median is reported)")->check(CLI::Range(1, 100));

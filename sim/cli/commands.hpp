@@ -14,5 +14,9 @@ struct ExitCode {
 }  // namespace bimloc::cli
 
 void addExtractCommand(CLI::App& app);
-void addBenchCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);  // bench extract | lidar | simulate
+void addBenchExtractCommand(CLI::App& bench);
+void addBenchLidarCommand(CLI::App& bench);
+void addBenchSimulateCommand(CLI::App& bench);
 void addWorldgenCommand(CLI::App& app);
+void addSimulateCommand(CLI::App& app);

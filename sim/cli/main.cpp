@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   addExtractCommand(app);
   addWorldgenCommand(app);
+  addSimulateCommand(app);
   addBenchCommand(app);
   try {
     app.parse(argc, argv);

@@ -46,6 +46,8 @@ LidarScan Vlp16::scan(const World& world, std::size_t storey, const std::functio
   std::mt19937_64 rng(mix(seed ^ mix(turn_index)));
   std::normal_distribution<float> noise(0.0f, static_cast<float>(config_.range_noise_sigma_m));
   std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  const float sigma = static_cast<float>(config_.range_noise_sigma_m);
+  const bool dropout = config_.dropout_probability > 0.0;
   const double omega = 2.0 * M_PI * config_.rpm / 60.0;  // rad/s, clockwise seen from above
   const float t_min = 0.05f, t_max = static_cast<float>(config_.max_range_m + 1.0);
   std::array<double, kVlp16Lasers> cos_el, sin_el;
@@ -55,41 +57,61 @@ LidarScan Vlp16::scan(const World& world, std::size_t storey, const std::functio
   }
   const Eigen::Isometry3d T_static = T_map_base(t0_s) * config_.T_base_lidar;
 
-  Eigen::Vector3f origins[kVlp16Lasers], dirs[kVlp16Lasers], local_dirs[kVlp16Lasers];
-  float times[kVlp16Lasers];
-  RayHit hits[kVlp16Lasers];
-  for (int c = 0; c < cycles_; ++c) {
-    const double t_cycle = c * kVlp16CyclePeriod_s;
-    // The cycle is cast from the sensor's pose at its own instant (motion distortion).
-    const Eigen::Isometry3d T_map_lidar =
-        config_.motion_distortion ? T_map_base(t0_s + t_cycle) * config_.T_base_lidar : T_static;
-    const Eigen::Matrix3f R = T_map_lidar.linear().cast<float>();
+  // Cycles are cast in blocks of 16: for each laser, one packet of its 16 consecutive firings
+  // (adjacent azimuths, nearly one origin: coherent rays). Points are emitted cycle by cycle,
+  // laser by laser, so packets or single rays give the same scan, noise draws included.
+  constexpr int kBlock = 16;
+  RayHit hits[kBlock][kVlp16Lasers];
+  Eigen::Vector3f origins[kBlock][kVlp16Lasers], local_dirs[kBlock][kVlp16Lasers], world_dirs[kBlock][kVlp16Lasers];
+  float times[kBlock][kVlp16Lasers];
+  // The head turns by a fixed angle between the 16 firings of a cycle: rotate instead of
+  // calling sin and cos for every ray.
+  std::array<double, kVlp16Lasers> cos_fire, sin_fire;
+  for (int k = 0; k < kVlp16Lasers; ++k)
+    cos_fire[k] = std::cos(-omega * k * kVlp16FiringPeriod_s), sin_fire[k] = std::sin(-omega * k * kVlp16FiringPeriod_s);
+  for (int c0 = 0; c0 < cycles_; c0 += kBlock) {
+    const int n = std::min(kBlock, cycles_ - c0);
+    for (int j = 0; j < n; ++j) {
+      const double t_cycle = (c0 + j) * kVlp16CyclePeriod_s;
+      // Each cycle is cast from the sensor's pose at its own instant (motion distortion).
+      const Eigen::Isometry3d T = config_.motion_distortion ? T_map_base(t0_s + t_cycle) * config_.T_base_lidar : T_static;
+      const Eigen::Matrix3f R = T.linear().cast<float>();
+      const double c_yaw = std::cos(-omega * t_cycle), s_yaw = std::sin(-omega * t_cycle);
+      for (int k = 0; k < kVlp16Lasers; ++k) {
+        times[j][k] = static_cast<float>(t_cycle + k * kVlp16FiringPeriod_s);
+        const double c = c_yaw * cos_fire[k] - s_yaw * sin_fire[k], s_ = s_yaw * cos_fire[k] + c_yaw * sin_fire[k];
+        local_dirs[j][k] = Eigen::Vector3f(float(cos_el[k] * c), float(cos_el[k] * s_), float(sin_el[k]));
+        world_dirs[j][k] = R * local_dirs[j][k];
+        origins[j][k] = (T * offsets_[k]).cast<float>();
+      }
+      if (rays) {  // in firing order: what a one-ray-per-firing caster would cast
+        rays->origins.insert(rays->origins.end(), origins[j], origins[j] + kVlp16Lasers);
+        rays->directions.insert(rays->directions.end(), world_dirs[j], world_dirs[j] + kVlp16Lasers);
+      }
+    }
     for (int k = 0; k < kVlp16Lasers; ++k) {
-      times[k] = static_cast<float>(t_cycle + k * kVlp16FiringPeriod_s);
-      const double yaw = -omega * times[k];  // the head keeps turning between firings
-      local_dirs[k] = Eigen::Vector3d(cos_el[k] * std::cos(yaw), cos_el[k] * std::sin(yaw), sin_el[k]).cast<float>();
-      origins[k] = (T_map_lidar * offsets_[k]).cast<float>();
-      dirs[k] = R * local_dirs[k];
+      if (config_.use_packets) {
+        Eigen::Vector3f o[kBlock], d[kBlock];
+        RayHit packet[kBlock];
+        for (int j = 0; j < n; ++j) o[j] = origins[j][k], d[j] = world_dirs[j][k];
+        world.castRays16(storey, o, d, t_min, t_max, packet, n);
+        for (int j = 0; j < n; ++j) hits[j][k] = packet[j];
+      } else {
+        for (int j = 0; j < n; ++j) hits[j][k] = world.castRay(storey, origins[j][k], world_dirs[j][k], t_min, t_max);
+      }
     }
-    if (config_.use_packets) {
-      world.castRays16(storey, origins, dirs, t_min, t_max, hits);
-    } else {
-      for (int k = 0; k < kVlp16Lasers; ++k) hits[k] = world.castRay(storey, origins[k], dirs[k], t_min, t_max);
-    }
-    if (rays) {
-      rays->origins.insert(rays->origins.end(), origins, origins + kVlp16Lasers);
-      rays->directions.insert(rays->directions.end(), dirs, dirs + kVlp16Lasers);
-    }
-    for (int k = 0; k < kVlp16Lasers; ++k) {
-      if (!hits[k].hit()) continue;
-      // Noise and dropout are drawn for every return, kept or not, so that the random
-      // sequence does not depend on the range limits.
-      const float range = hits[k].range_m + noise(rng);
-      const bool dropped = uniform(rng) < config_.dropout_probability;
-      if (dropped || range < config_.min_range_m || range > config_.max_range_m) continue;
-      const Eigen::Vector3f p = offsets_[k].cast<float>() + range * local_dirs[k];
-      out.points.push_back({p.x(), p.y(), p.z(), intensity(dirs[k], hits[k].normal), vlp16Ring(k), times[k]});
-    }
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < kVlp16Lasers; ++k) {
+        const RayHit& hit = hits[j][k];
+        if (!hit.hit()) continue;
+        // Noise and dropout are drawn for every return, kept or not, so that the random
+        // sequence depends on the configuration only, never on the range limits.
+        const float range = hit.range_m + (sigma > 0.0f ? noise(rng) : 0.0f);
+        const bool dropped = dropout && uniform(rng) < config_.dropout_probability;
+        if (dropped || range < config_.min_range_m || range > config_.max_range_m) continue;
+        const Eigen::Vector3f p = offsets_[k].cast<float>() + range * local_dirs[j][k];
+        out.points.push_back({p.x(), p.y(), p.z(), intensity(world_dirs[j][k], hit.normal), vlp16Ring(k), times[j][k]});
+      }
   }
   return out;
 }

@@ -78,4 +78,9 @@ std::size_t scenarioStorey(const Scenario& scenario, const World& world);
 // the body fits in the room, drawn from the seed (random heading unless yaw_deg is given).
 Pose2 startPose(const Scenario& scenario, const World& world);
 
+// The scenario's base trajectory: startPose, then BaseTrajectory::plan on its storey. A motion
+// the body cannot make is a ScenarioError at the line to blame: the start, the waypoint that
+// ends the segment hitting the building, or the motion.
+BaseTrajectory planTrajectory(const Scenario& scenario, const World& world);
+
 }  // namespace bimloc::sim

@@ -201,14 +201,14 @@ RayHit World::castRay(std::size_t storey, const Eigen::Vector3f& origin, const E
 }
 
 void World::castRays16(std::size_t storey, const Eigen::Vector3f origins[16], const Eigen::Vector3f dirs[16], float t_min,
-                       float t_max, RayHit hits[16]) const {
+                       float t_max, RayHit hits[16], int count) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // nearly one origin, a fan of directions
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[16];
   for (int i = 0; i < 16; ++i) {
-    valid[i] = -1;
+    valid[i] = i < count ? -1 : 0;
     rh.ray.org_x[i] = origins[i].x(), rh.ray.org_y[i] = origins[i].y(), rh.ray.org_z[i] = origins[i].z();
     rh.ray.dir_x[i] = dirs[i].x(), rh.ray.dir_y[i] = dirs[i].y(), rh.ray.dir_z[i] = dirs[i].z();
     rh.ray.tnear[i] = t_min, rh.ray.tfar[i] = t_max;
@@ -216,7 +216,7 @@ void World::castRays16(std::size_t storey, const Eigen::Vector3f origins[16], co
     rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
   }
   rtcIntersect16(valid, impl_->scenes.at(storey), &context, &rh);
-  for (int i = 0; i < 16; ++i) {
+  for (int i = 0; i < count; ++i) {
     if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
       hits[i].range_m = kInf;
       continue;

@@ -42,9 +42,10 @@ class World {
   // Embree: the first hit of the ray origin + t dir (dir unit), t in [t_min, t_max].
   RayHit castRay(std::size_t storey, const Eigen::Vector3f& origin, const Eigen::Vector3f& dir,
                  float t_min, float t_max) const;
-  // Embree, 16 rays in one packet (a VLP-16 firing: nearly one origin, a vertical fan).
+  // Embree, up to 16 rays in one packet (the first `count`): coherent rays, such as one
+  // laser over 16 consecutive firings, share most of their traversal.
   void castRays16(std::size_t storey, const Eigen::Vector3f origins[16], const Eigen::Vector3f dirs[16],
-                  float t_min, float t_max, RayHit hits[16]) const;
+                  float t_min, float t_max, RayHit hits[16], int count = 16) const;
   // The bare Embree scene handle (RTCScene), for the benchmark's plain loop.
   void* embreeScene(std::size_t storey) const;
 

@@ -1,0 +1,229 @@
+#include "sim/base/base_trajectory.hpp"
+
+#include "sim/base/free_space.hpp"
+#include "sim/base/gait.hpp"
+#include "sim/base/motion_profile.hpp"
+#include "sim/base/room_lookup.hpp"
+#include "sim/base/seeded_random.hpp"
+#include "sim/world/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <stdexcept>
+
+namespace bimloc::sim {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+// Floor search under the body: from body height down to a bit below the storey floor.
+constexpr double kFloorSearchBelow_m = 1.0;
+// Random walk: targets at least this far apart (or a third of the room's smaller side), so
+// the walk covers the room rather than shuffling; a bound on legs and draws keeps it finite.
+constexpr double kWalkMinStep_m = 1.0;
+constexpr int kWalkMaxLegs = 2000;
+constexpr int kWalkDraws = 200;
+// Goals in a room: the centre, or the nearest spot within this distance where the body fits.
+constexpr double kSpotSearch_m = 3.0;
+
+std::string xy(const Eigen::Vector2d& p) {
+  char text[64];
+  std::snprintf(text, sizeof text, "(%.2f, %.2f)", p.x(), p.y());
+  return text;
+}
+
+std::string metres(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f m", v);
+  return text;
+}
+
+std::string xyz(const Eigen::Vector3d& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.2f, %.2f, %.2f)", p.x(), p.y(), p.z());
+  return text;
+}
+
+// Corners and timing grow together, each segment checked by a sweep of the body as it is added.
+struct ScriptBuilder {
+  FreeSpace& space;
+  Timeline timeline;
+  std::vector<Pose2> corners;
+  int segments = 0;
+
+  void addLeg(const std::vector<Eigen::Vector2d>& points, std::optional<double> final_yaw = std::nullopt) {
+    for (const auto& p : points) {
+      const Eigen::Vector2d from = timeline.position();
+      ++segments;  // counted even when empty, so waypoint K always ends segment K
+      if ((p - from).norm() < 1e-9) continue;
+      Eigen::Vector3d contact = Eigen::Vector3d::Zero();
+      if (!space.segmentClear(from, p, 0.0, &contact))
+        throw MotionError("motion segment " + std::to_string(segments) + " from " + xy(from) + " to " + xy(p) +
+                              " hits the building at " + xyz(contact),
+                          MotionError::Where::Segment, segments);
+      timeline.moveTo(p);
+      corners.push_back({p.x(), p.y(), std::remainder(timeline.yaw(), 2.0 * M_PI)});
+    }
+    if (final_yaw) timeline.turnTo(*final_yaw);
+  }
+};
+
+const bim::Room& roomOrThrow(const bim::Storey& storey, const std::string& name) {
+  std::string problem;
+  const bim::Room* room = lookUpRoom(storey, name, &problem);
+  if (!room) throw MotionError(problem, MotionError::Where::Script);
+  return *room;
+}
+
+Eigen::Vector2d roomGoal(const FreeSpace& space, const bim::Room& room) {
+  const auto spot = space.freeSpotNear(room.centre, &room.footprint, kSpotSearch_m);
+  if (!spot)
+    throw MotionError("no spot near the centre of room " + room.name + " where a body of radius " + metres(space.radius()) +
+                          " fits",
+                      MotionError::Where::Script);
+  return *spot;
+}
+
+std::vector<Eigen::Vector2d> legTo(FreeSpace& space, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                                   const std::string& what) {
+  std::vector<Eigen::Vector2d> leg = space.path(from, to);
+  if (leg.empty())
+    throw MotionError("no path from " + xy(from) + " to " + what + " " + xy(to) + " for a body of radius " +
+                          metres(space.radius()),
+                      MotionError::Where::Script);
+  leg.erase(leg.begin());  // `from`: where the base already is
+  return leg;
+}
+
+void randomWalk(ScriptBuilder& script, const bim::Storey& storey, const MotionConfig& motion, const Pose2& start,
+                double duration_s, std::uint64_t seed) {
+  const bim::Room* room = motion.walk_room.empty() ? roomAt(storey, {start.x, start.y})
+                                                   : &roomOrThrow(storey, motion.walk_room);
+  if (!room)
+    throw MotionError("random walk: the start " + xy({start.x, start.y}) + " is in no room of storey '" + storey.name +
+                          "'; name the room (motion.room)",
+                      MotionError::Where::Script);
+  Eigen::Vector2d lo = room->footprint.front(), hi = lo;
+  for (const auto& q : room->footprint) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  const double min_step = std::min(kWalkMinStep_m, (hi - lo).minCoeff() / 3.0);
+  SeededRandom random(seed, RandomStream::Walk);
+  for (int legs = 0; legs < kWalkMaxLegs && script.timeline.end_s() < duration_s; ++legs) {
+    std::vector<Eigen::Vector2d> leg;
+    for (int draw = 0; draw < kWalkDraws && leg.empty(); ++draw) {
+      const Eigen::Vector2d q(random.uniform(lo.x(), hi.x()), random.uniform(lo.y(), hi.y()));
+      if (!bim::pointInPolygon(room->footprint, q) || (q - script.timeline.position()).norm() < min_step ||
+          !script.space.spotFree(q, FreeSpace::kMargin_m))
+        continue;
+      leg = script.space.path(script.timeline.position(), q);
+    }
+    if (!leg.empty()) leg.erase(leg.begin());  // where the base already is
+    if (leg.empty()) {
+      if (legs == 0)
+        throw MotionError("random walk: no reachable spot in room " + room->name + " where the body fits",
+                          MotionError::Where::Script);
+      break;
+    }
+    script.addLeg(leg);
+  }
+}
+
+}  // namespace
+
+struct BaseTrajectory::Impl {
+  Timeline timeline;
+  std::vector<Pose2> corners;
+  double duration_s = 0.0;
+  double max_speed_mps = 0.0, max_turn_rate_rps = 0.0;
+  GaitConfig gait;
+  double gait_phase_rad = 0.0;
+};
+
+BaseTrajectory BaseTrajectory::plan(const World& world, std::size_t storey, const Pose2& start,
+                                    const MotionConfig& motion, double duration_s, std::uint64_t seed) {
+  if (storey >= world.storeyCount())
+    throw std::invalid_argument("storey index " + std::to_string(storey) + " out of range (the world has " +
+                                std::to_string(world.storeyCount()) + ")");
+  if (!(duration_s > 0.0) || !(motion.max_speed_mps > 0.0) || !(motion.max_accel_mps2 > 0.0) ||
+      !(motion.max_turn_rate_dps > 0.0) || !(motion.max_turn_accel_dps2 > 0.0) || !(motion.body_radius_m > 0.0))
+    throw std::invalid_argument("the duration, speed, acceleration, turn-rate limits and body radius must be positive");
+  const bim::Storey& st = world.building().storeys.at(storey);
+  const double height = motion.gait.body_height_m;
+  const Eigen::Vector2d origin(start.x, start.y);
+
+  // The body is a sphere at body height above the floor where it starts (storeys are flat).
+  const double floor0 = bodyCentreZ(world, storey, origin, height) - height;
+  FreeSpace space(world, storey, motion.body_radius_m, floor0 + height);
+  Eigen::Vector3d contact = Eigen::Vector3d::Zero();
+  if (!space.spotFree(origin, 0.0, &contact))
+    throw MotionError("the start " + xy(origin) + " leaves no room for a body of radius " + metres(motion.body_radius_m) +
+                          ": it touches the building at " + xyz(contact),
+                      MotionError::Where::Start);
+
+  MotionLimits limits;
+  limits.max_speed_mps = motion.max_speed_mps;
+  limits.max_accel_mps2 = motion.max_accel_mps2;
+  limits.max_turn_rate_rps = motion.max_turn_rate_dps * kDegToRad;
+  limits.max_turn_accel_rps2 = motion.max_turn_accel_dps2 * kDegToRad;
+  const auto floor_z = [&world, storey, height, floor0](const Eigen::Vector2d& p) {
+    double z = floor0;
+    return world.floorBelow(storey, {p.x(), p.y(), floor0 + height}, height + kFloorSearchBelow_m, &z) ? z : floor0;
+  };
+  ScriptBuilder script{space, Timeline(origin, start.yaw, limits, floor_z), {start}, 0};
+
+  switch (motion.kind) {
+    case MotionConfig::Kind::Stand:
+      break;
+    case MotionConfig::Kind::Waypoints:
+      for (const auto& w : motion.waypoints) script.addLeg({w.xy}, w.yaw_rad);
+      break;
+    case MotionConfig::Kind::Tour:
+      for (const auto& name : motion.rooms) {
+        const bim::Room& room = roomOrThrow(st, name);
+        script.addLeg(legTo(space, script.timeline.position(), roomGoal(space, room), "room " + room.name));
+      }
+      break;
+    case MotionConfig::Kind::RandomWalk:
+      randomWalk(script, st, motion, start, duration_s, seed);
+      break;
+  }
+
+  auto impl = std::make_unique<Impl>();
+  impl->timeline = std::move(script.timeline);
+  impl->timeline.seal();
+  impl->corners = std::move(script.corners);
+  impl->duration_s = duration_s;
+  impl->max_speed_mps = limits.max_speed_mps;
+  impl->max_turn_rate_rps = limits.max_turn_rate_rps;
+  impl->gait = motion.gait;
+  impl->gait_phase_rad = 2.0 * M_PI * SeededRandom(seed, RandomStream::Gait).uniform();
+  return BaseTrajectory(std::move(impl));
+}
+
+BaseTrajectory::BaseTrajectory(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+BaseTrajectory::BaseTrajectory(BaseTrajectory&&) noexcept = default;
+BaseTrajectory& BaseTrajectory::operator=(BaseTrajectory&&) noexcept = default;
+BaseTrajectory::~BaseTrajectory() = default;
+
+double BaseTrajectory::duration_s() const { return impl_->duration_s; }
+double BaseTrajectory::script_duration_s() const { return impl_->timeline.end_s(); }
+const std::vector<Pose2>& BaseTrajectory::corners() const { return impl_->corners; }
+
+double BaseTrajectory::distance_m(double t_s) const {
+  return impl_->timeline.at(std::clamp(t_s, 0.0, impl_->duration_s)).distance;
+}
+
+Eigen::Isometry3d BaseTrajectory::T_map_base(double t_s) const {
+  const double t = std::clamp(t_s, 0.0, impl_->duration_s);
+  const PlanarState s = impl_->timeline.at(t);
+  const double activity = gaitActivity(s.speed, s.turn_rate, impl_->max_speed_mps, impl_->max_turn_rate_rps);
+  const GaitOffsets g = gaitOffsets(impl_->gait, t, activity, impl_->gait_phase_rad);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(s.xy.x(), s.xy.y(), s.floor_z + impl_->gait.body_height_m + g.dz_m);
+  T.linear() = (Eigen::AngleAxisd(s.yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(g.pitch_rad, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(g.roll_rad, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return T;
+}
+
+}  // namespace bimloc::sim

@@ -1,0 +1,241 @@
+#include "sim/base/free_space.hpp"
+
+#include "sim/world/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <stdexcept>
+
+namespace bimloc::sim {
+namespace {
+
+// E, NE, N, NW, W, SW, S, SE: direction d + 4 is the reverse of d.
+constexpr int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+// Spot test: a Bullet sweep that starts inside the mesh may report nothing when it moves away
+// from the surface, so a spot is tested by tiny sweeps in the four directions: at least one of
+// them moves into whatever the body overlaps.
+constexpr double kNudge_m = 1e-3;
+// Grid margin around the rooms and walls: room to walk around the outside of the building.
+constexpr double kGridPad_m = 1.0;
+constexpr std::size_t kMaxCells = 16'000'000;
+
+Eigen::Vector3d at(const Eigen::Vector2d& p, double z) { return {p.x(), p.y(), z}; }
+
+}  // namespace
+
+double bodyCentreZ(const World& world, std::size_t storey, const Eigen::Vector2d& p, double body_height_m) {
+  const double elevation = world.building().storeys.at(storey).elevation_m;
+  double floor = elevation;
+  // Down from body height above the storey floor, to a little below it.
+  if (!world.floorBelow(storey, at(p, elevation + body_height_m), body_height_m + 1.0, &floor)) floor = elevation;
+  return floor + body_height_m;
+}
+
+FreeSpace::FreeSpace(const World& world, std::size_t storey, double radius_m, double body_z_m)
+    : world_(world), storey_(storey), radius_(radius_m), body_z_(body_z_m) {}
+
+bool FreeSpace::segmentClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin_m,
+                             Eigen::Vector3d* contact) const {
+  if ((b - a).norm() < 1e-9) return spotFree(a, margin_m, contact);
+  ++sweeps_;
+  return world_.sweepClear(storey_, at(a, body_z_), at(b, body_z_), radius_ + margin_m, contact);
+}
+
+bool FreeSpace::spotFree(const Eigen::Vector2d& p, double margin_m, Eigen::Vector3d* contact) const {
+  for (const Eigen::Vector2d& step : {Eigen::Vector2d(kNudge_m, 0.0), Eigen::Vector2d(-kNudge_m, 0.0),
+                                      Eigen::Vector2d(0.0, kNudge_m), Eigen::Vector2d(0.0, -kNudge_m)}) {
+    ++sweeps_;
+    if (!world_.sweepClear(storey_, at(p - step, body_z_), at(p + step, body_z_), radius_ + margin_m, contact))
+      return false;
+  }
+  return true;
+}
+
+std::optional<Eigen::Vector2d> FreeSpace::freeSpotNear(const Eigen::Vector2d& p, const bim::Polygon2* area,
+                                                       double max_distance_m) const {
+  const auto inside = [&](const Eigen::Vector2d& q) { return !area || bim::pointInPolygon(*area, q); };
+  if (inside(p) && spotFree(p, kMargin_m)) return p;
+  const int reach = static_cast<int>(std::ceil(max_distance_m / kCell_m));
+  const long cx = std::lround(p.x() / kCell_m), cy = std::lround(p.y() / kCell_m);
+  std::vector<std::pair<double, Eigen::Vector2d>> candidates;
+  for (int dy = -reach; dy <= reach; ++dy)
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const Eigen::Vector2d q((cx + dx) * kCell_m, (cy + dy) * kCell_m);
+      const double d = (q - p).norm();
+      if (d <= max_distance_m && inside(q)) candidates.emplace_back(d, q);
+    }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const auto& l, const auto& r) { return l.first < r.first; });
+  for (const auto& [d, q] : candidates)
+    if (spotFree(q, kMargin_m)) return q;
+  return std::nullopt;
+}
+
+void FreeSpace::makeGrid(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  Eigen::Vector2d lo = a.cwiseMin(b), hi = a.cwiseMax(b);
+  const bim::Storey& storey = world_.building().storeys.at(storey_);
+  for (const auto& room : storey.rooms)
+    for (const auto& q : room.footprint) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  for (const auto& wall : storey.walls)
+    for (const auto& face : wall.faces)
+      for (const auto& q : {face.start, face.end}) lo = lo.cwiseMin(q.head<2>()), hi = hi.cwiseMax(q.head<2>());
+  lo.array() -= kGridPad_m, hi.array() += kGridPad_m;
+  // Cell centres on multiples of the cell size, so grids of one storey always coincide.
+  grid_.origin = (lo / kCell_m).array().floor() * kCell_m;
+  grid_.nx = static_cast<int>(std::ceil((hi.x() - grid_.origin.x()) / kCell_m)) + 1;
+  grid_.ny = static_cast<int>(std::ceil((hi.y() - grid_.origin.y()) / kCell_m)) + 1;
+  const std::size_t cells = static_cast<std::size_t>(grid_.nx) * static_cast<std::size_t>(grid_.ny);
+  if (cells > kMaxCells)
+    throw std::runtime_error("the storey is too large for the path grid (" + std::to_string(cells) + " cells of " +
+                             std::to_string(kCell_m) + " m)");
+  grid_.edges.assign(cells, 0);
+}
+
+Eigen::Vector2d FreeSpace::centre(int cell) const {
+  return grid_.origin + kCell_m * Eigen::Vector2d(cell % grid_.nx, cell / grid_.nx);
+}
+
+int FreeSpace::cellNear(const Eigen::Vector2d& p) const {
+  const long ix = std::lround((p.x() - grid_.origin.x()) / kCell_m);
+  const long iy = std::lround((p.y() - grid_.origin.y()) / kCell_m);
+  if (ix < 0 || iy < 0 || ix >= grid_.nx || iy >= grid_.ny) return -1;
+  return static_cast<int>(iy * grid_.nx + ix);
+}
+
+bool FreeSpace::edgeClear(int cell, int direction) {
+  const int neighbour = cell + kDy[direction] * grid_.nx + kDx[direction];
+  // Each edge is stored once, at the cell it leaves eastwards or northwards.
+  const int owner = direction < 4 ? cell : neighbour;
+  const int shift = 2 * (direction % 4);
+  std::uint8_t& bits = grid_.edges[static_cast<std::size_t>(owner)];
+  const int state = (bits >> shift) & 3;
+  if (state != 0) return state == 1;
+  const bool clear = segmentClear(centre(cell), centre(neighbour), kMargin_m);
+  bits = static_cast<std::uint8_t>(bits | ((clear ? 1 : 2) << shift));
+  return clear;
+}
+
+std::vector<int> FreeSpace::aStar(int from, int to) {
+  const std::size_t n = grid_.edges.size();
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<float> g(n, inf);
+  std::vector<int> parent(n, -1);
+  std::vector<bool> closed(n, false);
+  const int tx = to % grid_.nx, ty = to / grid_.nx;
+  const auto h = [&](int c) {  // octile distance in cells
+    const int dx = std::abs(c % grid_.nx - tx), dy = std::abs(c / grid_.nx - ty);
+    return static_cast<float>(std::max(dx, dy) + (M_SQRT2 - 1.0) * std::min(dx, dy));
+  };
+  using Item = std::pair<float, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+  g[static_cast<std::size_t>(from)] = 0.0f;
+  open.emplace(h(from), from);
+  while (!open.empty()) {
+    const int c = open.top().second;
+    open.pop();
+    if (closed[static_cast<std::size_t>(c)]) continue;
+    closed[static_cast<std::size_t>(c)] = true;
+    if (c == to) break;
+    const int cx = c % grid_.nx, cy = c / grid_.nx;
+    for (int d = 0; d < 8; ++d) {
+      const int x = cx + kDx[d], y = cy + kDy[d];
+      if (x < 0 || y < 0 || x >= grid_.nx || y >= grid_.ny) continue;
+      const int nb = y * grid_.nx + x;
+      const float cost = g[static_cast<std::size_t>(c)] + static_cast<float>(d % 2 ? M_SQRT2 : 1.0);
+      // Sweep only edges that would improve the neighbour: most are never swept at all.
+      if (closed[static_cast<std::size_t>(nb)] || cost >= g[static_cast<std::size_t>(nb)] || !edgeClear(c, d)) continue;
+      g[static_cast<std::size_t>(nb)] = cost;
+      parent[static_cast<std::size_t>(nb)] = c;
+      open.emplace(cost + h(nb), nb);
+    }
+  }
+  if (!closed[static_cast<std::size_t>(to)]) return {};
+  std::vector<int> cells{to};
+  while (cells.back() != from) cells.push_back(parent[static_cast<std::size_t>(cells.back())]);
+  std::reverse(cells.begin(), cells.end());
+  return cells;
+}
+
+std::vector<Eigen::Vector2d> FreeSpace::pullTaut(const std::vector<Eigen::Vector2d>& points) const {
+  // From each corner, go as far along the grid path as the straight line stays clear.
+  std::vector<Eigen::Vector2d> corners{points.front()};
+  std::size_t i = 0;
+  const std::size_t last = points.size() - 1;
+  while (i < last) {
+    std::size_t k = i + 1;
+    while (k < last && segmentClear(points[i], points[k + 1], kMargin_m)) ++k;
+    corners.push_back(points[k]);
+    i = k;
+  }
+  return corners;
+}
+
+std::vector<Eigen::Vector2d> FreeSpace::straighten(std::vector<Eigen::Vector2d> c) const {
+  // A taut path wraps around a rounded obstacle (a door jamb grown by the body) in several
+  // short grid steps; each corner costs the base a stop and a turn. Drop corners the path can
+  // do without, and replace two close corners by the crossing of the lines through them.
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (std::size_t i = 1; i + 1 < c.size() && !changed; ++i) {
+      if (segmentClear(c[i - 1], c[i + 1], kMargin_m)) {
+        c.erase(c.begin() + static_cast<long>(i));
+        changed = true;
+        continue;
+      }
+      if (i + 2 >= c.size() || (c[i + 1] - c[i]).norm() > kMergeCorners_m) continue;
+      const Eigen::Vector2d u = c[i] - c[i - 1], v = c[i + 2] - c[i + 1];
+      const double det = u.x() * v.y() - u.y() * v.x();
+      if (std::abs(det) < 1e-9 * u.norm() * v.norm()) continue;
+      const Eigen::Vector2d w = c[i + 1] - c[i - 1];
+      const double s = (w.x() * v.y() - w.y() * v.x()) / det;  // crossing at c[i-1] + s u
+      const double t = (w.x() * u.y() - w.y() * u.x()) / det;  //          = c[i+1] + t v
+      const Eigen::Vector2d x = c[i - 1] + s * u;
+      // Ahead of c[i-1], before c[i+2], and near the two corners it replaces.
+      if (s <= 0.0 || t >= 1.0 || (x - c[i]).norm() > kMergeCorners_m || (x - c[i + 1]).norm() > kMergeCorners_m)
+        continue;
+      // Half the margin: the crossing of two lines that graze the same obstacle at the full
+      // margin runs a hair closer to it between the grid points they were pulled to.
+      if (!segmentClear(c[i - 1], x, kMargin_m / 2) || !segmentClear(x, c[i + 2], kMargin_m / 2)) continue;
+      c[i] = x;
+      c.erase(c.begin() + static_cast<long>(i) + 1);
+      changed = true;
+    }
+  }
+  return c;
+}
+
+std::vector<Eigen::Vector2d> FreeSpace::path(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  if (segmentClear(a, b, kMargin_m)) return {a, b};
+  if (grid_.edges.empty()) makeGrid(a, b);
+  // Join a and b to the grid: the nearest grid point reached by a clear segment (with the
+  // margin if possible: a start given close to a wall may not allow it).
+  const auto join = [&](const Eigen::Vector2d& p) {
+    const int c = cellNear(p);
+    if (c < 0) return -1;
+    std::vector<std::pair<double, int>> near;
+    for (int d = -1; d < 8; ++d) {
+      const int x = c % grid_.nx + (d < 0 ? 0 : kDx[d]), y = c / grid_.nx + (d < 0 ? 0 : kDy[d]);
+      if (x >= 0 && y >= 0 && x < grid_.nx && y < grid_.ny) near.emplace_back((centre(y * grid_.nx + x) - p).norm(), y * grid_.nx + x);
+    }
+    std::sort(near.begin(), near.end());
+    for (const double margin : {kMargin_m, 0.0})
+      for (const auto& [d, cell] : near)
+        if (segmentClear(p, centre(cell), margin)) return cell;
+    return -1;
+  };
+  const int from = join(a), to = join(b);
+  if (from < 0 || to < 0) return {};
+  const std::vector<int> cells = aStar(from, to);
+  if (cells.empty()) return {};
+  std::vector<Eigen::Vector2d> points{a};
+  for (const int c : cells)
+    if ((centre(c) - points.back()).norm() > 1e-9) points.push_back(centre(c));
+  if ((b - points.back()).norm() > 1e-9) points.push_back(b);
+  return straighten(pullTaut(points));
+}
+
+}  // namespace bimloc::sim

@@ -1,0 +1,180 @@
+#include "sim/dataset/bag_writer.hpp"
+
+#include "sim/dataset/tum_writer.hpp"
+#include "sim/dataset/velodyne_points.hpp"
+
+#include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace bimloc::sim {
+
+namespace {
+
+std_msgs::Header header(std::uint64_t stamp_ns, std::uint32_t seq, const char* frame_id) {
+  std_msgs::Header h;
+  h.seq = seq;
+  h.stamp.fromNSec(stamp_ns);
+  h.frame_id = frame_id;
+  return h;
+}
+
+std::uint8_t rosDatatype(PointFieldType type) {
+  return type == PointFieldType::kFloat32 ? sensor_msgs::PointField::FLOAT32 : sensor_msgs::PointField::UINT16;
+}
+
+sensor_msgs::PointCloud2 cloudMessage(std::uint64_t stamp_ns, std::uint32_t seq, const LidarScan& scan) {
+  sensor_msgs::PointCloud2 cloud;
+  cloud.header = header(stamp_ns, seq, kLidarFrame);
+  for (const PointFieldLayout& f : velodynePointFields()) {
+    sensor_msgs::PointField field;
+    field.name = f.name;
+    field.offset = f.offset_bytes;
+    field.datatype = rosDatatype(f.type);
+    field.count = 1;
+    cloud.fields.push_back(field);
+  }
+  cloud.height = 1;  // unorganised, as the driver's PointcloudXYZIRT
+  cloud.width = static_cast<std::uint32_t>(scan.points.size());
+  cloud.is_bigendian = false;
+  cloud.point_step = kVelodynePointStepBytes;
+  cloud.row_step = cloud.point_step * cloud.width;
+  cloud.data = packVelodynePoints(scan.points);
+  bool dense = true;
+  for (const LidarPoint& p : scan.points)
+    dense = dense && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  cloud.is_dense = dense;
+  return cloud;
+}
+
+geometry_msgs::Pose poseMessage(const Eigen::Isometry3d& T) {
+  geometry_msgs::Pose pose;
+  pose.position.x = T.translation().x();
+  pose.position.y = T.translation().y();
+  pose.position.z = T.translation().z();
+  const Eigen::Quaterniond q = canonicalRotation(T);
+  pose.orientation.x = q.x();
+  pose.orientation.y = q.y();
+  pose.orientation.z = q.z();
+  pose.orientation.w = q.w();
+  return pose;
+}
+
+geometry_msgs::TransformStamped transformMessage(std::uint64_t stamp_ns, const char* parent, const char* child,
+                                                 const Eigen::Isometry3d& T_parent_child) {
+  geometry_msgs::TransformStamped tf;
+  tf.header = header(stamp_ns, 0, parent);
+  tf.child_frame_id = child;
+  const geometry_msgs::Pose pose = poseMessage(T_parent_child);
+  tf.transform.translation.x = pose.position.x;
+  tf.transform.translation.y = pose.position.y;
+  tf.transform.translation.z = pose.position.z;
+  tf.transform.rotation = pose.orientation;
+  return tf;
+}
+
+// Row-major 6x6 (x, y, z, roll, pitch, yaw) with the given diagonal.
+boost::array<double, 36> diagonalCovariance(const std::array<double, 6>& variance) {
+  boost::array<double, 36> covariance{};
+  for (std::size_t i = 0; i < 6; ++i) covariance[i * 7] = variance[i];
+  return covariance;
+}
+
+}  // namespace
+
+struct BagWriter::Impl {
+  std::string path;
+  DatasetInfo info;
+  rosbag::Bag bag;
+
+  // rosbag's exceptions name no file: add it.
+  template <class Message>
+  void write(const std::string& topic, std::uint64_t stamp_ns, const Message& message) {
+    ros::Time time;
+    time.fromNSec(stamp_ns);
+    try {
+      bag.write(topic, time, message);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(path + ": cannot write " + topic + ": " + e.what());
+    }
+  }
+};
+
+BagWriter::BagWriter(const std::string& path, const DatasetInfo& info) : impl_(std::make_unique<Impl>()) {
+  impl_->path = path;
+  impl_->info = info;
+  try {
+    // Uncompressed (rosbag's default): the fastest to write and to read, and no tool needs a
+    // bz2 / lz4 decoder for it.
+    impl_->bag.open(path, rosbag::bagmode::Write);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": cannot create the bag: " + e.what());
+  }
+  topics_[kCloudTopic].type = "sensor_msgs/PointCloud2";
+  topics_[kOdomTopic].type = "nav_msgs/Odometry";
+  topics_[kTfTopic].type = "tf2_msgs/TFMessage";
+  topics_[kGroundTruthTopic].type = "nav_msgs/Odometry";
+}
+
+BagWriter::~BagWriter() {
+  try {
+    impl_->bag.close();
+  } catch (...) {  // a bag being thrown away: nothing useful to report from a destructor
+  }
+}
+
+void BagWriter::writeScan(std::uint64_t stamp_ns, std::uint32_t seq, const LidarScan& scan) {
+  impl_->write(kCloudTopic, stamp_ns, cloudMessage(stamp_ns, seq, scan));
+  ++topics_[kCloudTopic].messages;
+}
+
+void BagWriter::writeOdometry(std::uint64_t stamp_ns, std::uint32_t seq, const OdometrySample& odom) {
+  nav_msgs::Odometry msg;
+  msg.header = header(stamp_ns, seq, kOdomFrame);
+  msg.child_frame_id = kBaseFrame;
+  msg.pose.pose = poseMessage(odom.T_odom_base);
+  msg.pose.covariance = diagonalCovariance(impl_->info.odometry_pose_variance);
+  msg.twist.twist.linear.x = odom.linear_velocity_base.x();
+  msg.twist.twist.linear.y = odom.linear_velocity_base.y();
+  msg.twist.twist.linear.z = odom.linear_velocity_base.z();
+  msg.twist.twist.angular.x = odom.angular_velocity_base.x();
+  msg.twist.twist.angular.y = odom.angular_velocity_base.y();
+  msg.twist.twist.angular.z = odom.angular_velocity_base.z();
+  msg.twist.covariance = diagonalCovariance(impl_->info.odometry_twist_variance);
+  impl_->write(kOdomTopic, stamp_ns, msg);
+  ++topics_[kOdomTopic].messages;
+
+  // The mount rides along with every odometry transform rather than on /tf_static: a bag
+  // has no latching a player must honour, and tf then finds base_link -> velodyne at any
+  // time the odometry covers, without extrapolating past its last stamp.
+  tf2_msgs::TFMessage tf;
+  tf.transforms.push_back(transformMessage(stamp_ns, kOdomFrame, kBaseFrame, odom.T_odom_base));
+  tf.transforms.push_back(transformMessage(stamp_ns, kBaseFrame, kLidarFrame, impl_->info.T_base_lidar));
+  impl_->write(kTfTopic, stamp_ns, tf);
+  ++topics_[kTfTopic].messages;
+}
+
+void BagWriter::writeGroundTruth(std::uint64_t stamp_ns, std::uint32_t seq, const GroundTruthSample& truth) {
+  // Exact pose, hence zero covariance; the twist is not simulated for the ground truth.
+  nav_msgs::Odometry msg;
+  msg.header = header(stamp_ns, seq, kMapFrame);
+  msg.child_frame_id = kBaseFrame;
+  msg.pose.pose = poseMessage(truth.T_map_base);
+  impl_->write(kGroundTruthTopic, stamp_ns, msg);
+  ++topics_[kGroundTruthTopic].messages;
+}
+
+void BagWriter::close() {
+  try {
+    impl_->bag.close();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(impl_->path + ": cannot finish the bag: " + e.what());
+  }
+}
+
+}  // namespace bimloc::sim

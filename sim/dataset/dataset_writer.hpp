@@ -1,0 +1,70 @@
+// The synthetic dataset of `bimloc simulate`: a ROS1 bag as a real robot would record it
+// (/velodyne_points, /odom, /tf, /ground_truth), the same data as plain files for people
+// without ROS (one PCD per lidar turn, TUM trajectories), and metadata.json describing both.
+#pragma once
+
+#include "sim/lidar/lidar_scan.hpp"
+#include "sim/odometry/odometry_sample.hpp"
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace bimloc::sim {
+
+// Frames of ROS REP 105 and the topics of the bag.
+inline constexpr const char* kMapFrame = "map";
+inline constexpr const char* kOdomFrame = "odom";
+inline constexpr const char* kBaseFrame = "base_link";
+inline constexpr const char* kLidarFrame = "velodyne";
+inline constexpr const char* kCloudTopic = "/velodyne_points";
+inline constexpr const char* kOdomTopic = "/odom";
+inline constexpr const char* kTfTopic = "/tf";
+inline constexpr const char* kGroundTruthTopic = "/ground_truth";
+
+// Every stamp of the dataset (bag, TUM files, clouds/index.csv) is the simulation time plus
+// this offset: ROS refuses a zero stamp, and one clock everywhere lets the TUM files be
+// compared with anything estimated from the bag.
+inline constexpr double kDatasetTimeOffsetS = 1000.0;
+
+struct DatasetInfo {
+  // Goes into metadata.json as given (scenario, seed, sensor, odometry preset, world...);
+  // the writer adds its own keys (format, frames, topics, files...), which win on a clash.
+  nlohmann::json metadata = nlohmann::json::object();
+  Eigen::Isometry3d T_base_lidar = Eigen::Isometry3d::Identity();  // mount: base_link -> velodyne
+  // Diagonal of /odom's covariances (x, y, z, roll, pitch, yaw), in m^2 and rad^2, or
+  // (m/s)^2 and (rad/s)^2 for the twist. The defaults suit a planar wheeled base.
+  std::array<double, 6> odometry_pose_variance{1e-3, 1e-3, 1e-6, 1e-6, 1e-6, 1e-3};
+  std::array<double, 6> odometry_twist_variance{1e-3, 1e-3, 1e-6, 1e-6, 1e-6, 1e-3};
+};
+
+// Each stream (scans, odometry, ground truth) must come with strictly increasing stamps;
+// the streams may be interleaved in any way. Throws std::invalid_argument on a bad sample and
+// std::runtime_error (naming the path) on an I/O failure.
+class DatasetWriter {
+ public:
+  // Stages in a temporary directory next to out_dir; out_dir must not exist or be empty,
+  // so that a dataset never mixes with the files of an earlier one.
+  DatasetWriter(const std::string& out_dir, DatasetInfo info);
+  ~DatasetWriter();  // without commit(): removes the staging directory, out_dir untouched
+  DatasetWriter(const DatasetWriter&) = delete;
+  DatasetWriter& operator=(const DatasetWriter&) = delete;
+
+  void addScan(const LidarScan& scan);
+  void addOdometry(const OdometrySample& odom);
+  void addGroundTruth(const GroundTruthSample& truth);
+
+  // Finishes every file and moves them into out_dir, all or nothing. Returns the file names
+  // relative to out_dir (dataset.bag, metadata.json, ..., clouds/000000.pcd, ...).
+  std::vector<std::string> commit();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace bimloc::sim

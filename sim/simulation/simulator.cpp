@@ -1,0 +1,84 @@
+#include "sim/simulation/simulator.hpp"
+
+#include "sim/odometry/odometry_model.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+namespace bimloc::sim {
+namespace {
+
+// Seeds of the independent random streams of a scenario, from its one seed.
+std::uint64_t streamSeed(std::uint64_t seed, std::uint64_t stream) { return seed * 0x9E3779B97F4A7C15ull + stream; }
+constexpr std::uint64_t kOdometryStream = 2;
+constexpr std::uint64_t kLidarStream = 3;
+
+}  // namespace
+
+Simulator::Simulator(const Scenario& scenario, const World& world)
+    : scenario_(scenario),
+      world_(world),
+      storey_(scenarioStorey(scenario, world)),
+      start_(startPose(scenario, world)),
+      trajectory_(planTrajectory(scenario, world)),
+      lidar_(scenario.sensor) {}
+
+std::size_t Simulator::turnCount() const {
+  return static_cast<std::size_t>(std::floor(scenario_.duration_s / lidar_.turnPeriod_s() + 1e-9));
+}
+
+double Simulator::turnStamp(std::size_t turn) const { return static_cast<double>(turn) * lidar_.turnPeriod_s(); }
+
+LidarScan Simulator::turn(std::size_t turn) const {
+  const auto pose = [this](double t) { return trajectory_.T_map_base(t); };
+  return lidar_.scan(world_, storey_, pose, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
+}
+
+void Simulator::castTurns(int threads, const std::function<void(LidarScan&&)>& sink,
+                          const std::function<void(std::size_t, std::size_t)>& progress) const {
+  const std::size_t total = turnCount();
+  const std::size_t workers = static_cast<std::size_t>(std::max(1, threads));
+  // Batches of turns cast in parallel, handed over in order: memory stays bounded and the
+  // output does not depend on the thread count.
+  const std::size_t batch = 4 * workers;
+  for (std::size_t first = 0; first < total; first += batch) {
+    const std::size_t count = std::min(batch, total - first);
+    std::vector<LidarScan> scans(count);
+    std::atomic<std::size_t> next{0};
+    const auto work = [&] {
+      for (std::size_t i = next++; i < count; i = next++) scans[i] = turn(first + i);
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t w = 1; w < std::min(workers, count); ++w) pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
+    for (auto& s : scans) sink(std::move(s));
+    if (progress) progress(first + count, total);
+  }
+}
+
+std::vector<OdometrySample> Simulator::odometry() const {
+  NoisyOdometry model(scenario_.odometry, streamSeed(scenario_.seed, kOdometryStream));
+  std::vector<OdometrySample> out;
+  const double dt = 1.0 / scenario_.odometry.rate_hz;
+  for (std::size_t k = 0; k * dt <= scenario_.duration_s + 1e-9; ++k)
+    out.push_back(model.step(k * dt, trajectory_.T_map_base(k * dt)));
+  return out;
+}
+
+std::vector<GroundTruthSample> Simulator::groundTruth() const {
+  std::vector<GroundTruthSample> out;
+  const double dt = 1.0 / scenario_.odometry.rate_hz;
+  for (std::size_t k = 0; k * dt <= scenario_.duration_s + 1e-9; ++k) out.push_back({k * dt, trajectory_.T_map_base(k * dt)});
+  return out;
+}
+
+Eigen::Isometry3d Simulator::T_map_odom_true() const {
+  NoisyOdometry model(scenario_.odometry, 0);
+  model.step(0.0, trajectory_.T_map_base(0.0));
+  return model.T_map_odom_true();
+}
+
+}  // namespace bimloc::sim

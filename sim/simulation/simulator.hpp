@@ -1,0 +1,54 @@
+// One scenario, simulated: the start pose resolved in the world, the base's trajectory
+// planned, and from them the lidar turns, the odometry and the ground truth. Turns are
+// independent of each other (each draws its noise from the seed and its index), so they can
+// be cast in parallel and still give bit-identical output whatever the thread count.
+#pragma once
+
+#include "sim/base/base_trajectory.hpp"
+#include "sim/lidar/vlp16.hpp"
+#include "sim/odometry/odometry_sample.hpp"
+#include "sim/scenario/scenario.hpp"
+#include "sim/world/world.hpp"
+
+#include <functional>
+#include <vector>
+
+namespace bimloc::sim {
+
+class Simulator {
+ public:
+  // Resolves the storey and the start, and plans the base's motion: ScenarioError on failure.
+  Simulator(const Scenario& scenario, const World& world);
+
+  const Scenario& scenario() const { return scenario_; }
+  const World& world() const { return world_; }
+  std::size_t storey() const { return storey_; }
+  const Pose2& start() const { return start_; }
+  const BaseTrajectory& trajectory() const { return trajectory_; }
+  const Vlp16& lidar() const { return lidar_; }
+
+  // Turns that fit entirely in the scenario's duration, at the lidar's rate.
+  std::size_t turnCount() const;
+  double turnStamp(std::size_t turn) const;
+  LidarScan turn(std::size_t turn) const;  // thread-safe
+
+  // All turns, cast on `threads` threads, delivered in order to `sink` (progress optional).
+  void castTurns(int threads, const std::function<void(LidarScan&&)>& sink,
+                 const std::function<void(std::size_t done, std::size_t total)>& progress = {}) const;
+
+  // Odometry at its rate over the whole duration, and the ground truth at the same instants.
+  std::vector<OdometrySample> odometry() const;
+  std::vector<GroundTruthSample> groundTruth() const;
+  // True map -> odom (where odometry started), for evaluation.
+  Eigen::Isometry3d T_map_odom_true() const;
+
+ private:
+  const Scenario& scenario_;
+  const World& world_;
+  std::size_t storey_ = 0;
+  Pose2 start_;
+  BaseTrajectory trajectory_;
+  Vlp16 lidar_;
+};
+
+}  // namespace bimloc::sim
