@@ -8,4 +8,5 @@ void addBenchCommand(CLI::App& app) {
   addBenchExtractCommand(*bench);
   addBenchLidarCommand(*bench);
   addBenchSimulateCommand(*bench);
+  addBenchOdometryCommand(*bench);
 }

@@ -18,5 +18,6 @@ void addBenchCommand(CLI::App& app);  // bench extract | lidar | simulate
 void addBenchExtractCommand(CLI::App& bench);
 void addBenchLidarCommand(CLI::App& bench);
 void addBenchSimulateCommand(CLI::App& bench);
+void addBenchOdometryCommand(CLI::App& bench);
 void addWorldgenCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);

@@ -1,9 +1,9 @@
 #include "sim/lidar/vlp16.hpp"
 
+#include "sim/lidar/fast_random.hpp"
 #include "sim/world/world.hpp"
 
 #include <cmath>
-#include <random>
 
 namespace bimloc::sim {
 namespace {
@@ -43,9 +43,7 @@ LidarScan Vlp16::scan(const World& world, std::size_t storey, const std::functio
   LidarScan out;
   out.stamp_s = t0_s;
   out.points.reserve(static_cast<std::size_t>(cycles_) * kVlp16Lasers);
-  std::mt19937_64 rng(mix(seed ^ mix(turn_index)));
-  std::normal_distribution<float> noise(0.0f, static_cast<float>(config_.range_noise_sigma_m));
-  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  FastRandom rng(mix(seed ^ mix(turn_index)));
   const float sigma = static_cast<float>(config_.range_noise_sigma_m);
   const bool dropout = config_.dropout_probability > 0.0;
   const double omega = 2.0 * M_PI * config_.rpm / 60.0;  // rad/s, clockwise seen from above
@@ -76,13 +74,14 @@ LidarScan Vlp16::scan(const World& world, std::size_t storey, const std::functio
       // Each cycle is cast from the sensor's pose at its own instant (motion distortion).
       const Eigen::Isometry3d T = config_.motion_distortion ? T_map_base(t0_s + t_cycle) * config_.T_base_lidar : T_static;
       const Eigen::Matrix3f R = T.linear().cast<float>();
+      const Eigen::Vector3f t_lidar = T.translation().cast<float>(), up = R.col(2);
       const double c_yaw = std::cos(-omega * t_cycle), s_yaw = std::sin(-omega * t_cycle);
       for (int k = 0; k < kVlp16Lasers; ++k) {
         times[j][k] = static_cast<float>(t_cycle + k * kVlp16FiringPeriod_s);
         const double c = c_yaw * cos_fire[k] - s_yaw * sin_fire[k], s_ = s_yaw * cos_fire[k] + c_yaw * sin_fire[k];
         local_dirs[j][k] = Eigen::Vector3f(float(cos_el[k] * c), float(cos_el[k] * s_), float(sin_el[k]));
         world_dirs[j][k] = R * local_dirs[j][k];
-        origins[j][k] = (T * offsets_[k]).cast<float>();
+        origins[j][k] = t_lidar + static_cast<float>(offsets_[k].z()) * up;  // the laser's vertical offset
       }
       if (rays) {  // in firing order: what a one-ray-per-firing caster would cast
         rays->origins.insert(rays->origins.end(), origins[j], origins[j] + kVlp16Lasers);
@@ -106,8 +105,8 @@ LidarScan Vlp16::scan(const World& world, std::size_t storey, const std::functio
         if (!hit.hit()) continue;
         // Noise and dropout are drawn for every return, kept or not, so that the random
         // sequence depends on the configuration only, never on the range limits.
-        const float range = hit.range_m + (sigma > 0.0f ? noise(rng) : 0.0f);
-        const bool dropped = dropout && uniform(rng) < config_.dropout_probability;
+        const float range = hit.range_m + (sigma > 0.0f ? sigma * static_cast<float>(rng.normal()) : 0.0f);
+        const bool dropped = dropout && rng.uniform() < config_.dropout_probability;
         if (dropped || range < config_.min_range_m || range > config_.max_range_m) continue;
         const Eigen::Vector3f p = offsets_[k].cast<float>() + range * local_dirs[j][k];
         out.points.push_back({p.x(), p.y(), p.z(), intensity(world_dirs[j][k], hit.normal), vlp16Ring(k), times[j][k]});
