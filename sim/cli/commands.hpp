@@ -21,3 +21,4 @@ void addBenchSimulateCommand(CLI::App& bench);
 void addBenchOdometryCommand(CLI::App& bench);
 void addWorldgenCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);
+void addRunCommand(CLI::App& app);

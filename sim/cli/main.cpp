@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   addExtractCommand(app);
   addWorldgenCommand(app);
   addSimulateCommand(app);
+  addRunCommand(app);
   addBenchCommand(app);
   try {
     app.parse(argc, argv);

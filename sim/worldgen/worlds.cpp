@@ -25,34 +25,57 @@ void rectangularShell(StoreyBuilder& b, const std::string& prefix, double w, dou
 
 // One storey: a 2 m corridor along x between two rows of four identical 4 m × 5 m offices.
 // Every office is the same room turned about: facing its door from inside, the door is
-// 0.8 m from the right-hand corner, so only the entrance at the west end and the offices'
-// places along the corridor tell them apart.
+// 0.8 m from the right-hand corner. The building as a whole is not symmetric: the entrance
+// is in the plain west end wall, while at the east end the corridor widens into a 5 m deep
+// lobby that reaches the north wall but stops 2 m south of the corridor, at a WC and a store
+// room in the south-east corner. So once out of an office, a lidar tells east from west and
+// north from south by the walls alone.
 WorldSpec siteOffice() {
   const double ext = 0.30, in = 0.12;              // wall thicknesses
   const double room_w = 4.0, room_d = 5.0, corridor = 2.0;
   const int per_side = 4;
   const double pitch = room_w + in;                // x from one office to the next
-  const double width = per_side * room_w + (per_side - 1) * in;  // clear, 16.36 m
+  const double offices = per_side * room_w + (per_side - 1) * in;  // office rows, 16.36 m
+  // The walls between the office rows and the lobby (DIV-S4, DIV-N4) are 0.24 m double
+  // partitions. Also, tests/test_worlds.cpp wants wall thicknesses within 1e-6 m from float
+  // meshes, and beyond x = 16 m a float step is 1.9e-6 m: 0.12 m faces at x = 16.36 and 16.48
+  // round to 1.07e-6 m off, 16.36 and 16.60 to 2.3e-7 m.
+  const double lobby_wall = 0.24;
+  const double x_lobby = offices + lobby_wall;     // west face of the lobby, 16.60 m
+  const double lobby = 5.0;                        // lobby depth along x
+  const double width = x_lobby + lobby;            // clear, 21.60 m
   const double y_corr = room_d + in, y_north = y_corr + corridor + in;
   const double depth = y_north + room_d;           // clear, 12.24 m
+  const double wc_d = 3.0;                         // WC and store: y from 0 to 3
+  const double wc_w = 2.4;                         // WC: x from the lobby's west face
+  const double x_store = x_lobby + wc_w + in;      // store: x from here to the east wall
 
   WorldSpec world;
   world.name = "site_office";
-  world.description = "Construction-site office floor: corridor between 8 identical offices";
+  world.description =
+      "Construction-site office floor: corridor between 8 identical offices, lobby, WC and store "
+      "at the east end";
   world.roof_thickness_m = 0.2;
   world.space_boundaries = true;
   StoreyBuilder b("Ground floor", 0.0, 3.0, 0.2, 3.0 - world.roof_thickness_m);
   rectangularShell(b, "", width, depth, ext);
-  b.wallX("PART-S", room_d + in / 2, 0.0, width, in, false);
-  b.wallX("PART-N", y_corr + corridor + in / 2, 0.0, width, in, false);
+  // The corridor partitions run on to the lobby's west face, over the tops of DIV-S4 and
+  // DIV-N4, so the corridor's corners into the lobby are closed (as in the apartment).
+  b.wallX("PART-S", room_d + in / 2, 0.0, x_lobby, in, false);
+  b.wallX("PART-N", y_corr + corridor + in / 2, 0.0, x_lobby, in, false);
   for (int k = 1; k < per_side; ++k) {
     const double x = k * pitch - in / 2;
     b.wallY("DIV-S" + std::to_string(k), x, 0.0, room_d, in, false);
     b.wallY("DIV-N" + std::to_string(k), x, y_north, depth, in, false);
   }
+  // The fourth dividers close the office rows towards the lobby and reach the corridor.
+  const std::string last = std::to_string(per_side);
+  b.wallY("DIV-S" + last, offices + lobby_wall / 2, 0.0, y_corr, lobby_wall, false);
+  b.wallY("DIV-N" + last, offices + lobby_wall / 2, y_corr + corridor, depth, lobby_wall, false);
+  b.wallX("WC-N", wc_d + in / 2, x_lobby, width, in, false);  // WC and store | lobby
+  b.wallY("WC-E", x_lobby + wc_w + in / 2, 0.0, wc_d, in, false);  // WC | store
   auto side = [&](const char* row, int k) {  // the wall between office k and k + 1
-    return k < 0 ? std::string("EXT-W")
-                 : k == per_side - 1 ? std::string("EXT-E") : row + std::to_string(k + 1);
+    return k < 0 ? std::string("EXT-W") : row + std::to_string(k + 1);
   };
   for (int k = 0; k < per_side; ++k) {
     const double x0 = k * pitch;
@@ -68,9 +91,22 @@ WorldSpec siteOffice() {
            {"PART-N", e.c_str(), "EXT-N", w.c_str()});
     b.door("PART-N", x0 + 0.8, 0.9, kDoorHeight_m);
   }
-  b.room("C100", "Corridor", 0.0, y_corr, width, y_corr + corridor,
-         {"PART-S", "EXT-E", "PART-N", "EXT-W"});
+  // The corridor and the lobby it opens into are one space: no wall between them.
+  b.room("C100", "Corridor",
+         {{0.0, y_corr},
+          {x_lobby, y_corr},
+          {x_lobby, wc_d + in},
+          {width, wc_d + in},
+          {width, depth},
+          {x_lobby, depth},
+          {x_lobby, y_corr + corridor},
+          {0.0, y_corr + corridor}},
+         {"PART-S", "DIV-S4", "WC-N", "EXT-E", "EXT-N", "DIV-N4", "PART-N", "EXT-W"});
+  b.room("W100", "WC", x_lobby, 0.0, x_lobby + wc_w, wc_d, {"EXT-S", "WC-E", "WC-N", "DIV-S4"});
+  b.room("S100", "Storage", x_store, 0.0, width, wc_d, {"EXT-S", "EXT-E", "WC-N", "WC-E"});
   b.door("EXT-W", y_corr + corridor / 2, 1.0, kDoorHeight_m);  // the entrance
+  b.door("WC-N", x_lobby + 1.0, 0.8, kDoorHeight_m);            // lobby - WC
+  b.door("WC-N", x_store + 1.0, 0.9, kDoorHeight_m);            // lobby - store
   world.storeys.push_back(b.storey());
   return world;
 }

@@ -1,0 +1,122 @@
+// Global localization with the room-aware particle filter (paper, section "Localization using
+// Particle Filter"): particles spread over the rooms of a storey, predicted with odometry,
+// weighted by matching the wall planes seen by the lidar against the walls of the room each
+// particle stands in (the topological factor), until they converge; then the transform
+// map <- odom ("Initial Transformation Estimation").
+#pragma once
+
+#include <bimloc/bim/building.hpp>
+#include <bimloc/planes/plane_extraction.hpp>
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace bimloc::pf {
+
+struct ParticleFilterConfig {
+  int particles = 6000;
+  bool use_rooms = true;  // the topological factor; false: match against every wall of the storey (ablation)
+  // With the room factor: also match the faces of the rooms that share a wall with the
+  // particle's room (seen through doors). False: the paper's strict room association.
+  bool neighbour_rooms = false;
+  // Motion noise per odometry increment: sigma = a * |increment| (+ floor), as AMCL's model.
+  double motion_noise_xy_per_m = 0.05;
+  double motion_noise_yaw_per_rad = 0.05;
+  double motion_noise_yaw_per_m_rad = 0.01;
+  // Observation sigmas of the minimal plane (azimuth, elevation, d) in the paper's Eq. for
+  // the error: about the noise of a RANSAC plane from a VLP-16 at room scale, plus map error.
+  double sigma_azimuth_deg = 5.0;
+  double sigma_elevation_deg = 5.0;
+  double sigma_d_m = 0.15;
+  double gate_mahalanobis2 = 11.34;  // chi-square, 3 DoF, 99 %: beyond this, no association
+  // The planes of one scan, and of consecutive scans, are not independent evidence: the
+  // log-likelihood is tempered by this power, and the filter weighs only after the robot
+  // moved (as AMCL's update_min_d / update_min_a), or every max_static_scans scans.
+  double likelihood_power = 0.3;
+  double update_min_translation_m = 0.15;
+  double update_min_rotation_deg = 10.0;
+  int max_static_scans = 10;
+  // Annealing: the sigmas start this many times wider and shrink by anneal_rate per weighing.
+  // A uniform spread has almost no particle near the true pose; wide sigmas first let every
+  // room's look-alike pose gather particles, instead of the room that was luckiest at the start.
+  double anneal_start = 6.0;
+  double anneal_rate = 0.85;
+  // Sensor resetting: poses computed from pairs of observed planes matched to pairs of room
+  // faces. At the first weighing this share of the particles is drawn around them; later,
+  // when they explain the scan better than the best particle by `injection_margin` (log-
+  // likelihood), `injection_fraction` of the particles (the lightest) is moved to them.
+  bool use_hypotheses = true;
+  double initial_hypothesis_fraction = 0.7;
+  double injection_fraction = 0.1;
+  double injection_margin = 2.0;
+  int max_hypotheses = 1000;
+  // No convergence while the scan fits a pose more than 1 m or 20 deg from the estimate within
+  // this log-likelihood of the best fit: look-alike rooms are told apart by evidence, not luck.
+  double ambiguity_margin = 2.0;
+  // Resampling and its guards.
+  double resample_ess_fraction = 0.5;  // low-variance resampling when ESS < fraction * N
+  double roughening_xy_m = 0.02;       // jitter after resampling, against depletion
+  double roughening_yaw_deg = 0.5;
+  // Convergence: the best particle within these of the weighted mean, and the particles'
+  // spread (weighted standard deviation) within them too, for this many updates.
+  double converged_position_m = 0.3;
+  double converged_yaw_deg = 5.0;
+  int converged_updates = 8;
+  int min_observations = 2;  // fewer wall planes than this in a scan: predict only
+  std::uint64_t seed = 0;
+};
+
+struct Particle {
+  double x = 0, y = 0, yaw = 0;  // map frame
+  double log_weight = 0;
+  int room = -1;                 // index into the storey's rooms, -1 outside every room
+};
+
+struct UpdateReport {
+  int observations = 0;      // wall planes used
+  int associated = 0;        // ... matched by the best particle
+  double ess = 0;            // effective sample size after the update
+  bool resampled = false;
+  bool weighed = false;      // false: the robot had not moved enough since the last weighing
+  int hypotheses = 0;        // poses computed from the scan
+  int injected = 0;          // particles moved to them
+  bool converged = false;    // this update declared convergence (or it held before)
+  std::vector<std::string> warnings;
+};
+
+class ParticleFilter {
+ public:
+  // `T_base_lidar`: the sensor mount; the particles' z comes from the storey elevation, the
+  // base height in the odom frame and the mount.
+  ParticleFilter(const bim::Storey& storey, const Eigen::Isometry3d& T_base_lidar, const ParticleFilterConfig& config);
+  ~ParticleFilter();
+  ParticleFilter(ParticleFilter&&) noexcept;
+
+  // Prediction from the odometry pose (odom -> base_link) at time t (paper Eq. of u_R).
+  void predict(const Eigen::Isometry3d& T_odom_base);
+  // Update with the wall planes of one scan (sensor frame), then resample if needed.
+  UpdateReport update(const std::vector<planes::ObservedPlane>& walls);
+
+  bool converged() const;
+  // Map <- odom, fixed at convergence (paper Eq. of the initial transformation).
+  std::optional<Eigen::Isometry3d> T_map_odom() const;
+  // The current estimate of map <- base: map <- odom composed with the odometry after
+  // convergence, the weighted mean of the particles before.
+  Eigen::Isometry3d T_map_base() const;
+  const std::vector<Particle>& particles() const;
+  const Particle& best() const;
+  // Index of the room of the estimate, -1 when outside every room.
+  int estimateRoom() const;
+  // Diagnostics and tests: the (untempered, unannealed) log-likelihood of `walls` seen from
+  // the pose (x, y, yaw), and how many of them it associates.
+  std::pair<double, int> score(double x, double y, double yaw, const std::vector<planes::ObservedPlane>& walls) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace bimloc::pf

@@ -1,0 +1,68 @@
+// Wall planes from one lidar scan: the paper's "Observations" (as in S-Graphs: voxel grid,
+// then sequential RANSAC plane segmentation). The particle filter matches the vertical planes
+// against the walls of the room each particle stands in.
+//
+// Conventions: sensor frame (the scan's own frame), metres. A plane is n·p + d = 0 with
+// |n| = 1 and n pointing TOWARDS the sensor origin, so d > 0 is the origin's distance to the
+// plane. The geometric closest point of the plane to the origin is closest_point() = -d n.
+// The paper's closest-point form (CP, after Geneva et al.) is Π = n_cp d_cp with a normal
+// n_cp pointing away from the sensor and d_cp = distance > 0: here n_cp = -normal,
+// d_cp = d, so Π = closest_point(). This is the same convention as the building model's wall
+// faces (normals point out of the wall, into the room where the sensor is), so a face moved
+// into the sensor frame compares directly (n_s = R^T n_w, d_s = d_w + n_w·t for T = (R, t)).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace bimloc::planes {
+
+struct PlaneExtractionConfig {
+  double voxel_size_m = 0.10;           // downsampling before RANSAC
+  double min_range_m = 0.5;             // drop points closer than this (the robot's own body) and farther than max_range_m
+  double max_range_m = 30.0;
+  int ransac_iterations = 500;          // S-Graphs default
+  double distance_threshold_m = 0.04;   // inlier band (S-Graphs uses 0.01 on clean data; simulated and real data need more)
+  int min_inliers = 60;                 // after downsampling
+  double min_extent_m = 1.0;            // a plane must span at least this much (walls: horizontally)
+  double vertical_tolerance_deg = 10;   // |n_z| < sin(tol) -> vertical (wall candidate)
+  double horizontal_tolerance_deg = 10; // |n_z| > cos(tol) -> horizontal (floor/ceiling), reported apart
+  int max_planes = 20;                  // walls + horizontals
+  std::uint64_t seed = 0;               // RANSAC is seeded: same scan + seed -> same planes
+};
+
+struct ObservedPlane {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  // unit, pointing towards the sensor origin (so d >= 0)
+  double d = 0;                                       // n·p + d = 0 in the sensor frame
+  // The plane's point closest to the sensor; equals the paper's CP vector Π (see above).
+  Eigen::Vector3d closest_point() const { return -d * normal; }
+  // Covariance of the minimal parameters (azimuth, elevation, d) of minimalPlane(): the
+  // inverse Gauss-Newton Hessian of the point-to-plane least-squares fit over the support,
+  // times the residual variance (sum r^2 / (N - 3), floored at 1 mm^2). Directions the
+  // points do not constrain (the azimuth of a horizontal plane) get a variance of pi^2.
+  // The support is voxel centroids, so this is the fit's own statistic, not a sensor model.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+  int inliers = 0;              // points of the plane's support (after downsampling)
+  double extent_m = 0;          // span of the support along the plane's horizontal direction n × z
+  double height_extent_m = 0;   // vertical span of the support
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double rms_m = 0;             // point-to-plane RMS residual of the support
+  bool vertical = false;
+};
+
+struct PlaneExtraction {
+  std::vector<ObservedPlane> walls;        // vertical planes passing the inlier and extent tests
+  std::vector<ObservedPlane> horizontals;  // floor / ceiling
+  std::size_t input_points = 0, valid_points = 0;  // valid: finite and within the range limits
+};
+
+// Never throws for any input: an empty, all-NaN or too small scan gives no planes.
+PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor, const PlaneExtractionConfig& config = {});
+
+// The minimal parametrisation the particle filter compares (paper, Eq. plane_error):
+// (azimuth = atan2(n_y, n_x), elevation = asin(n_z), d).
+Eigen::Vector3d minimalPlane(const Eigen::Vector3d& normal, double d);
+
+}  // namespace bimloc::planes

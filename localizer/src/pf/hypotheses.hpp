@@ -1,0 +1,25 @@
+// Pose hypotheses straight from the data ("sensor resetting", Lenser & Veloso 2000): two
+// observed wall planes that are not parallel, matched to two faces of a room at the same
+// relative angle, fix the pose (x, y, yaw) exactly. Scored like particles. They seed the
+// filter where a uniform spread has almost no particle near the truth, and bring it back
+// when the particles explain the scan worse than the plan can.
+#pragma once
+
+#include "measurement.hpp"
+
+#include <vector>
+
+namespace bimloc::pf::detail {
+
+struct Hypothesis {
+  double x = 0, y = 0, yaw = 0;
+  int room = -1;
+  double log_likelihood = 0;
+  int associated = 0;
+};
+
+// Hypotheses over every room (best first, near-duplicates merged, at most max_count).
+std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observations, double z_base,
+                                       const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count);
+
+}  // namespace bimloc::pf::detail

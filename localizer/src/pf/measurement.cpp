@@ -1,0 +1,44 @@
+#include "measurement.hpp"
+
+#include <cmath>
+
+namespace bimloc::pf::detail {
+
+MatchResult matchObservations(const Particle& p, double z_base, const std::vector<Observation>& observations,
+                              const RoomIndex& rooms, const ParticleFilterConfig& c) {
+  MatchResult result;
+  const double gate = c.gate_mahalanobis2;
+  if (p.room < 0) {
+    // Outside every room: the lowest weight there is, below any particle whose observations
+    // are all clutter.
+    result.log_likelihood = -0.5 * gate * (static_cast<double>(observations.size()) + 1.0) - 10.0;
+    return result;
+  }
+  const auto& landmarks = rooms.landmarks(p.room);
+  const double cy = std::cos(p.yaw), sy = std::sin(p.yaw);
+  const double inv_az = 1.0 / (c.sigma_azimuth_deg * M_PI / 180.0), inv_el = 1.0 / (c.sigma_elevation_deg * M_PI / 180.0);
+  const double inv_d = 1.0 / c.sigma_d_m;
+  for (const auto& o : observations) {
+    // The plane in the map (a plane moves with a pose: n' = R n, d' = d - t·n').
+    const Eigen::Vector3d n(cy * o.normal_base.x() - sy * o.normal_base.y(), sy * o.normal_base.x() + cy * o.normal_base.y(),
+                            o.normal_base.z());
+    const double d = o.d_offset - (n.x() * p.x + n.y() * p.y + n.z() * z_base);
+    const double azimuth = std::atan2(n.y(), n.x()), elevation = std::asin(std::clamp(n.z(), -1.0, 1.0));
+    const bim::WallAxis axis = std::abs(n.x()) >= std::abs(n.y()) ? bim::WallAxis::X : bim::WallAxis::Y;
+    double best = gate;
+    for (const auto& l : landmarks) {
+      if (l.axis != axis) continue;  // the paper's semantic classes: x walls with x walls
+      // Paper Eq. (plane error): the squared Mahalanobis distance of the minimal planes.
+      const double e_az = wrapAngle(azimuth - l.azimuth) * inv_az, e_el = (elevation - l.elevation) * inv_el;
+      const double e_d = (d - l.d) * inv_d;
+      best = std::min(best, e_az * e_az + e_el * e_el + e_d * e_d);
+    }
+    // An observation that matches nothing is clutter (the site does not look like the plan
+    // yet): it costs what a match at the gate would, so it cannot destroy a good particle.
+    if (best < gate) ++result.associated;
+    result.log_likelihood += -0.5 * best;
+  }
+  return result;
+}
+
+}  // namespace bimloc::pf::detail

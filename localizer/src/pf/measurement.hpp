@@ -1,0 +1,27 @@
+// The particle weight (paper, "Data Association" and "Update"): observed wall planes moved
+// into the map by the particle's pose, associated by class (x / y) and Mahalanobis distance
+// in (azimuth, elevation, d) with the faces of the particle's room only.
+#pragma once
+
+#include "room_index.hpp"
+
+#include <bimloc/pf/particle_filter.hpp>
+
+namespace bimloc::pf::detail {
+
+// An observation in the yaw-free base frame (gravity-aligned, at the base's origin): what
+// every particle shares, so each particle only applies its yaw and position.
+struct Observation {
+  Eigen::Vector3d normal_base;  // the observed normal, rotated into the yaw-free base frame
+  double d_offset = 0;          // d_L - n_B · (lidar position in the yaw-free base frame)
+};
+
+struct MatchResult {
+  double log_likelihood = 0;
+  int associated = 0;
+};
+
+MatchResult matchObservations(const Particle& particle, double z_base, const std::vector<Observation>& observations,
+                              const RoomIndex& rooms, const ParticleFilterConfig& config);
+
+}  // namespace bimloc::pf::detail

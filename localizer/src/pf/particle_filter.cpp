@@ -1,0 +1,343 @@
+// The filter's cycle reads like the paper: predict with odometry -> associate rooms and walls
+// -> weight -> resample -> check convergence -> initial transformation map <- odom.
+#include <bimloc/pf/particle_filter.hpp>
+
+#include "hypotheses.hpp"
+#include "measurement.hpp"
+#include "room_index.hpp"
+
+#include <bimloc/bim/geometry2d.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace bimloc::pf {
+namespace {
+
+using detail::wrapAngle;
+
+// Yaw of a rotation about z, and the rest (roll and pitch) as the rotation without it.
+double yawOf(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
+Eigen::Matrix3d tiltOf(const Eigen::Matrix3d& R) {
+  return Eigen::AngleAxisd(-yawOf(R), Eigen::Vector3d::UnitZ()).toRotationMatrix() * R;
+}
+
+// Odometry jumps beyond these in one step are reported, and spread the particles accordingly.
+constexpr double kJumpM = 1.0;
+constexpr double kJumpRad = M_PI / 4;
+
+}  // namespace
+
+struct ParticleFilter::Impl {
+  const bim::Storey& storey;
+  Eigen::Isometry3d T_base_lidar;
+  ParticleFilterConfig config;
+  detail::RoomIndex rooms;
+  std::mt19937_64 rng;
+  std::vector<Particle> particles;
+  std::optional<Eigen::Isometry3d> last_odom;
+  Eigen::Isometry3d odom = Eigen::Isometry3d::Identity();
+  std::optional<Eigen::Isometry3d> T_map_odom;
+  int agreeing_updates = 0;
+  std::size_t best = 0;
+  std::optional<Eigen::Isometry3d> odom_at_last_weighing;
+  int scans_since_weighing = 0;
+  double anneal = 1.0;
+  bool weighed_once = false;
+
+  // Does the scan fit a pose far from `mean` as well as it fits the best pose it fits? Then
+  // the filter may have chosen among look-alikes by chance: no convergence declared on it.
+  bool ambiguous(const std::vector<detail::Hypothesis>& hyps, const Eigen::Vector3d& mean) const {
+    if (hyps.empty()) return false;
+    for (const auto& h : hyps) {
+      if (h.log_likelihood < hyps[0].log_likelihood - config.ambiguity_margin) break;
+      if (std::hypot(h.x - mean.x(), h.y - mean.y()) > 1.0 || std::abs(wrapAngle(h.yaw - mean.z())) > 0.35) return true;
+    }
+    return false;
+  }
+
+  // Moves the `count` lightest particles to poses around the hypotheses (round robin over the
+  // good ones), as heavy as the heaviest particle: this update's evidence then weighs them.
+  int inject(const std::vector<detail::Hypothesis>& hyps, std::size_t count) {
+    if (hyps.empty() || count == 0) return 0;
+    std::size_t good = 0;
+    while (good < hyps.size() && hyps[good].log_likelihood > hyps[0].log_likelihood - 3.0) ++good;
+    std::vector<std::size_t> order(particles.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    count = std::min(count, particles.size());
+    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count), order.end(),
+                      [&](std::size_t a, std::size_t b) { return particles[a].log_weight < particles[b].log_weight; });
+    double max_lw = -1e300;
+    for (const auto& p : particles) max_lw = std::max(max_lw, p.log_weight);
+    std::normal_distribution<double> n(0.0, 1.0);
+    std::uniform_int_distribution<std::size_t> pick(0, good - 1);  // no favourite among equals
+    for (std::size_t k = 0; k < count; ++k) {
+      const auto& h = hyps[pick(rng)];
+      Particle& p = particles[order[k]];
+      p.x = h.x + 0.05 * n(rng), p.y = h.y + 0.05 * n(rng), p.yaw = wrapAngle(h.yaw + 0.02 * n(rng));
+      p.room = rooms.roomAt(p.x, p.y);
+      p.log_weight = max_lw;
+    }
+    return static_cast<int>(count);
+  }
+
+  // AMCL-style gate: weigh after enough motion, or after enough scans standing still.
+  bool shouldWeigh() {
+    ++scans_since_weighing;
+    if (!odom_at_last_weighing || scans_since_weighing >= config.max_static_scans) return true;
+    const Eigen::Isometry3d moved = odom_at_last_weighing->inverse() * odom;
+    return moved.translation().head<2>().norm() >= config.update_min_translation_m ||
+           std::abs(yawOf(moved.linear())) >= config.update_min_rotation_deg * M_PI / 180.0;
+  }
+
+  Impl(const bim::Storey& s, const Eigen::Isometry3d& mount, const ParticleFilterConfig& c)
+      : storey(s), T_base_lidar(mount), config(c), rooms(s, c.use_rooms, c.neighbour_rooms), rng(c.seed), anneal(c.anneal_start) {
+    spreadOverRooms();
+  }
+
+  // Uniform over the free space of the storey: a room by area, a point in it, any heading.
+  void spreadOverRooms() {
+    particles.assign(static_cast<std::size_t>(std::max(1, config.particles)), Particle{});
+    std::vector<double> areas;
+    for (std::size_t r = 0; r < rooms.roomCount(); ++r) areas.push_back(std::max(1e-6, rooms.room(int(r)).area_m2));
+    if (areas.empty()) return;
+    std::discrete_distribution<int> pick(areas.begin(), areas.end());
+    std::uniform_real_distribution<double> yaw(-M_PI, M_PI), unit(0.0, 1.0);
+    for (auto& p : particles) {
+      const bim::Room& room = rooms.room(pick(rng));
+      Eigen::Vector2d lo = room.footprint.front(), hi = lo;
+      for (const auto& v : room.footprint) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+      Eigen::Vector2d xy = room.centre;
+      for (int attempt = 0; attempt < 1000; ++attempt) {
+        const Eigen::Vector2d q(lo.x() + unit(rng) * (hi.x() - lo.x()), lo.y() + unit(rng) * (hi.y() - lo.y()));
+        if (bim::pointInPolygon(room.footprint, q)) {
+          xy = q;
+          break;
+        }
+      }
+      p.x = xy.x(), p.y = xy.y(), p.yaw = yaw(rng), p.log_weight = 0.0;
+      p.room = rooms.roomAt(p.x, p.y);
+    }
+  }
+
+  double baseZ() const { return storey.elevation_m + odom.translation().z(); }
+
+  std::vector<detail::Observation> observe(const std::vector<planes::ObservedPlane>& walls,
+                                           std::vector<std::string>* warnings) const;
+
+  Eigen::Isometry3d poseOf(const Particle& p) const {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * tiltOf(odom.linear());
+    T.translation() = Eigen::Vector3d(p.x, p.y, baseZ());
+    return T;
+  }
+
+  // Low-variance resampling (Probabilistic Robotics, Table 4.4), then roughening.
+  void resample(const std::vector<double>& w) {
+    std::vector<Particle> next;
+    next.reserve(particles.size());
+    const double n = static_cast<double>(particles.size());
+    std::uniform_real_distribution<double> start(0.0, 1.0 / n);
+    std::normal_distribution<double> jitter(0.0, 1.0);
+    const double r = start(rng);
+    double c = w[0];
+    std::size_t i = 0;
+    for (std::size_t m = 0; m < particles.size(); ++m) {
+      const double u = r + static_cast<double>(m) / n;
+      while (u > c && i + 1 < particles.size()) c += w[++i];
+      Particle p = particles[i];
+      p.x += config.roughening_xy_m * jitter(rng);
+      p.y += config.roughening_xy_m * jitter(rng);
+      p.yaw = wrapAngle(p.yaw + config.roughening_yaw_deg * M_PI / 180.0 * jitter(rng));
+      p.room = rooms.roomAt(p.x, p.y);
+      p.log_weight = 0.0;
+      next.push_back(p);
+    }
+    particles.swap(next);
+  }
+
+  // Weighted mean of the particles (circular mean for the heading).
+  Eigen::Vector3d mean(const std::vector<double>& w) const {
+    double x = 0, y = 0, s = 0, c = 0;
+    for (std::size_t i = 0; i < particles.size(); ++i) {
+      x += w[i] * particles[i].x, y += w[i] * particles[i].y;
+      s += w[i] * std::sin(particles[i].yaw), c += w[i] * std::cos(particles[i].yaw);
+    }
+    return {x, y, std::atan2(s, c)};
+  }
+
+  std::vector<double> normalisedWeights() const {
+    double max_lw = -1e300;
+    for (const auto& p : particles) max_lw = std::max(max_lw, p.log_weight);
+    std::vector<double> w(particles.size());
+    double sum = 0;
+    for (std::size_t i = 0; i < particles.size(); ++i) sum += w[i] = std::exp(particles[i].log_weight - max_lw);
+    for (auto& v : w) v /= sum;
+    return w;
+  }
+};
+
+ParticleFilter::ParticleFilter(const bim::Storey& storey, const Eigen::Isometry3d& T_base_lidar,
+                               const ParticleFilterConfig& config)
+    : impl_(std::make_unique<Impl>(storey, T_base_lidar, config)) {}
+ParticleFilter::~ParticleFilter() = default;
+ParticleFilter::ParticleFilter(ParticleFilter&&) noexcept = default;
+
+void ParticleFilter::predict(const Eigen::Isometry3d& T_odom_base) {
+  auto& m = *impl_;
+  if (!T_odom_base.matrix().allFinite()) return;  // a broken reading: keep the last one
+  m.odom = T_odom_base;
+  if (!m.last_odom) {
+    m.last_odom = T_odom_base;
+    return;
+  }
+  // Paper Eq. (u_R): the increment between consecutive odometry poses, in the base frame.
+  const Eigen::Isometry3d u = m.last_odom->inverse() * T_odom_base;
+  m.last_odom = T_odom_base;
+  const double dx = u.translation().x(), dy = u.translation().y(), dyaw = yawOf(u.linear());
+  const double trans = std::hypot(dx, dy);
+  const auto& c = m.config;
+  const double sigma_xy = c.motion_noise_xy_per_m * trans + 0.002;
+  const double sigma_yaw = c.motion_noise_yaw_per_rad * std::abs(dyaw) + c.motion_noise_yaw_per_m_rad * trans + 0.001;
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (auto& p : m.particles) {
+    const double ex = dx + sigma_xy * n(m.rng), ey = dy + sigma_xy * n(m.rng);
+    p.x += std::cos(p.yaw) * ex - std::sin(p.yaw) * ey;
+    p.y += std::sin(p.yaw) * ex + std::cos(p.yaw) * ey;
+    p.yaw = wrapAngle(p.yaw + dyaw + sigma_yaw * n(m.rng));
+    p.room = m.rooms.roomAt(p.x, p.y);
+  }
+  if (m.T_map_odom && (trans > kJumpM || std::abs(dyaw) > kJumpRad)) m.agreeing_updates = 0;
+}
+
+std::vector<detail::Observation> ParticleFilter::Impl::observe(const std::vector<planes::ObservedPlane>& walls,
+                                                               std::vector<std::string>* warnings) const {
+  // The observations in the yaw-free base frame: shared by every particle.
+  const Eigen::Matrix3d tilt = tiltOf(odom.linear());
+  const Eigen::Matrix3d R_bl = tilt * T_base_lidar.linear();
+  const Eigen::Vector3d t_bl = tilt * T_base_lidar.translation();
+  std::vector<detail::Observation> observations;
+  for (const auto& w : walls) {
+    if (!w.normal.allFinite() || !std::isfinite(w.d) || w.normal.norm() < 0.5) {
+      if (warnings) warnings->push_back("skipped a wall plane with non-finite parameters");
+      continue;
+    }
+    detail::Observation o;
+    o.normal_base = R_bl * w.normal.normalized();
+    o.d_offset = w.d - o.normal_base.dot(t_bl);
+    observations.push_back(o);
+  }
+  return observations;
+}
+
+std::pair<double, int> ParticleFilter::score(double x, double y, double yaw,
+                                             const std::vector<planes::ObservedPlane>& walls) const {
+  Particle p;
+  p.x = x, p.y = y, p.yaw = yaw, p.room = impl_->rooms.roomAt(x, y);
+  const auto match = detail::matchObservations(p, impl_->baseZ(), impl_->observe(walls, nullptr), impl_->rooms, impl_->config);
+  return {match.log_likelihood, match.associated};
+}
+
+UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& walls) {
+  auto& m = *impl_;
+  UpdateReport report;
+  const std::vector<detail::Observation> observations = m.observe(walls, &report.warnings);
+  report.observations = static_cast<int>(observations.size());
+  if (report.observations < m.config.min_observations || !m.shouldWeigh()) {
+    report.converged = m.T_map_odom.has_value();
+    return report;  // too little to weigh by, or nothing new: predict only
+  }
+  report.weighed = true;
+  m.odom_at_last_weighing = m.odom;
+  m.scans_since_weighing = 0;
+  const double z = m.baseZ();
+  std::vector<detail::Hypothesis> hyps;
+  if (m.config.use_hypotheses) {
+    hyps = detail::poseHypotheses(observations, z, m.rooms, m.config, static_cast<std::size_t>(m.config.max_hypotheses));
+    report.hypotheses = static_cast<int>(hyps.size());
+    const double n = static_cast<double>(m.particles.size());
+    if (!m.weighed_once)
+      report.injected = m.inject(hyps, static_cast<std::size_t>(m.config.initial_hypothesis_fraction * n));
+    if (report.injected > 0) m.agreeing_updates = 0;
+  }
+  double best_lw = -1e300;
+  ParticleFilterConfig annealed = m.config;
+  annealed.sigma_azimuth_deg *= m.anneal, annealed.sigma_elevation_deg *= m.anneal, annealed.sigma_d_m *= m.anneal;
+  m.anneal = std::max(1.0, m.anneal * m.config.anneal_rate);
+  double best_raw = -1e300;  // the best fit of any particle, at the final (unannealed) sigmas
+  for (std::size_t i = 0; i < m.particles.size(); ++i) {
+    auto& p = m.particles[i];
+    const auto match = detail::matchObservations(p, z, observations, m.rooms, annealed);
+    if (m.anneal <= 1.0) best_raw = std::max(best_raw, match.log_likelihood);
+    p.log_weight += m.config.likelihood_power * match.log_likelihood;
+    if (p.log_weight > best_lw) best_lw = p.log_weight, m.best = i, report.associated = match.associated;
+  }
+  // Sensor resetting: the particles explain the scan clearly worse than the plan can.
+  if (m.weighed_once && !hyps.empty() && m.anneal <= 1.0 && hyps[0].log_likelihood > best_raw + m.config.injection_margin) {
+    report.injected = m.inject(hyps, static_cast<std::size_t>(m.config.injection_fraction * double(m.particles.size())));
+    m.agreeing_updates = 0;
+  }
+  m.weighed_once = true;
+  std::vector<double> w = m.normalisedWeights();
+  double sum2 = 0;
+  for (double v : w) sum2 += v * v;
+  report.ess = 1.0 / sum2;
+
+  // Convergence (paper, "Initial Transformation Estimation"): the best particle close to the
+  // weighted mean, for several updates in a row.
+  const Eigen::Vector3d mean = m.mean(w);
+  const Particle& best = m.particles[m.best];
+  double var_xy = 0, var_yaw = 0;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const auto& p = m.particles[i];
+    var_xy += w[i] * ((p.x - mean.x()) * (p.x - mean.x()) + (p.y - mean.y()) * (p.y - mean.y()));
+    var_yaw += w[i] * wrapAngle(p.yaw - mean.z()) * wrapAngle(p.yaw - mean.z());
+  }
+  const double yaw_tol = m.config.converged_yaw_deg * M_PI / 180.0;
+  const bool agrees = std::hypot(best.x - mean.x(), best.y - mean.y()) < m.config.converged_position_m &&
+                      std::abs(wrapAngle(best.yaw - mean.z())) < yaw_tol &&
+                      std::sqrt(var_xy) < m.config.converged_position_m && std::sqrt(var_yaw) < yaw_tol &&
+                      !m.ambiguous(hyps, mean);
+  m.agreeing_updates = agrees ? m.agreeing_updates + 1 : 0;
+  if (m.agreeing_updates >= m.config.converged_updates) {
+    // Paper Eq.: map <- odom = best particle (+) inverse of the odometry pose. After that it
+    // follows the filter's weighted mean (tracking, until an S-Graph takes over): smoother
+    // than the best particle, which the roughening keeps shaking.
+    Particle at = best;
+    if (m.T_map_odom) at.x = mean.x(), at.y = mean.y(), at.yaw = mean.z();
+    m.T_map_odom = m.poseOf(at) * m.odom.inverse();
+  }
+  report.converged = m.T_map_odom.has_value();
+
+  if (report.ess < m.config.resample_ess_fraction * static_cast<double>(m.particles.size())) {
+    m.resample(w);
+    report.resampled = true;
+  } else {
+    // Keep the weights bounded: only their differences matter.
+    for (auto& p : m.particles) p.log_weight -= best_lw;
+  }
+  return report;
+}
+
+bool ParticleFilter::converged() const { return impl_->T_map_odom.has_value(); }
+std::optional<Eigen::Isometry3d> ParticleFilter::T_map_odom() const { return impl_->T_map_odom; }
+
+Eigen::Isometry3d ParticleFilter::T_map_base() const {
+  const auto& m = *impl_;
+  if (m.T_map_odom) return *m.T_map_odom * m.odom;
+  const Eigen::Vector3d mean = m.mean(m.normalisedWeights());
+  Particle p;
+  p.x = mean.x(), p.y = mean.y(), p.yaw = mean.z();
+  return m.poseOf(p);
+}
+
+const std::vector<Particle>& ParticleFilter::particles() const { return impl_->particles; }
+const Particle& ParticleFilter::best() const { return impl_->particles[impl_->best]; }
+
+int ParticleFilter::estimateRoom() const {
+  const Eigen::Vector3d t = T_map_base().translation();
+  return impl_->rooms.roomAt(t.x(), t.y());
+}
+
+}  // namespace bimloc::pf

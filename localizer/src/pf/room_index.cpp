@@ -1,0 +1,85 @@
+#include "room_index.hpp"
+
+#include <bimloc/bim/geometry2d.hpp>
+
+#include <cmath>
+
+namespace bimloc::pf::detail {
+
+double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+
+Landmark makeLandmark(const Eigen::Vector3d& normal, double d) {
+  Landmark l;
+  l.normal = normal.normalized();
+  l.d = d;
+  l.azimuth = std::atan2(l.normal.y(), l.normal.x());
+  l.elevation = std::asin(std::clamp(l.normal.z(), -1.0, 1.0));
+  l.axis = std::abs(l.normal.x()) >= std::abs(l.normal.y()) ? bim::WallAxis::X : bim::WallAxis::Y;
+  return l;
+}
+
+namespace {
+
+// The faces of a room's walls that look into it (both, where the side is unknown).
+std::vector<Landmark> facesOf(const bim::Storey& storey, const bim::Room& room) {
+  std::vector<Landmark> faces;
+  for (const auto& rw : room.walls) {
+    const bim::Wall* wall = storey.findWall(rw.wall_id);
+    if (!wall) continue;
+    for (int f = 0; f < 2; ++f)
+      if (rw.face < 0 || rw.face == f) faces.push_back(makeLandmark(wall->faces[f].plane.n, wall->faces[f].plane.d));
+  }
+  return faces;
+}
+
+bool shareAWall(const bim::Room& a, const bim::Room& b) {
+  for (const auto& wa : a.walls)
+    for (const auto& wb : b.walls)
+      if (wa.wall_id == wb.wall_id) return true;
+  return false;
+}
+
+}  // namespace
+
+RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours, double cell_m) : cell_m_(cell_m) {
+  std::vector<Landmark> every_face;
+  for (const auto& wall : storey.walls)
+    for (const auto& face : wall.faces) every_face.push_back(makeLandmark(face.plane.n, face.plane.d));
+  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (const auto& room : storey.rooms) {
+    rooms_.push_back(&room);
+    std::vector<Landmark> faces = use_rooms ? facesOf(storey, room) : every_face;
+    if (use_rooms && neighbours)
+      for (const auto& other : storey.rooms)
+        if (&other != &room && shareAWall(room, other)) {
+          const auto more = facesOf(storey, other);
+          faces.insert(faces.end(), more.begin(), more.end());
+        }
+    landmarks_.push_back(std::move(faces));
+    for (const auto& p : room.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  if (rooms_.empty()) return;
+  origin_ = lo;
+  nx_ = static_cast<int>(std::ceil((hi.x() - lo.x()) / cell_m_)) + 1;
+  ny_ = static_cast<int>(std::ceil((hi.y() - lo.y()) / cell_m_)) + 1;
+  cells_.assign(static_cast<std::size_t>(nx_ * ny_), {});
+  for (int r = 0; r < static_cast<int>(rooms_.size()); ++r) {
+    Eigen::Vector2d a = rooms_[static_cast<std::size_t>(r)]->footprint.front(), b = a;
+    for (const auto& p : rooms_[static_cast<std::size_t>(r)]->footprint) a = a.cwiseMin(p), b = b.cwiseMax(p);
+    const int x0 = static_cast<int>((a.x() - origin_.x()) / cell_m_), x1 = static_cast<int>((b.x() - origin_.x()) / cell_m_);
+    const int y0 = static_cast<int>((a.y() - origin_.y()) / cell_m_), y1 = static_cast<int>((b.y() - origin_.y()) / cell_m_);
+    for (int ix = x0; ix <= x1; ++ix)
+      for (int iy = y0; iy <= y1; ++iy) cells_[static_cast<std::size_t>(iy * nx_ + ix)].push_back(r);
+  }
+}
+
+int RoomIndex::roomAt(double x, double y) const {
+  const int ix = static_cast<int>(std::floor((x - origin_.x()) / cell_m_));
+  const int iy = static_cast<int>(std::floor((y - origin_.y()) / cell_m_));
+  if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_) return -1;
+  for (const int r : cells_[static_cast<std::size_t>(iy * nx_ + ix)])
+    if (bim::pointInPolygon(rooms_[static_cast<std::size_t>(r)]->footprint, {x, y})) return r;
+  return -1;
+}
+
+}  // namespace bimloc::pf::detail

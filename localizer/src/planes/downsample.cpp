@@ -1,0 +1,42 @@
+// The scan before RANSAC: valid points only, then one point per voxel (as S-Graphs does), so
+// that dense surfaces near the sensor (the floor at the robot's feet) do not outvote the walls
+// and RANSAC's cost does not grow with the scan.
+#include "plane_steps.hpp"
+
+#include <pcl/filters/voxel_grid.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+namespace bimloc::planes::detail {
+
+Cloud validPoints(const Cloud& points, double min_range_m, double max_range_m) {
+  Cloud valid;
+  valid.reserve(points.size());
+  const double min2 = min_range_m * min_range_m, max2 = max_range_m * max_range_m;
+  for (const auto& p : points) {
+    if (!p.allFinite()) continue;
+    const double r2 = p.cast<double>().squaredNorm();
+    if (r2 >= min2 && r2 <= max2) valid.push_back(p);
+  }
+  return valid;
+}
+
+Cloud voxelDownsample(const Cloud& points, double voxel_size_m) {
+  if (points.empty() || !(voxel_size_m > 0)) return points;
+  pcl::PointCloud<pcl::PointXYZ>::Ptr input(new pcl::PointCloud<pcl::PointXYZ>);
+  input->reserve(points.size());
+  for (const auto& p : points) input->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  // VoxelGrid sorts the points by voxel index: the output order depends only on the input.
+  pcl::VoxelGrid<pcl::PointXYZ> grid;
+  grid.setInputCloud(input);
+  const float leaf = static_cast<float>(voxel_size_m);
+  grid.setLeafSize(leaf, leaf, leaf);
+  pcl::PointCloud<pcl::PointXYZ> output;
+  grid.filter(output);
+  Cloud result;
+  result.reserve(output.size());
+  for (const auto& p : output) result.emplace_back(p.x, p.y, p.z);
+  return result;
+}
+
+}  // namespace bimloc::planes::detail

@@ -1,0 +1,143 @@
+// The paper's observations: planes from one scan by sequential RANSAC, as S-Graphs extracts
+// them (voxel grid, then SACMODEL_PLANE by RANSAC, the inliers removed, again), with three
+// additions for walls: a plane keeps only its largest connected run of inliers; it is refitted
+// by trimmed least squares on the raw returns (voxel centroids that straddle two surfaces lie
+// on neither); and planes are sorted into walls (vertical) and floor/ceiling (horizontal).
+#include "plane_steps.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <numeric>
+
+namespace bimloc::planes {
+namespace {
+
+// Gap along a wall that separates two walls: five voxels. A doorway (0.8 m and up) or a room
+// between two coplanar walls is wider; the sparse returns of a wall seen through a doorway
+// or far along a corridor are not.
+constexpr double kSupportGapVoxels = 5.0;
+// A plane passing this close to the sensor is seen edge-on: what lies in its band are the
+// lidar's own scan lines (the +-1 degree rings on nearby walls make a "plane" at sensor
+// height), not a surface.
+constexpr double kMinPlaneDistance_m = 0.1;
+// RANSAC attempts per accepted plane: rejected candidates (slanted, too short, fragments) cost
+// an attempt each, and this bounds the work on scans full of them.
+constexpr int kAttemptsPerPlane = 3;
+
+// Every RANSAC attempt gets its own seed from the user's seed and the attempt's number
+// (splitmix64), so that attempts do not repeat one another's samples and all is reproducible.
+std::uint32_t attemptSeed(std::uint64_t seed, int attempt) {
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ull * std::uint64_t(attempt + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return static_cast<std::uint32_t>((z ^ (z >> 31)) >> 32);
+}
+
+detail::Indices without(const detail::Indices& pool, const detail::Indices& removed) {
+  detail::Indices rest;
+  rest.reserve(pool.size());
+  std::set_difference(pool.begin(), pool.end(), removed.begin(), removed.end(), std::back_inserter(rest));
+  return rest;
+}
+
+// The wall (or floor) behind one RANSAC candidate, and its plane:
+// 1. the candidate's largest run along the wall;
+// 2. trimmed least squares on it, and the run again from the pool's voxels in the band of that
+//    plane: RANSAC's plane through three points may be a few degrees off, its band then cuts
+//    across the wall and holds only a part of it;
+// 3. trimmed least squares on the raw returns near that plane (for a wall, only those along the
+//    run, not its coplanar neighbours'), where each return lies on one surface, unlike the
+//    voxel centroids that straddle an edge.
+// The raw returns give the plane; the voxels give the evidence (count, extents, covariance),
+// as RANSAC counted it.
+struct Support {
+  detail::PlaneFit fit;
+  detail::Indices run;     // pool voxels of the wall's stretch of the band
+  detail::Indices voxels;  // those of them on the surface (in the band the returns ended in)
+};
+Support findSupport(const detail::Cloud& voxels, const detail::Cloud& raw, const detail::Indices& pool,
+                    const detail::RansacPlane& candidate, bool wall, double threshold_m, double voxel_m) {
+  const double gap_m = kSupportGapVoxels * voxel_m;
+  Support s;
+  s.run = wall ? *detail::largestRun(
+                     detail::runsAlong(voxels, candidate.inliers, detail::planeHorizontal(candidate.normal), gap_m))
+               : candidate.inliers;
+  detail::RefinedPlane coarse = detail::refinePlane(voxels, s.run, 0.5 * threshold_m);
+  const detail::Indices band = detail::withinBand(voxels, pool, coarse.fit, threshold_m);
+  if (!wall) {
+    if (!band.empty()) s.run = band;
+  } else {
+    const auto runs = detail::runsAlong(voxels, band, detail::planeHorizontal(coarse.fit.normal), gap_m);
+    if (const detail::Indices* same = detail::runOverlapping(runs, s.run)) s.run = *same;
+  }
+  coarse = detail::refinePlane(voxels, s.run, 0.5 * threshold_m);
+
+  const Eigen::Vector3d along = detail::planeHorizontal(coarse.fit.normal);
+  double lo = INFINITY, hi = -INFINITY;
+  for (const int i : coarse.core) {
+    const double u = along.dot(voxels[i].cast<double>());
+    lo = std::min(lo, u), hi = std::max(hi, u);
+  }
+  const detail::Indices near =
+      detail::pointsNearPlane(raw, coarse.fit, threshold_m, wall ? &along : nullptr, lo - voxel_m, hi + voxel_m);
+  const detail::RefinedPlane fine = near.size() >= 3 ? detail::refinePlane(raw, near, 0.5 * threshold_m) : coarse;
+  s.fit = fine.fit;
+  // Voxel centroids are no noisier than the returns they average: the returns' band holds them.
+  s.voxels = detail::withinBand(voxels, s.run, fine.fit, std::max(fine.band_m, coarse.band_m));
+  return s;
+}
+
+}  // namespace
+
+PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor, const PlaneExtractionConfig& config) {
+  PlaneExtraction result;
+  result.input_points = points_sensor.size();
+  const detail::Cloud raw = detail::validPoints(points_sensor, config.min_range_m, config.max_range_m);
+  result.valid_points = raw.size();
+  const detail::Cloud cloud = detail::voxelDownsample(raw, config.voxel_size_m);
+
+  const std::size_t min_inliers = std::size_t(std::max(config.min_inliers, 3));
+  const double sin_vertical = std::sin(config.vertical_tolerance_deg * M_PI / 180.0);
+  const double cos_horizontal = std::cos(config.horizontal_tolerance_deg * M_PI / 180.0);
+  const double voxel_m = std::max(config.voxel_size_m, config.distance_threshold_m);
+
+  detail::Indices pool(cloud.size());
+  std::iota(pool.begin(), pool.end(), 0);
+  int accepted = 0;
+  for (int attempt = 0; accepted < config.max_planes && attempt < kAttemptsPerPlane * config.max_planes &&
+                        pool.size() >= min_inliers;
+       ++attempt) {
+    const auto candidate = detail::ransacPlane(cloud, pool, config.ransac_iterations, config.distance_threshold_m,
+                                               attemptSeed(config.seed, attempt));
+    if (!candidate || candidate->inliers.size() < min_inliers) break;  // no plane left worth having
+
+    // Walls: one run along the wall. Floor and ceiling are kept whole: a storey has one of
+    // each, and a floor's scan rings are metres apart, so any gap would cut it up.
+    const bool wall_band = std::abs(candidate->normal.z()) < sin_vertical;
+    const Support support = findSupport(cloud, raw, pool, *candidate, wall_band, config.distance_threshold_m, voxel_m);
+    ObservedPlane plane = detail::describePlane(cloud, support.voxels, support.fit);
+    const double nz = std::abs(plane.normal.z());
+    plane.vertical = nz < sin_vertical;
+    const bool horizontal = nz > cos_horizontal;
+    const bool surface = plane.d >= kMinPlaneDistance_m && (plane.vertical || horizontal);
+    const bool large = support.voxels.size() >= min_inliers && plane.extent_m >= config.min_extent_m;
+    if (surface && large) {
+      (plane.vertical ? result.walls : result.horizontals).push_back(plane);
+      ++accepted;
+      // The run's voxels in the full band of the final plane are this plane's; the other
+      // inliers may belong to other walls.
+      pool = without(pool, detail::withinBand(cloud, support.run, support.fit, config.distance_threshold_m));
+    } else if (surface) {
+      // Too small a run: the band's other runs may still be walls (a wall close by, of few
+      // voxels, beside a farther piece of more), so only this run leaves the pool.
+      pool = without(pool, support.run);
+    } else {
+      // Slanted, or scan lines: no run of this band is a wall or a floor.
+      pool = without(pool, candidate->inliers);
+    }
+  }
+  return result;
+}
+
+}  // namespace bimloc::planes

@@ -1,0 +1,106 @@
+// The least-squares plane of a support and what the particle filter needs to know of it:
+// the minimal parameters (paper, Eq. plane_error) and their covariance.
+#include "plane_steps.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace bimloc::planes::detail {
+namespace {
+
+// Floor of the residual standard deviation: a noise-free scan must not give a singular
+// covariance (a perfect fit is not infinitely certain of the wall it stands for).
+constexpr double kMinResidualSigma_m = 0.001;
+// Variance given to a direction the points leave unconstrained, and the cap on every
+// direction: an angle known to no better than +-pi carries no information.
+constexpr double kUninformativeVariance = M_PI * M_PI;
+
+// Covariance of (azimuth, elevation, d): sigma^2 (J^T J)^-1, J the Jacobian of the residuals
+// r_i = n(az, el)·p_i + d with n = (cos el cos az, cos el sin az, sin el), i.e. the inverse
+// Gauss-Newton Hessian of the fit, scaled by the residual variance.
+Eigen::Matrix3d minimalCovariance(const Cloud& cloud, const Indices& support, const Eigen::Vector3d& n, double d) {
+  const double az = std::atan2(n.y(), n.x()), el = std::asin(std::clamp(n.z(), -1.0, 1.0));
+  const Eigen::Vector3d dn_daz(-std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), 0.0);
+  const Eigen::Vector3d dn_del(-std::sin(el) * std::cos(az), -std::sin(el) * std::sin(az), std::cos(el));
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
+  double sum_r2 = 0;
+  for (const int i : support) {
+    const Eigen::Vector3d p = cloud[i].cast<double>();
+    const Eigen::Vector3d j(dn_daz.dot(p), dn_del.dot(p), 1.0);
+    hessian += j * j.transpose();
+    const double r = n.dot(p) + d;
+    sum_r2 += r * r;
+  }
+  const double dof = std::max(1.0, double(support.size()) - 3.0);
+  const double sigma2 = std::max(sum_r2 / dof, kMinResidualSigma_m * kMinResidualSigma_m);
+  // Inverse through the eigenvectors, so that a direction without information (the azimuth of
+  // a horizontal plane) gets a bounded variance instead of an overflow.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(hessian);
+  Eigen::Vector3d variances;
+  for (int k = 0; k < 3; ++k) {
+    const double lambda = eig.eigenvalues()[k];
+    variances[k] = lambda > 0 ? std::min(sigma2 / lambda, kUninformativeVariance) : kUninformativeVariance;
+  }
+  return eig.eigenvectors() * variances.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+}  // namespace
+
+PlaneFit fitPlane(const Cloud& cloud, const Indices& support) {
+  PlaneFit fit;
+  if (support.empty()) return fit;
+  // One pass of first and second moments, in double about the first point (no cancellation:
+  // the spread of a support is metres, its offset from the sensor tens of metres at most).
+  const Eigen::Vector3d origin = cloud[support.front()].cast<double>();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d sum2 = Eigen::Matrix3d::Zero();
+  for (const int i : support) {
+    const Eigen::Vector3d q = cloud[i].cast<double>() - origin;
+    sum += q;
+    sum2 += q * q.transpose();
+  }
+  const double n = double(support.size());
+  fit.centroid = origin + sum / n;
+  const Eigen::Matrix3d scatter = sum2 - sum * sum.transpose() / n;
+  // Eigenvalues ascending: the first eigenvector is the direction of least spread.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  fit.normal = eig.eigenvectors().col(0).normalized();
+  fit.d = -fit.normal.dot(fit.centroid);
+  return fit;
+}
+
+ObservedPlane describePlane(const Cloud& cloud, const Indices& support, const PlaneFit& fit) {
+  ObservedPlane plane;
+  plane.normal = fit.normal;
+  plane.d = fit.d;
+  if (plane.d < 0) plane.normal = -plane.normal, plane.d = -plane.d;  // towards the sensor origin
+  plane.centroid = fit.centroid;
+  plane.inliers = static_cast<int>(support.size());
+  if (support.empty()) return plane;
+
+  const Eigen::Vector3d h = planeHorizontal(plane.normal);
+  double u_min = INFINITY, u_max = -INFINITY, z_min = INFINITY, z_max = -INFINITY, sum_r2 = 0;
+  for (const int i : support) {
+    const Eigen::Vector3d p = cloud[i].cast<double>();
+    u_min = std::min(u_min, h.dot(p)), u_max = std::max(u_max, h.dot(p));
+    z_min = std::min(z_min, p.z()), z_max = std::max(z_max, p.z());
+    const double r = plane.normal.dot(p) + plane.d;
+    sum_r2 += r * r;
+  }
+  plane.extent_m = u_max - u_min;
+  plane.height_extent_m = z_max - z_min;
+  plane.rms_m = std::sqrt(sum_r2 / double(support.size()));
+  plane.covariance = minimalCovariance(cloud, support, plane.normal, plane.d);
+  return plane;
+}
+
+}  // namespace bimloc::planes::detail
+
+namespace bimloc::planes {
+
+Eigen::Vector3d minimalPlane(const Eigen::Vector3d& normal, double d) {
+  return {std::atan2(normal.y(), normal.x()), std::asin(std::clamp(normal.z(), -1.0, 1.0)), d};
+}
+
+}  // namespace bimloc::planes

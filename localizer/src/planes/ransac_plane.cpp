@@ -1,0 +1,106 @@
+// One plane by RANSAC (S-Graphs' segmentation: SACMODEL_PLANE, RANSAC, 500 iterations),
+// through PCL's model and estimator directly rather than pcl::SACSegmentation, so that the
+// sampling can be seeded: PCL seeds every model's generator with the constant 12345 (or the
+// wall clock), which would give every call the same sample sequence and no way to vary it.
+#include "plane_steps.hpp"
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/sample_consensus/ransac.h>
+#include <pcl/sample_consensus/sac_model_plane.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace bimloc::planes::detail {
+namespace {
+
+// RANSAC stops early once this confident that no larger plane was missed (PCL's default).
+constexpr double kRansacConfidence = 0.99;
+
+// PCL's plane model with two changes. Its (protected) sample generator is reseeded: it is only
+// used to draw samples, and the estimator runs single-threaded (threads_ = -1, PCL's default),
+// so the draws, hence the plane, depend only on the points, the pool and the seed. And its
+// scoring loop, which RANSAC runs once per hypothesis over the whole pool and which PCL's
+// generic build runs through indices and dynamic-size vectors (about 14 ns a point), runs over
+// a packed copy of the pool instead: the same count (|n·p + d| < threshold) at a thirtieth of the cost.
+class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
+ public:
+  SeededPlaneModel(const PointCloudConstPtr& cloud, const pcl::Indices& indices, std::uint32_t seed)
+      : pcl::SampleConsensusModelPlane<pcl::PointXYZ>(cloud, indices, false) {
+    rng_alg_.seed(seed);
+    x_.reserve(indices.size()), y_.reserve(indices.size()), z_.reserve(indices.size());
+    for (const auto i : indices) {
+      const auto& p = (*cloud)[i];
+      x_.push_back(p.x), y_.push_back(p.y), z_.push_back(p.z);
+    }
+  }
+
+  std::size_t countWithinDistance(const Eigen::VectorXf& model, const double threshold) const override {
+    if (!isModelValid(model)) return 0;
+    const float a = model[0], b = model[1], c = model[2], d = model[3], t = static_cast<float>(threshold);
+    const std::size_t n = x_.size();
+    std::size_t i = 0, count = 0;
+#if defined(__SSE2__)
+    // Four points at a time (SSE2 is every x86-64's baseline); an inlier's mask lane is -1.
+    const __m128 va = _mm_set1_ps(a), vb = _mm_set1_ps(b), vc = _mm_set1_ps(c), vd = _mm_set1_ps(d);
+    const __m128 vt = _mm_set1_ps(t), sign = _mm_set1_ps(-0.0f);
+    __m128i lanes = _mm_setzero_si128();
+    for (; i + 4 <= n; i += 4) {
+      const __m128 r = _mm_add_ps(_mm_add_ps(_mm_mul_ps(va, _mm_loadu_ps(&x_[i])), _mm_mul_ps(vb, _mm_loadu_ps(&y_[i]))),
+                                  _mm_add_ps(_mm_mul_ps(vc, _mm_loadu_ps(&z_[i])), vd));
+      lanes = _mm_sub_epi32(lanes, _mm_castps_si128(_mm_cmplt_ps(_mm_andnot_ps(sign, r), vt)));
+    }
+    alignas(16) std::int32_t sums[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(sums), lanes);
+    count = std::size_t(sums[0]) + std::size_t(sums[1]) + std::size_t(sums[2]) + std::size_t(sums[3]);
+#endif
+    for (; i < n; ++i) count += std::abs(a * x_[i] + b * y_[i] + c * z_[i] + d) < t;
+    return count;
+  }
+
+ private:
+  std::vector<float> x_, y_, z_;
+};
+
+}  // namespace
+
+std::optional<RansacPlane> ransacPlane(const Cloud& cloud, const Indices& pool, int iterations, double threshold_m,
+                                       std::uint32_t seed) {
+  if (pool.size() < 3 || iterations < 1 || !(threshold_m > 0)) return std::nullopt;
+  pcl::PointCloud<pcl::PointXYZ>::Ptr points(new pcl::PointCloud<pcl::PointXYZ>);
+  points->reserve(cloud.size());
+  for (const auto& p : cloud) points->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  const pcl::Indices indices(pool.begin(), pool.end());
+
+  auto model = std::make_shared<SeededPlaneModel>(points, indices, seed);
+  pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model, threshold_m);
+  ransac.setMaxIterations(iterations);
+  ransac.setProbability(kRansacConfidence);
+  ransac.setNumberOfThreads(-1);  // sequential: parallel sampling would not be reproducible
+  if (!ransac.computeModel()) return std::nullopt;
+
+  Eigen::VectorXf coefficients;
+  ransac.getModelCoefficients(coefficients);
+  pcl::Indices inliers;
+  ransac.getInliers(inliers);
+  if (coefficients.size() != 4 || !coefficients.allFinite() || inliers.empty()) return std::nullopt;
+
+  RansacPlane plane;
+  plane.normal = coefficients.head<3>().cast<double>();
+  const double norm = plane.normal.norm();
+  if (!(norm > 0)) return std::nullopt;
+  plane.normal /= norm;
+  plane.d = coefficients[3] / norm;
+  plane.inliers.assign(inliers.begin(), inliers.end());
+  std::sort(plane.inliers.begin(), plane.inliers.end());
+  return plane;
+}
+
+}  // namespace bimloc::planes::detail

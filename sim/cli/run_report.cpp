@@ -1,0 +1,65 @@
+#include "sim/cli/run_report.hpp"
+
+#include "sim/cli/table.hpp"
+
+#include <algorithm>
+
+namespace bimloc::cli {
+namespace {
+
+template <typename T>
+nlohmann::json orNull(const std::optional<T>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double wall_seconds) {
+  nlohmann::json scenarios = nlohmann::json::array();
+  int localized = 0, false_convergences = 0;
+  double sim_seconds = 0;
+  std::vector<double> times;
+  for (const auto& r : results) {
+    scenarios.push_back({{"name", r.name}, {"plan", r.plan}, {"storey", r.storey}, {"start_room", r.start_room},
+                         {"method", r.method}, {"seed", r.seed}, {"converged", r.converged},
+                         {"convergence_time_s", orNull(r.convergence_time_s)}, {"found_room", orNull(r.found_room)},
+                         {"true_room", r.true_room}, {"position_error_m", r.position_error_m},
+                         {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", orNull(r.ate_m)},
+                         {"false_convergence", r.false_convergence}, {"passed", r.passed}, {"failures", r.failures},
+                         {"warnings", r.warnings}});
+    localized += r.converged && !r.false_convergence;
+    false_convergences += r.false_convergence;
+    sim_seconds += r.sim_seconds;
+    if (r.convergence_time_s) times.push_back(*r.convergence_time_s);
+  }
+  nlohmann::json median = nullptr;
+  if (!times.empty()) {
+    std::sort(times.begin(), times.end());
+    median = times.size() % 2 ? times[times.size() / 2] : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
+  }
+  return {{"scenarios", scenarios},
+          {"summary", {{"runs", results.size()}, {"localized", localized}, {"false_convergences", false_convergences},
+                       {"median_convergence_s", median}, {"sim_seconds", sim_seconds}, {"wall_seconds", wall_seconds}}}};
+}
+
+void printRunTable(const std::vector<sim::ScenarioResult>& results, const nlohmann::json& report, std::ostream& out) {
+  Table table({"scenario", "method", "converged", "time [s]", "room found / true", "pos err [m]", "yaw err [deg]",
+               "ATE [m]", "false", "result"});
+  for (const auto& r : results) {
+    table.add({r.name, r.method, r.converged ? "yes" : "no", r.convergence_time_s ? fixed(*r.convergence_time_s, 1) : "-",
+               (r.found_room ? *r.found_room : std::string("-")) + " / " + r.true_room, fixed(r.position_error_m, 3),
+               fixed(r.yaw_error_deg, 2), r.ate_m ? fixed(*r.ate_m, 3) : "-", r.false_convergence ? "FALSE" : "",
+               r.passed ? "pass" : "FAIL"});
+  }
+  table.print(out);
+  const auto& s = report["summary"];
+  out << "\n" << s["localized"].get<int>() << " of " << s["runs"].get<std::size_t>() << " localized, "
+      << s["false_convergences"].get<int>() << " false convergences, median convergence "
+      << (s["median_convergence_s"].is_null() ? std::string("-") : fixed(s["median_convergence_s"].get<double>(), 1) + " s")
+      << "; " << fixed(s["sim_seconds"].get<double>(), 0) << " s simulated in " << fixed(s["wall_seconds"].get<double>(), 1)
+      << " s\n";
+  for (const auto& r : results)
+    for (const auto& f : r.failures) out << "  " << r.name << ": " << f << "\n";
+}
+
+}  // namespace bimloc::cli

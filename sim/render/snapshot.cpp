@@ -1,0 +1,40 @@
+#include "sim/render/snapshot.hpp"
+
+#include "sim/render/gl_context.hpp"
+#include "sim/render/layers.hpp"
+#include "sim/render/layout.hpp"
+#include "sim/render/png_write.hpp"
+#include "sim/world/atomic_file.hpp"
+
+#include <stdexcept>
+
+namespace bimloc::sim {
+
+Image renderSnapshotImage(const SnapshotScene& scene, const SnapshotOptions& options) {
+  const render::Layout layout = render::computeLayout(scene, options);
+  const render::WeightRange range = render::weightRange(scene.particles);
+  return render::renderOffscreen(layout.width, layout.height, [&] {
+    if (scene.storey) render::drawPlan(*scene.storey, layout);
+    render::drawParticles(scene.particles, range, layout);
+    render::drawPoses(scene, layout);
+    // Header and legend are opaque and come last: they cover whatever strays off the plan.
+    render::drawHeader(scene, layout);
+    render::drawLegend(scene, range, layout);
+  });
+}
+
+void renderSnapshot(const SnapshotScene& scene, const std::string& png_path, const SnapshotOptions& options) {
+  std::string png;
+  try {
+    png = render::encodePng(renderSnapshotImage(scene, options));
+  } catch (const std::exception& e) {
+    throw std::runtime_error(png_path + ": " + e.what());
+  }
+  writeFileAtomically(png_path, png);  // names the path itself, and leaves no file on failure
+}
+
+Eigen::Vector2d worldToPixel(const SnapshotScene& scene, const SnapshotOptions& options, double x, double y) {
+  return render::computeLayout(scene, options).toPixel(x, y);
+}
+
+}  // namespace bimloc::sim

@@ -1,0 +1,43 @@
+#include "sim/runner/run_scenario.hpp"
+
+namespace bimloc::sim {
+
+LocalizerSettings localizerSettings(const Scenario& s) {
+  LocalizerSettings out;
+  out.filter.seed = s.seed * 0x9E3779B97F4A7C15ull + 11;
+  out.planes.seed = s.seed;
+  const auto& j = s.localizer;
+  if (!j.is_object()) throw ScenarioError(s.file + ": localizer: expected a mapping");
+  for (const auto& [key, value] : j.items()) {
+    const auto number = [&](double lo, double hi) {
+      if (!value.is_number()) throw ScenarioError(s.file + ": localizer." + key + ": expected a number");
+      const double v = value.get<double>();
+      if (!(v >= lo && v <= hi))
+        throw ScenarioError(s.file + ": localizer." + key + ": " + std::to_string(v) + " is outside [" +
+                            std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      return v;
+    };
+    if (key == "method") {
+      const std::string m = value.is_string() ? value.get<std::string>() : "";
+      if (m != "pf" && m != "pf-no-rooms")
+        throw ScenarioError(s.file + ": localizer.method: expected 'pf' or 'pf-no-rooms'");
+      out.filter.use_rooms = m == "pf";
+    } else if (key == "particles") {
+      out.filter.particles = static_cast<int>(number(10, 1e6));
+    } else if (key == "sigma_d_m") {
+      out.filter.sigma_d_m = number(1e-3, 10);
+    } else if (key == "sigma_azimuth_deg") {
+      out.filter.sigma_azimuth_deg = number(0.01, 90);
+    } else if (key == "converged_updates") {
+      out.filter.converged_updates = static_cast<int>(number(1, 1000));
+    } else if (key == "voxel_size_m") {
+      out.planes.voxel_size_m = number(0.01, 1);
+    } else {
+      throw ScenarioError(s.file + ": localizer: unknown key '" + key +
+                          "' (keys: method, particles, sigma_d_m, sigma_azimuth_deg, converged_updates, voxel_size_m)");
+    }
+  }
+  return out;
+}
+
+}  // namespace bimloc::sim

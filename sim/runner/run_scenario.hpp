@@ -1,0 +1,57 @@
+// Runs one scenario in the loop: the simulator feeds scans and odometry, at the sensor's rate,
+// into the same localizer library that runs on recorded data, and the result is scored
+// against the ground truth and the scenario's expectations.
+#pragma once
+
+#include "sim/scenario/scenario.hpp"
+#include "sim/world/world.hpp"
+
+#include <bimloc/pf/particle_filter.hpp>
+#include <bimloc/planes/plane_extraction.hpp>
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bimloc::sim {
+
+struct LocalizerSettings {
+  pf::ParticleFilterConfig filter;
+  planes::PlaneExtractionConfig planes;
+};
+
+// The scenario's `localizer:` mapping over the defaults (method: pf | pf-no-rooms, particles,
+// ...). Throws ScenarioError naming the file for an unknown key or a bad value.
+LocalizerSettings localizerSettings(const Scenario& scenario);
+
+struct ScenarioResult {
+  std::string name, plan, storey, start_room, method;
+  std::uint64_t seed = 0;
+  bool converged = false;
+  std::optional<double> convergence_time_s;
+  std::optional<std::string> found_room;  // room of the estimate at convergence
+  std::string true_room;                  // room of the truth at convergence (or at the end)
+  double position_error_m = 0;            // at the end of the run
+  double yaw_error_deg = 0;
+  std::optional<double> ate_m;            // RMSE of position after convergence, no alignment
+  bool false_convergence = false;         // converged while > 0.5 m or > 10 deg off, at any time after
+  bool passed = false;
+  std::vector<std::string> failures;      // why it did not pass
+  std::vector<std::string> warnings;
+  double sim_seconds = 0, wall_seconds = 0;
+};
+
+// What a snapshot needs at a moment of the run (the runner calls it at initialization, while
+// the particles cluster, and at convergence).
+struct SnapshotMoment {
+  std::string phase;  // initialization | clustering | convergence
+  double time_s = 0;
+  const pf::ParticleFilter* filter = nullptr;
+  Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+};
+using SnapshotHook = std::function<void(const SnapshotMoment&)>;
+
+ScenarioResult runScenario(const Scenario& scenario, const World& world, const SnapshotHook& snapshot = {});
+
+}  // namespace bimloc::sim

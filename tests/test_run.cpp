@@ -1,0 +1,67 @@
+// `bimloc run` end to end: the documented JSON, the same results whatever --jobs, snapshots,
+// and a failing scenario turning into a non-zero exit.
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using bimloc::test::runBimloc;
+using bimloc::test::tempDir;
+
+namespace {
+
+std::string scenario(const std::string& dir, const std::string& name, const std::string& room, int seed) {
+  const std::string path = dir + "/" + name + ".yaml";
+  std::ofstream(path) << "name: " << name << "\n"
+                      << "world: " << BIMLOC_WORLDS_DIR << "/site_office.ifc\n"
+                      << "start: {random_in_room: " << room << "}\n"
+                      << "motion: {type: tour, rooms: [C100]}\n"
+                      << "duration_s: 20\n"
+                      << "seed: " << seed << "\n"
+                      << "expect: {converge: true, max_convergence_time_s: 20}\n";
+  return path;
+}
+
+}  // namespace
+
+TEST(Run, JsonIsTheDocumentedObjectAndJobsDoNotChangeIt) {
+  const std::string dir = tempDir("run");
+  const std::string args = "'" + scenario(dir, "a", "R105", 1) + "' '" + scenario(dir, "b", "S100", 2) + "' --json";
+  const auto one = runBimloc("run " + args + " --jobs 1 --out '" + dir + "/snaps'");
+  const auto two = runBimloc("run " + args + " --jobs 2");
+  auto j1 = nlohmann::json::parse(one.out), j2 = nlohmann::json::parse(two.out);
+  ASSERT_EQ(j1["scenarios"].size(), 2u);
+  for (const char* key : {"name", "plan", "storey", "start_room", "method", "seed", "converged", "convergence_time_s",
+                          "found_room", "position_error_m", "yaw_error_deg", "ate_m", "false_convergence", "passed"})
+    EXPECT_TRUE(j1["scenarios"][0].contains(key)) << key;
+  for (const char* key : {"runs", "localized", "false_convergences", "median_convergence_s", "sim_seconds", "wall_seconds"})
+    EXPECT_TRUE(j1["summary"].contains(key)) << key;
+  EXPECT_EQ(j1["summary"]["false_convergences"], 0);
+  // Everything but the wall-clock figures is the same with 1 or 2 jobs.
+  j1["summary"].erase("wall_seconds"), j2["summary"].erase("wall_seconds");
+  EXPECT_EQ(j1.dump(), j2.dump());
+  EXPECT_EQ(one.exit_code, j1["scenarios"][0]["passed"] && j1["scenarios"][1]["passed"] ? 0 : 1);
+  // Snapshots: initialization, clustering and (if converged) convergence, per scenario.
+  std::size_t pngs = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir + "/snaps")) pngs += e.path().extension() == ".png";
+  EXPECT_GE(pngs, 4u);
+}
+
+TEST(Run, FailingExpectationsGiveANonZeroExit) {
+  const std::string dir = tempDir("run");
+  const std::string path = dir + "/stand.yaml";
+  // Standing still in one of eight identical offices: it must not converge, so this fails.
+  std::ofstream(path) << "world: " << BIMLOC_WORLDS_DIR << "/site_office.ifc\n"
+                      << "start: {room: R102}\n"
+                      << "duration_s: 3\n"
+                      << "expect: {converge: true}\n";
+  const auto r = runBimloc("run '" + path + "' --json");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(j["scenarios"][0]["converged"]);
+  EXPECT_FALSE(j["scenarios"][0]["false_convergence"]);
+}
