@@ -1,5 +1,5 @@
 # The two commands of the README, each doing all of its set-up on a fresh Debian 12 machine:
-#   make demo   extract the default world and show what the localizer gets from the plan
+#   make demo   global localization from every room of the default world: the results table
 #   make test   build everything and run the whole test suite
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
@@ -12,7 +12,7 @@ DEB_PACKAGES := build-essential cmake pkg-config libifcplusplus-dev libboost-dev
                 nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libembree-dev libbullet-dev \
                 libyaml-cpp-dev libboost-filesystem-dev librosbag-storage-dev libsensor-msgs-dev \
                 libnav-msgs-dev libtf2-msgs-dev pluginlib-dev librcpputils-dev libament-index-cpp-dev \
-                python3-rosbag libpcl-dev
+                python3-rosbag libpcl-dev libosmesa6-dev libpng-dev
 
 .PHONY: all deps build test demo bench worlds meshes clean
 
@@ -35,10 +35,15 @@ test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
 
 demo: build
-	$(BIMLOC) extract worlds/$(DEFAULT_WORLD).ifc --out $(BUILD_DIR)/demo/$(DEFAULT_WORLD)
+	$(BIMLOC) extract worlds/$(DEFAULT_WORLD).ifc --out $(BUILD_DIR)/demo/plan
+	$(BIMLOC) run scenarios/$(DEFAULT_WORLD)/*.yaml --jobs $(JOBS) --out $(BUILD_DIR)/demo/snapshots \
+	  || echo "(some scenarios did not pass: see the table above)"
 
 bench: build
 	$(BIMLOC) bench extract
+	$(BIMLOC) bench lidar --plan worlds/$(DEFAULT_WORLD).ifc
+	$(BIMLOC) bench simulate scenarios/site_office_R101.yaml
+	$(BIMLOC) bench odometry
 
 # Regenerate the committed plans and meshes (tests check that they are up to date).
 worlds: build

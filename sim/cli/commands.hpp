@@ -22,3 +22,4 @@ void addBenchOdometryCommand(CLI::App& bench);
 void addWorldgenCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
+void addLocalizeCommand(CLI::App& app);

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   addWorldgenCommand(app);
   addSimulateCommand(app);
   addRunCommand(app);
+  addLocalizeCommand(app);
   addBenchCommand(app);
   try {
     app.parse(argc, argv);

@@ -1,37 +1,17 @@
 #include "sim/runner/run_scenario.hpp"
 
+#include "sim/runner/evaluation.hpp"
 #include "sim/simulation/simulator.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
 
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 
 namespace bimloc::sim {
 namespace {
 
-constexpr double kFalsePositionM = 0.5;  // declared converged while farther off than this ...
-constexpr double kFalseYawDeg = 10.0;    // ... or turned more than this: a false convergence
-constexpr int kClusteringUpdate = 5;     // the snapshot of the clustering particles
-
-double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
-
-double yawErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  const double d = yawOf(a) - yawOf(b);
-  return std::abs(std::atan2(std::sin(d), std::cos(d))) * 180.0 / M_PI;
-}
-
-std::string roomName(const bim::Storey& storey, int index) {
-  return index < 0 ? std::string("(outside)") : storey.rooms[static_cast<std::size_t>(index)].name;
-}
-
-int roomOf(const bim::Storey& storey, const Eigen::Vector3d& p) {
-  for (std::size_t r = 0; r < storey.rooms.size(); ++r)
-    if (bim::pointInPolygon(storey.rooms[r].footprint, p.head<2>())) return static_cast<int>(r);
-  return -1;
-}
+constexpr int kClusteringUpdate = 5;  // the snapshot of the clustering particles
 
 std::vector<Eigen::Vector3f> finitePoints(const LidarScan& scan) {
   std::vector<Eigen::Vector3f> points;
@@ -78,9 +58,8 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
   };
   if (snapshot) snapshot({"initialization", 0.0, &filter, sim.trajectory().T_map_base(0.0)});
 
-  double sum_sq = 0;
-  int after = 0, updates = 0;
-  Eigen::Isometry3d truth = sim.trajectory().T_map_base(0.0), estimate = truth;
+  RunScore score(storey);
+  int updates = 0;
   const double half_turn = 0.5 * sim.lidar().turnPeriod_s();
   for (std::size_t i = 0; i < sim.turnCount(); ++i) {
     const LidarScan scan = sim.turn(i);
@@ -89,41 +68,13 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     filter.predict(odometryAt(t));
     const auto planes = planes::extractPlanes(finitePoints(scan), settings.planes);
     const auto report = filter.update(planes.walls);
-    if (std::getenv("BIMLOC_DEBUG_PF") && report.weighed) {
-      const Eigen::Isometry3d tr = sim.trajectory().T_map_base(t);
-      const auto truth_score = filter.score(tr.translation().x(), tr.translation().y(), yawOf(tr), planes.walls);
-      const auto& b = filter.best();
-      const auto best_score = filter.score(b.x, b.y, b.yaw, planes.walls);
-      std::fprintf(stderr, "t=%.1f obs=%d ess=%.0f truth ll=%.1f assoc=%d | best (%.2f %.2f %.0f) ll=%.1f assoc=%d\n", t,
-                   report.observations, report.ess, truth_score.first, truth_score.second, b.x, b.y, b.yaw * 57.3,
-                   best_score.first, best_score.second);
-    }
     ++updates;
     for (const auto& w : report.warnings) r.warnings.push_back("t=" + std::to_string(t) + ": " + w);
-    truth = sim.trajectory().T_map_base(t);
-    if (snapshot && updates == kClusteringUpdate && !filter.converged())
-      snapshot({"clustering", t, &filter, truth});
-    if (!filter.converged()) continue;
-    estimate = filter.T_map_base();
-    const double position_error = (estimate.translation() - truth.translation()).head<2>().norm();
-    if (!r.converged) {
-      r.converged = true;
-      r.convergence_time_s = t;
-      r.found_room = roomName(storey, filter.estimateRoom());
-      r.true_room = roomName(storey, roomOf(storey, truth.translation()));
-      if (snapshot) snapshot({"convergence", t, &filter, truth});
-    }
-    if (position_error > kFalsePositionM || yawErrorDeg(estimate, truth) > kFalseYawDeg) r.false_convergence = true;
-    sum_sq += position_error * position_error;
-    ++after;
+    const Eigen::Isometry3d truth = sim.trajectory().T_map_base(t);
+    if (snapshot && updates == kClusteringUpdate && !filter.converged()) snapshot({"clustering", t, &filter, truth});
+    if (score.add(t, filter, truth) && snapshot) snapshot({"convergence", t, &filter, truth});
   }
-  if (!r.converged) {
-    estimate = filter.T_map_base();
-    r.true_room = roomName(storey, roomOf(storey, truth.translation()));
-  }
-  r.position_error_m = (estimate.translation() - truth.translation()).head<2>().norm();
-  r.yaw_error_deg = yawErrorDeg(estimate, truth);
-  if (after > 0) r.ate_m = std::sqrt(sum_sq / after);
+  score.finish(filter, r);
   r.sim_seconds = static_cast<double>(sim.turnCount()) * sim.lidar().turnPeriod_s();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   judge(s, r);

@@ -9,8 +9,6 @@ namespace {
 constexpr double kAngleTolerance = 5.0 * M_PI / 180.0;
 constexpr double kMinPairAngle = 30.0 * M_PI / 180.0;  // nearly parallel planes fix no position
 
-double heading(const Eigen::Vector3d& n) { return std::atan2(n.y(), n.x()); }
-
 // Hypotheses from one landmark set, kept when inside `room` (or any room when room < 0).
 void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
                    const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
@@ -18,12 +16,12 @@ void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vec
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (i == j) continue;
-      const double turn = wrapAngle(heading(obs[j].normal_base) - heading(obs[i].normal_base));
+      const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
       if (std::abs(turn) < kMinPairAngle || std::abs(turn) > M_PI - kMinPairAngle) continue;
       for (std::size_t a = 0; a < marks.size(); ++a)
         for (std::size_t b = 0; b < marks.size(); ++b) {
           if (a == b || std::abs(wrapAngle(marks[b].azimuth - marks[a].azimuth - turn)) > kAngleTolerance) continue;
-          const double yaw = wrapAngle(marks[a].azimuth - heading(obs[i].normal_base));
+          const double yaw = wrapAngle(marks[a].azimuth - obs[i].azimuth_base);
           // With the heading fixed, each plane is one line for (x, y): n·(x, y) = d_off - d - n_z z.
           Eigen::Matrix2d A;
           A << marks[a].normal.x(), marks[a].normal.y(), marks[b].normal.x(), marks[b].normal.y();

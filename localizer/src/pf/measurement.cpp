@@ -23,7 +23,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const Eigen::Vector3d n(cy * o.normal_base.x() - sy * o.normal_base.y(), sy * o.normal_base.x() + cy * o.normal_base.y(),
                             o.normal_base.z());
     const double d = o.d_offset - (n.x() * p.x + n.y() * p.y + n.z() * z_base);
-    const double azimuth = std::atan2(n.y(), n.x()), elevation = std::asin(std::clamp(n.z(), -1.0, 1.0));
+    const double azimuth = o.azimuth_base + p.yaw, elevation = o.elevation;
     const bim::WallAxis axis = std::abs(n.x()) >= std::abs(n.y()) ? bim::WallAxis::X : bim::WallAxis::Y;
     double best = gate;
     for (const auto& l : landmarks) {

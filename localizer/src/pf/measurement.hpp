@@ -14,6 +14,8 @@ namespace bimloc::pf::detail {
 struct Observation {
   Eigen::Vector3d normal_base;  // the observed normal, rotated into the yaw-free base frame
   double d_offset = 0;          // d_L - n_B · (lidar position in the yaw-free base frame)
+  double azimuth_base = 0;      // atan2 of normal_base: a particle's yaw just adds to it
+  double elevation = 0;         // asin(n_z): the same for every particle
 };
 
 struct MatchResult {

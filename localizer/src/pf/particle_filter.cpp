@@ -226,6 +226,8 @@ std::vector<detail::Observation> ParticleFilter::Impl::observe(const std::vector
     detail::Observation o;
     o.normal_base = R_bl * w.normal.normalized();
     o.d_offset = w.d - o.normal_base.dot(t_bl);
+    o.azimuth_base = std::atan2(o.normal_base.y(), o.normal_base.x());
+    o.elevation = std::asin(std::clamp(o.normal_base.z(), -1.0, 1.0));
     observations.push_back(o);
   }
   return observations;

@@ -60,9 +60,12 @@ Support findSupport(const detail::Cloud& voxels, const detail::Cloud& raw, const
                     const detail::RansacPlane& candidate, bool wall, double threshold_m, double voxel_m) {
   const double gap_m = kSupportGapVoxels * voxel_m;
   Support s;
-  s.run = wall ? *detail::largestRun(
-                     detail::runsAlong(voxels, candidate.inliers, detail::planeHorizontal(candidate.normal), gap_m))
-               : candidate.inliers;
+  if (wall) {
+    const auto runs = detail::runsAlong(voxels, candidate.inliers, detail::planeHorizontal(candidate.normal), gap_m);
+    s.run = *detail::largestRun(runs);  // the candidate has inliers, so at least one run
+  } else {
+    s.run = candidate.inliers;
+  }
   detail::RefinedPlane coarse = detail::refinePlane(voxels, s.run, 0.5 * threshold_m);
   const detail::Indices band = detail::withinBand(voxels, pool, coarse.fit, threshold_m);
   if (!wall) {

@@ -9,6 +9,7 @@
 #include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -23,6 +24,22 @@ namespace {
 
 // RANSAC stops early once this confident that no larger plane was missed (PCL's default).
 constexpr double kRansacConfidence = 0.99;
+// A pool spread less than this across its main direction is a line (or a point): it holds no
+// plane, and PCL's model would report every one of its collinear samples on stderr.
+constexpr double kMinPoolWidth_m = 0.01;
+
+bool lineLike(const Cloud& cloud, const Indices& pool) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const int i : pool) mean += cloud[i].cast<double>();
+  mean /= double(pool.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const int i : pool) {
+    const Eigen::Vector3d q = cloud[i].cast<double>() - mean;
+    scatter += q * q.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter / double(pool.size()));
+  return eig.eigenvalues()[1] < kMinPoolWidth_m * kMinPoolWidth_m;  // ascending: [1] is the middle one
+}
 
 // PCL's plane model with two changes. Its (protected) sample generator is reseeded: it is only
 // used to draw samples, and the estimator runs single-threaded (threads_ = -1, PCL's default),
@@ -73,7 +90,7 @@ class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
 
 std::optional<RansacPlane> ransacPlane(const Cloud& cloud, const Indices& pool, int iterations, double threshold_m,
                                        std::uint32_t seed) {
-  if (pool.size() < 3 || iterations < 1 || !(threshold_m > 0)) return std::nullopt;
+  if (pool.size() < 3 || iterations < 1 || !(threshold_m > 0) || lineLike(cloud, pool)) return std::nullopt;
   pcl::PointCloud<pcl::PointXYZ>::Ptr points(new pcl::PointCloud<pcl::PointXYZ>);
   points->reserve(cloud.size());
   for (const auto& p : cloud) points->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));

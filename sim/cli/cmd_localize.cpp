@@ -1,0 +1,90 @@
+// bimloc localize DATASET --plan PLAN [--storey S] [--method pf|pf-no-rooms] [--json]
+// The same localizer as `bimloc run`, offline, on a recorded dataset.
+#include "sim/cli/commands.hpp"
+#include "sim/cli/run_report.hpp"
+#include "sim/dataset/dataset_reader.hpp"
+#include "sim/runner/evaluation.hpp"
+#include "sim/world/world.hpp"
+
+#include <bimloc/bim/ifc_reader.hpp>
+
+#include <chrono>
+#include <iostream>
+
+namespace {
+
+using namespace bimloc::sim;
+
+struct LocalizeArgs {
+  std::string dataset;
+  std::string plan;
+  std::string storey;
+  std::string method = "pf";
+  std::uint64_t seed = 0;
+  bool json = false;
+};
+
+void run(const LocalizeArgs& args) {
+  const auto start = std::chrono::steady_clock::now();
+  const RecordedDataset data = readDataset(args.dataset);
+  const bimloc::bim::Building building = bimloc::bim::readIfc(args.plan, {});
+  const std::string storey_name = args.storey.empty() ? (data.storey.empty() ? "0" : data.storey) : args.storey;
+  const bimloc::bim::Storey* storey = building.findStorey(storey_name);
+  if (!storey) throw std::runtime_error(args.plan + ": no storey '" + storey_name + "'");
+
+  bimloc::pf::ParticleFilterConfig config;
+  config.use_rooms = args.method == "pf";
+  config.seed = args.seed;
+  bimloc::pf::ParticleFilter filter(*storey, data.T_base_lidar, config);
+  bimloc::planes::PlaneExtractionConfig planes_config;
+  planes_config.seed = args.seed;
+  RunScore score(*storey);
+  ScenarioResult r;
+  r.name = args.dataset, r.plan = args.plan, r.storey = storey->name, r.method = args.method, r.seed = args.seed;
+  r.start_room = "(unknown)";
+  for (const auto& scan : data.scans) {
+    const double t = scan.stamp_s + 0.5 * data.turn_period_s;  // mid-turn, as the runner
+    filter.predict(nearest(data.odometry, t).pose);
+    const auto report = filter.update(bimloc::planes::extractPlanes(readPcdPoints(scan.file), planes_config).walls);
+    for (const auto& w : report.warnings) r.warnings.push_back(scan.file + ": " + w);
+    if (!data.ground_truth.empty()) score.add(t - data.scans.front().stamp_s, filter, nearest(data.ground_truth, t).pose);
+  }
+  if (data.ground_truth.empty()) {
+    r.converged = filter.converged();
+  } else {
+    score.finish(filter, r);
+  }
+  r.sim_seconds = data.scans.empty() ? 0.0 : data.scans.back().stamp_s - data.scans.front().stamp_s + data.turn_period_s;
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.passed = r.converged && !r.false_convergence;
+  const auto report = bimloc::cli::runReport({r}, r.wall_seconds);
+  if (args.json) {
+    std::cout << report.dump() << "\n";
+  } else {
+    bimloc::cli::printRunTable({r}, report, std::cout);
+    if (const auto T = filter.T_map_odom()) {
+      const Eigen::Quaterniond q(T->linear());
+      std::cout << "map <- odom: xyz " << T->translation().transpose() << ", quaternion xyzw " << q.x() << " " << q.y() << " "
+                << q.z() << " " << q.w() << "\n";
+    }
+    if (data.ground_truth.empty()) std::cout << "(no ground_truth.tum: errors not evaluated)\n";
+  }
+}
+
+}  // namespace
+
+void addLocalizeCommand(CLI::App& app) {
+  auto args = std::make_shared<LocalizeArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "localize",
+      "Run the localizer offline on a dataset in the form `bimloc simulate` writes (clouds/*.pcd with\n"
+      "clouds/index.csv, odometry.tum, metadata.json with the mount; ground_truth.tum if known) against a plan:\n"
+      "global localization, then map <- odom. Scored like `bimloc run` when ground truth is present.");
+  cmd->add_option("dataset", args->dataset, "dataset folder")->required();
+  cmd->add_option("--plan", args->plan, "IFC plan")->required();
+  cmd->add_option("--storey", args->storey, "storey name or index (default: as recorded, else 0)");
+  cmd->add_option("--method", args->method, "pf or pf-no-rooms")->check(CLI::IsMember({"pf", "pf-no-rooms"}))->capture_default_str();
+  cmd->add_option("--seed", args->seed, "seed of the filter")->capture_default_str();
+  cmd->add_flag("--json", args->json, "print one JSON object");
+  cmd->callback([args] { run(*args); });
+}

@@ -1,0 +1,40 @@
+// Reads back a dataset in the plain-file form `bimloc simulate` writes (clouds/*.pcd with
+// clouds/index.csv, odometry.tum, ground_truth.tum, metadata.json), so that `bimloc localize`
+// runs on recordings, simulated or from a real robot converted to that form.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bimloc::sim {
+
+struct StampedPose {
+  double stamp_s = 0;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
+struct DatasetScan {
+  std::string file;  // path of the PCD
+  double stamp_s = 0;
+};
+
+struct RecordedDataset {
+  std::string dir;
+  Eigen::Isometry3d T_base_lidar = Eigen::Isometry3d::Identity();
+  double turn_period_s = 0.1;
+  std::string storey;  // as recorded, may be empty
+  std::vector<DatasetScan> scans;
+  std::vector<StampedPose> odometry;      // odom -> base_link
+  std::vector<StampedPose> ground_truth;  // map -> base_link, empty when not recorded
+};
+
+// Throws std::runtime_error naming the file and the line for anything malformed.
+RecordedDataset readDataset(const std::string& dir);
+// x, y, z of every point of a PCD (v0.7, binary or ascii, float x y z fields).
+std::vector<Eigen::Vector3f> readPcdPoints(const std::string& path);
+// The pose of the sample nearest to t (samples sorted by stamp).
+const StampedPose& nearest(const std::vector<StampedPose>& samples, double t);
+
+}  // namespace bimloc::sim

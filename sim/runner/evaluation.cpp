@@ -1,0 +1,66 @@
+#include "sim/runner/evaluation.hpp"
+
+#include <bimloc/bim/geometry2d.hpp>
+
+#include <cmath>
+
+namespace bimloc::sim {
+namespace {
+
+constexpr double kFalsePositionM = 0.5;  // declared converged while farther off than this ...
+constexpr double kFalseYawDeg = 10.0;    // ... or turned more than this: a false convergence
+
+double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
+
+std::string roomName(const bim::Storey& storey, int index) {
+  return index < 0 ? std::string("(outside)") : storey.rooms[static_cast<std::size_t>(index)].name;
+}
+
+int roomOf(const bim::Storey& storey, const Eigen::Vector3d& p) {
+  for (std::size_t r = 0; r < storey.rooms.size(); ++r)
+    if (bim::pointInPolygon(storey.rooms[r].footprint, p.head<2>())) return static_cast<int>(r);
+  return -1;
+}
+
+}  // namespace
+
+double yawErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  const double d = yawOf(a) - yawOf(b);
+  return std::abs(std::atan2(std::sin(d), std::cos(d))) * 180.0 / M_PI;
+}
+
+bool RunScore::add(double t, const pf::ParticleFilter& filter, const Eigen::Isometry3d& truth) {
+  truth_ = truth;
+  estimate_ = filter.T_map_base();
+  if (!filter.converged()) return false;
+  const bool first = !converged_;
+  if (first) {
+    converged_ = true;
+    convergence_time_ = t;
+    found_room_ = roomName(storey_, filter.estimateRoom());
+    true_room_ = roomName(storey_, roomOf(storey_, truth.translation()));
+  }
+  const double error = (estimate_.translation() - truth.translation()).head<2>().norm();
+  if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg) false_convergence_ = true;
+  sum_sq_ += error * error;
+  ++after_;
+  return first;
+}
+
+void RunScore::finish(const pf::ParticleFilter& filter, ScenarioResult& r) const {
+  const Eigen::Isometry3d estimate = filter.T_map_base();
+  r.converged = converged_;
+  r.false_convergence = false_convergence_;
+  if (converged_) {
+    r.convergence_time_s = convergence_time_;
+    r.found_room = found_room_;
+    r.true_room = true_room_;
+  } else {
+    r.true_room = roomName(storey_, roomOf(storey_, truth_.translation()));
+  }
+  r.position_error_m = (estimate.translation() - truth_.translation()).head<2>().norm();
+  r.yaw_error_deg = yawErrorDeg(estimate, truth_);
+  if (after_ > 0) r.ate_m = std::sqrt(sum_sq_ / after_);
+}
+
+}  // namespace bimloc::sim
