@@ -151,3 +151,14 @@ TEST(Worlds, CommittedMeshesAreWhatExtractionGives) {
     }
   }
 }
+
+TEST(Worlds, SimulatorMeshesLeaveDoorLeavesOut) {
+  // `bimloc extract` keeps every physical element; the simulator's world has doorways instead
+  // of doors, so that a base can walk out of the rooms of real plans (closed leaves in the mesh).
+  const std::string plan = std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc";
+  bim::ExtractOptions without;
+  without.door_leaves = false;
+  const auto all = bim::readIfc(plan), doorless = bim::readIfc(plan, without);
+  EXPECT_LT(doorless.storeys[0].mesh.triangles.size(), all.storeys[0].mesh.triangles.size());
+  EXPECT_EQ(doorless.storeys[0].walls.size(), all.storeys[0].walls.size());
+}

@@ -110,7 +110,9 @@ World::~World() = default;
 World World::fromPlan(const std::string& ifc_path) {
   auto impl = std::make_unique<Impl>();
   impl->source = ifc_path;
-  impl->building = bim::readIfc(ifc_path);
+  bim::ExtractOptions options;
+  options.door_leaves = false;  // doorways, not doors: see ExtractOptions::door_leaves
+  impl->building = bim::readIfc(ifc_path, options);
   impl->build();
   return World(std::move(impl));
 }

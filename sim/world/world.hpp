@@ -19,7 +19,8 @@ struct RayHit {
 
 class World {
  public:
-  // An IFC plan: extraction, then the storey meshes.
+  // An IFC plan: extraction, then the storey meshes, without door leaves (doorways are open,
+  // as on a site before the doors are hung).
   static World fromPlan(const std::string& ifc_path);
   // A folder written by `bimloc extract --out` (building.json + storey meshes).
   static World fromExtractDir(const std::string& dir);

@@ -59,7 +59,9 @@ bool isSlab(const RawProduct& p) {
 
 // Everything physical of the storey, plus the floor under it and the ceiling above it
 // (slabs that belong to the storey below or above, depending on the authoring tool).
-void buildStoreyMeshes(const RawModel& raw, const std::vector<int>& new_index, Building& building) {
+bool isDoor(const RawProduct& p) { return p.ifc_class == "IfcDoor" || p.ifc_class == "IfcDoorStandardCase"; }
+
+void buildStoreyMeshes(const RawModel& raw, const std::vector<int>& new_index, bool door_leaves, Building& building) {
   auto& storeys = building.storeys;
   for (std::size_t s = 0; s < storeys.size(); ++s) {
     const double floor = storeys[s].elevation_m;
@@ -69,6 +71,7 @@ void buildStoreyMeshes(const RawModel& raw, const std::vector<int>& new_index, B
     auto& mesh = storeys[s].mesh;
     for (const auto* group : {&raw.walls, &raw.elements}) {
       for (const auto& p : *group) {
+        if (!door_leaves && isDoor(p)) continue;
         const int in = storeyFor(p, new_index, storeys);
         const bool own = in == static_cast<int>(s);
         const bool floor_or_ceiling = !own && isSlab(p) && maxZ(p) > floor - 0.6 && minZ(p) < top + 0.6 &&
@@ -140,7 +143,7 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
       if (room.walls.empty())
         building.warnings.push_back("IfcSpace " + room.id + " '" + room.name + "': no bounding wall found");
   }
-  if (options.build_meshes) buildStoreyMeshes(raw, new_index, building);
+  if (options.build_meshes) buildStoreyMeshes(raw, new_index, options.door_leaves, building);
 
   building.times.parse_s = raw.parse_s;
   building.times.geometry_s = raw.geometry_s;

@@ -21,6 +21,9 @@ struct ExtractOptions {
   double adjacency_angle_deg = 5.0;
   double adjacency_min_overlap_m = 0.2;
   bool build_meshes = true;  // storey meshes for the simulator
+  // Door leaves (IfcDoor) in the storey meshes. The simulator leaves them out: a building under
+  // construction has doorways before it has doors, and closed leaves would wall every room in.
+  bool door_leaves = true;
 };
 
 // Throws BimError for a file that cannot be read, is not IFC, is truncated, or has no
