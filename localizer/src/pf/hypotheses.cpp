@@ -12,7 +12,9 @@ constexpr double kMinPairAngle = 30.0 * M_PI / 180.0;  // nearly parallel planes
 // Hypotheses from one landmark set, kept when inside `room` (or any room when room < 0).
 void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
                    const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
-  const int min_associated = std::max(3, static_cast<int>(obs.size()) / 2);
+  // Three associations make a pose worth scoring; clutter (furniture, walls seen through doors)
+  // can outnumber a room's own walls, so the bar does not grow with the number of planes.
+  const int min_associated = 3;
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (i == j) continue;
