@@ -113,7 +113,8 @@ TEST(World, LoadsAnExtractFolderLikeThePlan) {
   const sim::World from_dir = sim::World::load(std::string(BIMLOC_WORLDS_DIR) + "/../meshes/site_office");
   const sim::World from_plan = sim::World::load(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc");
   ASSERT_EQ(from_dir.storeyCount(), from_plan.storeyCount());
-  EXPECT_EQ(from_dir.triangleCount(0), from_plan.triangleCount(0));
+  // The extract folder holds every element; a world built from the plan leaves door leaves out.
+  EXPECT_GT(from_dir.triangleCount(0), from_plan.triangleCount(0));
   EXPECT_EQ(from_dir.building().storeys[0].rooms.size(), from_plan.building().storeys[0].rooms.size());
   EXPECT_THROW(from_dir.storeyIndex("Attic"), std::invalid_argument);
 }
