@@ -1,6 +1,7 @@
 // bimloc simulate SCENARIO --out DIR [--threads N]
 #include "sim/cli/commands.hpp"
 #include "sim/cli/progress.hpp"
+#include "sim/dataset/dataset_metadata.hpp"
 #include "sim/dataset/dataset_writer.hpp"
 #include "sim/simulation/simulator.hpp"
 
@@ -18,12 +19,6 @@ struct SimulateArgs {
   bool quiet = false;
 };
 
-nlohmann::json isometryJson(const Eigen::Isometry3d& T) {
-  const Eigen::Quaterniond q(T.linear());
-  return {{"xyz", {T.translation().x(), T.translation().y(), T.translation().z()}},
-          {"quaternion_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
-}
-
 nlohmann::json metadata(const Simulator& sim, const std::string& scenario_path) {
   const Scenario& s = sim.scenario();
   const Vlp16Config& c = s.sensor;
@@ -35,9 +30,9 @@ nlohmann::json metadata(const Simulator& sim, const std::string& scenario_path) 
           {"duration_s", s.duration_s},
           {"sensor", {{"model", "VLP-16"}, {"rpm", c.rpm}, {"min_range_m", c.min_range_m}, {"max_range_m", c.max_range_m},
                       {"range_noise_sigma_m", c.range_noise_sigma_m}, {"dropout_probability", c.dropout_probability},
-                      {"motion_distortion", c.motion_distortion}, {"mount_T_base_lidar", isometryJson(c.T_base_lidar)}}},
+                      {"motion_distortion", c.motion_distortion}, {"mount_T_base_lidar", poseJson(c.T_base_lidar)}}},
           {"odometry", {{"preset", s.odometry.preset}, {"rate_hz", s.odometry.rate_hz}}},
-          {"T_map_odom_true", isometryJson(sim.T_map_odom_true())}};
+          {"T_map_odom_true", poseJson(sim.T_map_odom_true())}};
 }
 
 void run(const SimulateArgs& args) {

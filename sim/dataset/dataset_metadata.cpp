@@ -5,13 +5,13 @@
 
 namespace bimloc::sim {
 
-namespace {
-
 nlohmann::json poseJson(const Eigen::Isometry3d& pose) {
   const Eigen::Quaterniond q = canonicalRotation(pose);
   const Eigen::Vector3d t = pose.translation();
   return {{"xyz", {t.x(), t.y(), t.z()}}, {"quaternion_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
 }
+
+namespace {
 
 nlohmann::json pointFieldsJson() {
   nlohmann::json fields = nlohmann::json::array();

@@ -25,6 +25,9 @@ struct DatasetSummary {
 };
 
 // info.metadata with the writer's keys added (they win on a clash).
+// A pose as {"xyz": [...], "quaternion_xyzw": [...]} (w >= 0), as metadata.json writes poses.
+nlohmann::json poseJson(const Eigen::Isometry3d& pose);
+
 nlohmann::json datasetMetadata(const DatasetInfo& info, const DatasetSummary& summary);
 
 }  // namespace bimloc::sim

@@ -1,6 +1,6 @@
 #include "sim/runner/evaluation.hpp"
 
-#include <bimloc/bim/geometry2d.hpp>
+#include "sim/base/room_lookup.hpp"
 
 #include <cmath>
 
@@ -16,10 +16,10 @@ std::string roomName(const bim::Storey& storey, int index) {
   return index < 0 ? std::string("(outside)") : storey.rooms[static_cast<std::size_t>(index)].name;
 }
 
-int roomOf(const bim::Storey& storey, const Eigen::Vector3d& p) {
-  for (std::size_t r = 0; r < storey.rooms.size(); ++r)
-    if (bim::pointInPolygon(storey.rooms[r].footprint, p.head<2>())) return static_cast<int>(r);
-  return -1;
+// The room the true pose is in, by name.
+std::string trueRoom(const bim::Storey& storey, const Eigen::Isometry3d& truth) {
+  const bim::Room* room = roomAt(storey, truth.translation().head<2>());
+  return room ? room->name : std::string("(outside)");
 }
 
 }  // namespace
@@ -38,7 +38,7 @@ bool RunScore::add(double t, const pf::ParticleFilter& filter, const Eigen::Isom
     converged_ = true;
     convergence_time_ = t;
     found_room_ = roomName(storey_, filter.estimateRoom());
-    true_room_ = roomName(storey_, roomOf(storey_, truth.translation()));
+    true_room_ = trueRoom(storey_, truth);
   }
   const double error = (estimate_.translation() - truth.translation()).head<2>().norm();
   if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg) false_convergence_ = true;
@@ -56,7 +56,7 @@ void RunScore::finish(const pf::ParticleFilter& filter, ScenarioResult& r) const
     r.found_room = found_room_;
     r.true_room = true_room_;
   } else {
-    r.true_room = roomName(storey_, roomOf(storey_, truth_.translation()));
+    r.true_room = trueRoom(storey_, truth_);
   }
   r.position_error_m = (estimate.translation() - truth_.translation()).head<2>().norm();
   r.yaw_error_deg = yawErrorDeg(estimate, truth_);

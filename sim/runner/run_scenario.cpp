@@ -13,7 +13,8 @@ namespace {
 
 constexpr int kClusteringUpdate = 5;  // the snapshot of the clustering particles
 
-std::vector<Eigen::Vector3f> finitePoints(const LidarScan& scan) {
+// The turn's x, y, z; non-finite and out-of-range points are the plane extraction's to drop.
+std::vector<Eigen::Vector3f> scanPoints(const LidarScan& scan) {
   std::vector<Eigen::Vector3f> points;
   points.reserve(scan.points.size());
   for (const auto& p : scan.points) points.emplace_back(p.x, p.y, p.z);
@@ -66,7 +67,7 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     // The turn sweeps for a whole period: its planes are best explained by the mid-turn pose.
     const double t = scan.stamp_s + half_turn;
     filter.predict(odometryAt(t));
-    const auto planes = planes::extractPlanes(finitePoints(scan), settings.planes);
+    const auto planes = planes::extractPlanes(scanPoints(scan), settings.planes);
     const auto report = filter.update(planes.walls);
     ++updates;
     for (const auto& w : report.warnings) r.warnings.push_back("t=" + std::to_string(t) + ": " + w);
