@@ -45,7 +45,10 @@ void run(const LocalizeArgs& args) {
   for (const auto& scan : data.scans) {
     const double t = scan.stamp_s + 0.5 * data.turn_period_s;  // mid-turn, as the runner
     filter.predict(nearest(data.odometry, t).pose);
-    const auto report = filter.update(bimloc::planes::extractPlanes(readPcdPoints(scan.file), planes_config).walls);
+    // As the runner: planes only for the scans the filter weighs.
+    const auto report = filter.update(filter.wantsObservations()
+                                          ? bimloc::planes::extractPlanes(readPcdPoints(scan.file), planes_config).walls
+                                          : std::vector<bimloc::planes::ObservedPlane>{});
     for (const auto& w : report.warnings) r.warnings.push_back(scan.file + ": " + w);
     if (!data.ground_truth.empty()) score.add(t - data.scans.front().stamp_s, filter, nearest(data.ground_truth, t).pose);
   }

@@ -67,8 +67,10 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     // The turn sweeps for a whole period: its planes are best explained by the mid-turn pose.
     const double t = scan.stamp_s + half_turn;
     filter.predict(odometryAt(t));
-    const auto planes = planes::extractPlanes(scanPoints(scan), settings.planes);
-    const auto report = filter.update(planes.walls);
+    // Planes only for the scans the filter weighs: the others it would not look at.
+    const auto report = filter.update(filter.wantsObservations()
+                                          ? planes::extractPlanes(scanPoints(scan), settings.planes).walls
+                                          : std::vector<planes::ObservedPlane>{});
     ++updates;
     for (const auto& w : report.warnings) r.warnings.push_back("t=" + std::to_string(t) + ": " + w);
     const Eigen::Isometry3d truth = sim.trajectory().T_map_base(t);

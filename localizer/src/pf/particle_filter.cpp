@@ -4,6 +4,7 @@
 
 #include "hypotheses.hpp"
 #include "measurement.hpp"
+#include "path_evidence.hpp"
 #include "room_index.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
@@ -22,6 +23,10 @@ double yawOf(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
 Eigen::Matrix3d tiltOf(const Eigen::Matrix3d& R) {
   return Eigen::AngleAxisd(-yawOf(R), Eigen::Vector3d::UnitZ()).toRotationMatrix() * R;
 }
+detail::Pose2 planar(const Eigen::Isometry3d& T) { return {T.translation().x(), T.translation().y(), yawOf(T.linear())}; }
+bool near(const detail::Pose2& a, const detail::Pose2& b, double metres, double radians) {
+  return std::hypot(a.x() - b.x(), a.y() - b.y()) < metres && std::abs(wrapAngle(a.z() - b.z())) < radians;
+}
 
 // Odometry jumps beyond these in one step are reported, and spread the particles accordingly.
 constexpr double kJumpM = 1.0;
@@ -34,6 +39,7 @@ struct ParticleFilter::Impl {
   Eigen::Isometry3d T_base_lidar;
   ParticleFilterConfig config;
   detail::RoomIndex rooms;
+  detail::PathEvidence evidence;
   std::mt19937_64 rng;
   std::vector<Particle> particles;
   std::optional<Eigen::Isometry3d> last_odom;
@@ -46,20 +52,10 @@ struct ParticleFilter::Impl {
   double anneal = 1.0;
   bool weighed_once = false;
 
-  // Does the scan fit a pose far from `mean` as well as it fits the best pose it fits? Then
-  // the filter may have chosen among look-alikes by chance: no convergence declared on it.
-  bool ambiguous(const std::vector<detail::Hypothesis>& hyps, const Eigen::Vector3d& mean) const {
-    if (hyps.empty()) return false;
-    for (const auto& h : hyps) {
-      if (h.log_likelihood < hyps[0].log_likelihood - config.ambiguity_margin) break;
-      if (std::hypot(h.x - mean.x(), h.y - mean.y()) > 1.0 || std::abs(wrapAngle(h.yaw - mean.z())) > 0.35) return true;
-    }
-    return false;
-  }
-
   // Moves the `count` lightest particles to poses around the hypotheses (round robin over the
-  // good ones), as heavy as the heaviest particle: this update's evidence then weighs them.
-  int inject(const std::vector<detail::Hypothesis>& hyps, std::size_t count) {
+  // good ones), as heavy as the heaviest particle (plus `bonus`): this update's evidence then
+  // weighs them.
+  int inject(const std::vector<detail::Hypothesis>& hyps, std::size_t count, double bonus = 0.0) {
     if (hyps.empty() || count == 0) return 0;
     std::size_t good = 0;
     while (good < hyps.size() && hyps[good].log_likelihood > hyps[0].log_likelihood - 3.0) ++good;
@@ -77,22 +73,28 @@ struct ParticleFilter::Impl {
       Particle& p = particles[order[k]];
       p.x = h.x + 0.05 * n(rng), p.y = h.y + 0.05 * n(rng), p.yaw = wrapAngle(h.yaw + 0.02 * n(rng));
       p.room = rooms.roomAt(p.x, p.y);
-      p.log_weight = max_lw;
+      p.log_weight = max_lw + bonus;
     }
     return static_cast<int>(count);
   }
 
+  std::size_t heaviest() const {
+    std::size_t i = 0;
+    for (std::size_t k = 1; k < particles.size(); ++k)
+      if (particles[k].log_weight > particles[i].log_weight) i = k;
+    return i;
+  }
+
   // AMCL-style gate: weigh after enough motion, or after enough scans standing still.
-  bool shouldWeigh() {
-    ++scans_since_weighing;
-    if (!odom_at_last_weighing || scans_since_weighing >= config.max_static_scans) return true;
+  bool shouldWeigh() const {
+    if (!odom_at_last_weighing || scans_since_weighing + 1 >= config.max_static_scans) return true;
     const Eigen::Isometry3d moved = odom_at_last_weighing->inverse() * odom;
     return moved.translation().head<2>().norm() >= config.update_min_translation_m ||
            std::abs(yawOf(moved.linear())) >= config.update_min_rotation_deg * M_PI / 180.0;
   }
 
   Impl(const bim::Storey& s, const Eigen::Isometry3d& mount, const ParticleFilterConfig& c)
-      : storey(s), T_base_lidar(mount), config(c), rooms(s, c.use_rooms, c.neighbour_rooms), rng(c.seed), anneal(c.anneal_start) {
+      : storey(s), T_base_lidar(mount), config(c), rooms(s, c.use_rooms, c.neighbour_rooms), evidence(s, c), rng(c.seed), anneal(c.anneal_start) {
     spreadOverRooms();
   }
 
@@ -241,12 +243,20 @@ std::pair<double, int> ParticleFilter::score(double x, double y, double yaw,
   return {match.log_likelihood, match.associated};
 }
 
+bool ParticleFilter::wantsObservations() const { return impl_->shouldWeigh(); }
+
+double ParticleFilter::pathScore(double x, double y, double yaw) const {
+  return impl_->evidence.logLikelihoodOf({x, y, yaw}, planar(impl_->odom));
+}
+
 UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& walls) {
   auto& m = *impl_;
   UpdateReport report;
   const std::vector<detail::Observation> observations = m.observe(walls, &report.warnings);
   report.observations = static_cast<int>(observations.size());
-  if (report.observations < m.config.min_observations || !m.shouldWeigh()) {
+  const bool weigh = m.shouldWeigh();
+  ++m.scans_since_weighing;
+  if (report.observations < m.config.min_observations || !weigh) {
     report.converged = m.T_map_odom.has_value();
     return report;  // too little to weigh by, or nothing new: predict only
   }
@@ -254,53 +264,81 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   m.odom_at_last_weighing = m.odom;
   m.scans_since_weighing = 0;
   const double z = m.baseZ();
+  const double n = static_cast<double>(m.particles.size());
   std::vector<detail::Hypothesis> hyps;
   if (m.config.use_hypotheses) {
     hyps = detail::poseHypotheses(observations, z, m.rooms, m.config, static_cast<std::size_t>(m.config.max_hypotheses));
     report.hypotheses = static_cast<int>(hyps.size());
-    const double n = static_cast<double>(m.particles.size());
-    if (!m.weighed_once)
-      report.injected = m.inject(hyps, static_cast<std::size_t>(m.config.initial_hypothesis_fraction * n));
+    if (!m.weighed_once) report.injected = m.inject(hyps, static_cast<std::size_t>(m.config.initial_hypothesis_fraction * n));
     if (report.injected > 0) m.agreeing_updates = 0;
   }
-  double best_lw = -1e300;
+
+  // Weigh (paper, "Update"): each particle's observations against its room's walls.
   ParticleFilterConfig annealed = m.config;
   annealed.sigma_azimuth_deg *= m.anneal, annealed.sigma_elevation_deg *= m.anneal, annealed.sigma_d_m *= m.anneal;
+  const bool annealing = m.anneal > 1.0;
   m.anneal = std::max(1.0, m.anneal * m.config.anneal_rate);
   double best_raw = -1e300;  // the best fit of any particle, at the final (unannealed) sigmas
-  for (std::size_t i = 0; i < m.particles.size(); ++i) {
-    auto& p = m.particles[i];
+  for (auto& p : m.particles) {
     const auto match = detail::matchObservations(p, z, observations, m.rooms, annealed);
-    if (m.anneal <= 1.0) best_raw = std::max(best_raw, match.log_likelihood);
+    if (!annealing) best_raw = std::max(best_raw, match.log_likelihood);
     p.log_weight += m.config.likelihood_power * match.log_likelihood;
-    if (p.log_weight > best_lw) best_lw = p.log_weight, m.best = i, report.associated = match.associated;
   }
   // Sensor resetting: the particles explain the scan clearly worse than the plan can.
-  if (m.weighed_once && !hyps.empty() && m.anneal <= 1.0 && hyps[0].log_likelihood > best_raw + m.config.injection_margin) {
-    report.injected = m.inject(hyps, static_cast<std::size_t>(m.config.injection_fraction * double(m.particles.size())));
+  // After convergence the filter tracks (paper: the S-Graph takes over): no more jumps.
+  const bool tracking = m.T_map_odom.has_value();
+  if (m.weighed_once && !tracking && !hyps.empty() && !annealing &&
+      hyps[0].log_likelihood > best_raw + m.config.injection_margin) {
+    report.injected = m.inject(hyps, static_cast<std::size_t>(m.config.injection_fraction * n));
     m.agreeing_updates = 0;
   }
   m.weighed_once = true;
+
+  // The path's evidence: this scan joins the window, the scan's best poses and the filter's
+  // best particle become candidates.
+  const detail::Pose2 odom = planar(m.odom);
+  m.evidence.addScan(odom, z, observations);
+  for (std::size_t k = 0; k < hyps.size() && static_cast<int>(k) < m.config.evidence_proposals; ++k)
+    m.evidence.propose({hyps[k].x, hyps[k].y, hyps[k].yaw}, odom);
+  const Particle& heaviest = m.particles[m.heaviest()];
+  m.evidence.propose({heaviest.x, heaviest.y, heaviest.yaw}, odom);
+  const detail::PathVerdict path = m.evidence.verdict(odom);
+  report.path_margin = path.margin;
+  report.path_candidates = path.candidates;
+  const bool decisive = path.has_best && path.margin >= m.config.evidence_margin;
+  const double yaw_tol = m.config.converged_yaw_deg * M_PI / 180.0;
   std::vector<double> w = m.normalisedWeights();
+  Eigen::Vector3d mean = m.mean(w);
+  if (decisive && !annealing && !tracking && !near(mean, path.best, m.config.converged_position_m, yaw_tol)) {
+    // The path fits another place decisively better than where the particles are: a share of
+    // them goes there, heavier than any (their evidence is the whole window, not one scan).
+    detail::Hypothesis h;
+    h.x = path.best.x(), h.y = path.best.y(), h.yaw = path.best.z();
+    report.injected += m.inject({h}, static_cast<std::size_t>(m.config.evidence_injection_fraction * n),
+                                m.config.likelihood_power * m.config.evidence_margin);
+    m.agreeing_updates = 0;
+    w = m.normalisedWeights();
+    mean = m.mean(w);
+  }
+  m.best = m.heaviest();
   double sum2 = 0;
   for (double v : w) sum2 += v * v;
   report.ess = 1.0 / sum2;
 
   // Convergence (paper, "Initial Transformation Estimation"): the best particle close to the
-  // weighted mean, for several updates in a row.
-  const Eigen::Vector3d mean = m.mean(w);
+  // weighted mean, for several updates in a row; and (beyond the paper) the path decisively
+  // better explained there than anywhere else.
   const Particle& best = m.particles[m.best];
+  report.associated = detail::matchObservations(best, z, observations, m.rooms, m.config).associated;
   double var_xy = 0, var_yaw = 0;
   for (std::size_t i = 0; i < w.size(); ++i) {
     const auto& p = m.particles[i];
     var_xy += w[i] * ((p.x - mean.x()) * (p.x - mean.x()) + (p.y - mean.y()) * (p.y - mean.y()));
     var_yaw += w[i] * wrapAngle(p.yaw - mean.z()) * wrapAngle(p.yaw - mean.z());
   }
-  const double yaw_tol = m.config.converged_yaw_deg * M_PI / 180.0;
-  const bool agrees = std::hypot(best.x - mean.x(), best.y - mean.y()) < m.config.converged_position_m &&
-                      std::abs(wrapAngle(best.yaw - mean.z())) < yaw_tol &&
-                      std::sqrt(var_xy) < m.config.converged_position_m && std::sqrt(var_yaw) < yaw_tol &&
-                      !m.ambiguous(hyps, mean);
+  const bool clustered = near({best.x, best.y, best.yaw}, mean, m.config.converged_position_m, yaw_tol) &&
+                         std::sqrt(var_xy) < m.config.converged_position_m && std::sqrt(var_yaw) < yaw_tol;
+  const bool agrees = clustered && (tracking || (decisive && near(mean, path.best, m.config.converged_position_m, yaw_tol)));
   m.agreeing_updates = agrees ? m.agreeing_updates + 1 : 0;
   if (m.agreeing_updates >= m.config.converged_updates) {
     // Paper Eq.: map <- odom = best particle (+) inverse of the odometry pose. After that it
@@ -312,12 +350,13 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   }
   report.converged = m.T_map_odom.has_value();
 
-  if (report.ess < m.config.resample_ess_fraction * static_cast<double>(m.particles.size())) {
+  if (report.ess < m.config.resample_ess_fraction * n) {
     m.resample(w);
     report.resampled = true;
   } else {
     // Keep the weights bounded: only their differences matter.
-    for (auto& p : m.particles) p.log_weight -= best_lw;
+    const double top = m.particles[m.best].log_weight;
+    for (auto& p : m.particles) p.log_weight -= top;
   }
   return report;
 }

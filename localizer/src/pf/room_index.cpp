@@ -3,10 +3,9 @@
 #include <bimloc/bim/geometry2d.hpp>
 
 #include <cmath>
+#include <utility>
 
 namespace bimloc::pf::detail {
-
-double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
 Landmark makeLandmark(const Eigen::Vector3d& normal, double d) {
   Landmark l;
@@ -74,6 +73,17 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
 }
 
 int RoomIndex::roomAt(double x, double y) const {
+  if (const int r = containing(x, y); r >= 0) return r;
+  // A doorway belongs to no room's footprint: the robot crossing it is walking from one room
+  // into the next, and either room's walls are what it sees. Walls are at most 0.6 m thick.
+  constexpr double kDoorwayM = 0.3;
+  for (const double s : {0.5 * kDoorwayM, kDoorwayM})
+    for (const auto& [dx, dy] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}})
+      if (const int r = containing(x + s * dx, y + s * dy); r >= 0) return r;
+  return -1;
+}
+
+int RoomIndex::containing(double x, double y) const {
   const int ix = static_cast<int>(std::floor((x - origin_.x()) / cell_m_));
   const int iy = static_cast<int>(std::floor((y - origin_.y()) / cell_m_));
   if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_) return -1;

@@ -6,6 +6,7 @@
 #include <bimloc/bim/building.hpp>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <vector>
 
 namespace bimloc::pf::detail {
@@ -25,7 +26,9 @@ class RoomIndex {
   // the lidar sees into them, and those planes are evidence too, not clutter.
   RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours = true, double cell_m = 0.5);
 
-  int roomAt(double x, double y) const;  // -1 outside every room
+  // The room whose footprint holds (x, y); in a doorway (inside a wall's thickness, in no
+  // footprint) the room within doorway_m of it; -1 outside every room.
+  int roomAt(double x, double y) const;
   const std::vector<Landmark>& landmarks(int room) const { return landmarks_[static_cast<std::size_t>(room)]; }
   std::size_t roomCount() const { return rooms_.size(); }
   const bim::Room& room(int index) const { return *rooms_[static_cast<std::size_t>(index)]; }
@@ -37,9 +40,15 @@ class RoomIndex {
   double cell_m_ = 0.5;
   int nx_ = 0, ny_ = 0;
   std::vector<std::vector<int>> cells_;  // candidate rooms per cell
+  int containing(double x, double y) const;
 };
 
 Landmark makeLandmark(const Eigen::Vector3d& normal, double d);
-double wrapAngle(double a);
+// Into [-pi, pi]. The filter's inner loops call it for every particle, observation and
+// landmark: a branch instead of atan2(sin, cos).
+inline double wrapAngle(double a) {
+  if (a >= -M_PI && a <= M_PI) return a;
+  return std::remainder(a, 2.0 * M_PI);
+}
 
 }  // namespace bimloc::pf::detail

@@ -53,9 +53,18 @@ struct ParticleFilterConfig {
   double injection_fraction = 0.1;
   double injection_margin = 2.0;
   int max_hypotheses = 1000;
-  // No convergence while the scan fits a pose more than 1 m or 20 deg from the estimate within
-  // this log-likelihood of the best fit: look-alike rooms are told apart by evidence, not luck.
-  double ambiguity_margin = 2.0;
+  // Path evidence (beyond the paper): no convergence until the recent path fits the estimate
+  // better than any other place of the storey by evidence_margin (log-likelihood, summed over
+  // the window's scans), and when it fits another place that much better, particles go there.
+  // A single scan cannot tell look-alike rooms apart; the path through the building can.
+  double evidence_margin = 10.0;
+  double evidence_window_m = 15.0;      // path length the window covers: odometry drifts with it
+  int evidence_max_scans = 120;
+  double evidence_spacing_m = 0.3;      // a scan joins the window after this much motion ...
+  double evidence_spacing_deg = 15.0;   // ... or this much turning
+  int evidence_max_candidates = 200;    // candidate transforms map <- odom, scored on the window
+  int evidence_proposals = 16;          // of each scan's pose hypotheses, the best become candidates
+  double evidence_injection_fraction = 0.3;
   // Resampling and its guards.
   double resample_ess_fraction = 0.5;  // low-variance resampling when ESS < fraction * N
   double roughening_xy_m = 0.02;       // jitter after resampling, against depletion
@@ -84,6 +93,8 @@ struct UpdateReport {
   int hypotheses = 0;        // poses computed from the scan
   int injected = 0;          // particles moved to them
   bool converged = false;    // this update declared convergence (or it held before)
+  double path_margin = 0;    // how much better the path fits the best place than any other
+  int path_candidates = 0;
   std::vector<std::string> warnings;
 };
 
@@ -97,6 +108,10 @@ class ParticleFilter {
 
   // Prediction from the odometry pose (odom -> base_link) at time t (paper Eq. of u_R).
   void predict(const Eigen::Isometry3d& T_odom_base);
+  // Whether the next update weighs the particles (the robot moved enough since the last
+  // weighing, or stood long enough): when not, the caller may skip extracting the planes and
+  // call update with none.
+  bool wantsObservations() const;
   // Update with the wall planes of one scan (sensor frame), then resample if needed.
   UpdateReport update(const std::vector<planes::ObservedPlane>& walls);
 
@@ -113,6 +128,9 @@ class ParticleFilter {
   // Diagnostics and tests: the (untempered, unannealed) log-likelihood of `walls` seen from
   // the pose (x, y, yaw), and how many of them it associates.
   std::pair<double, int> score(double x, double y, double yaw, const std::vector<planes::ObservedPlane>& walls) const;
+  // Diagnostics and tests: the log-likelihood of the recent path (the path evidence's window)
+  // if the base were at (x, y, yaw) now.
+  double pathScore(double x, double y, double yaw) const;
 
  private:
   struct Impl;
