@@ -1,5 +1,6 @@
 #include "sim/base/free_space.hpp"
 
+#include "sim/base/room_lookup.hpp"
 #include "sim/world/world.hpp"
 
 #include <algorithm>
@@ -113,7 +114,7 @@ bool FreeSpace::edgeClear(int cell, int direction) {
   std::uint8_t& bits = grid_.edges[static_cast<std::size_t>(owner)];
   const int state = (bits >> shift) & 3;
   if (state != 0) return state == 1;
-  const bool clear = segmentClear(centre(cell), centre(neighbour), kMargin_m);
+  const bool clear = passable(centre(cell), centre(neighbour), kMargin_m);
   bits = static_cast<std::uint8_t>(bits | ((clear ? 1 : 2) << shift));
   return clear;
 }
@@ -166,7 +167,7 @@ std::vector<Eigen::Vector2d> FreeSpace::pullTaut(const std::vector<Eigen::Vector
   const std::size_t last = points.size() - 1;
   while (i < last) {
     std::size_t k = i + 1;
-    while (k < last && segmentClear(points[i], points[k + 1], kMargin_m)) ++k;
+    while (k < last && passable(points[i], points[k + 1], kMargin_m)) ++k;
     corners.push_back(points[k]);
     i = k;
   }
@@ -181,7 +182,7 @@ std::vector<Eigen::Vector2d> FreeSpace::straighten(std::vector<Eigen::Vector2d> 
   while (changed) {
     changed = false;
     for (std::size_t i = 1; i + 1 < c.size() && !changed; ++i) {
-      if (segmentClear(c[i - 1], c[i + 1], kMargin_m)) {
+      if (passable(c[i - 1], c[i + 1], kMargin_m)) {
         c.erase(c.begin() + static_cast<long>(i));
         changed = true;
         continue;
@@ -199,7 +200,7 @@ std::vector<Eigen::Vector2d> FreeSpace::straighten(std::vector<Eigen::Vector2d> 
         continue;
       // Half the margin: the crossing of two lines that graze the same obstacle at the full
       // margin runs a hair closer to it between the grid points they were pulled to.
-      if (!segmentClear(c[i - 1], x, kMargin_m / 2) || !segmentClear(x, c[i + 2], kMargin_m / 2)) continue;
+      if (!passable(c[i - 1], x, kMargin_m / 2) || !passable(x, c[i + 2], kMargin_m / 2)) continue;
       c[i] = x;
       c.erase(c.begin() + static_cast<long>(i) + 1);
       changed = true;
@@ -208,8 +209,33 @@ std::vector<Eigen::Vector2d> FreeSpace::straighten(std::vector<Eigen::Vector2d> 
   return c;
 }
 
+bool FreeSpace::indoors(const Eigen::Vector2d& p) const {
+  // In a room, or in a doorway: within a wall's thickness of one.
+  const bim::Storey& storey = world_.building().storeys.at(storey_);
+  if (roomAt(storey, p)) return true;
+  for (const auto& [dx, dy] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}})
+    if (roomAt(storey, p + kDoorway_m * Eigen::Vector2d(dx, dy))) return true;
+  return false;
+}
+
+bool FreeSpace::passable(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin_m) const {
+  if (indoors_only_) {
+    const int steps = static_cast<int>(std::ceil((b - a).norm() / kCell_m));
+    for (int k = 0; k <= steps; ++k)
+      if (!indoors(a + (b - a) * (steps == 0 ? 0.0 : double(k) / steps))) return false;
+  }
+  return segmentClear(a, b, margin_m);
+}
+
 std::vector<Eigen::Vector2d> FreeSpace::path(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  if (segmentClear(a, b, kMargin_m)) return {a, b};
+  // Tours stay in the building (the localizer knows rooms, not the street): out of doors only
+  // when a or b is.
+  const bool indoors_only = indoors(a) && indoors(b);
+  if (indoors_only != indoors_only_) {
+    indoors_only_ = indoors_only;
+    std::fill(grid_.edges.begin(), grid_.edges.end(), std::uint8_t{0});  // cached for the other rule
+  }
+  if (passable(a, b, kMargin_m)) return {a, b};
   if (grid_.edges.empty()) makeGrid(a, b);
   // Join a and b to the grid: the nearest grid point reached by a clear segment (with the
   // margin if possible: a start given close to a wall may not allow it).

@@ -58,6 +58,9 @@ class FreeSpace {
   Eigen::Vector2d centre(int cell) const;
   int cellNear(const Eigen::Vector2d& p) const;  // -1 outside the grid
   bool edgeClear(int cell, int direction);       // direction 0..7, E then counter-clockwise
+  bool indoors(const Eigen::Vector2d& p) const;
+  // segmentClear, and indoors all along when paths must stay in the building.
+  bool passable(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin_m) const;
   std::vector<int> aStar(int from, int to);
   std::vector<Eigen::Vector2d> pullTaut(const std::vector<Eigen::Vector2d>& points) const;
   std::vector<Eigen::Vector2d> straighten(std::vector<Eigen::Vector2d> corners) const;
@@ -67,6 +70,8 @@ class FreeSpace {
   double radius_, body_z_;
   Grid grid_;
   mutable std::size_t sweeps_ = 0;
+  bool indoors_only_ = false;
+  static constexpr double kDoorway_m = 0.35;  // a doorway is within a wall's thickness of a room
 };
 
 }  // namespace bimloc::sim

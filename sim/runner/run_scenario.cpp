@@ -77,6 +77,11 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     if (snapshot && updates == kClusteringUpdate && !filter.converged()) snapshot({"clustering", t, &filter, truth});
     if (score.add(t, filter, truth) && snapshot) snapshot({"convergence", t, &filter, truth});
   }
+  // Not converged: the last picture shows where the particles were left, and why.
+  if (snapshot && !filter.converged() && sim.turnCount() > 0) {
+    const double t_end = sim.lidar().turnPeriod_s() * (static_cast<double>(sim.turnCount()) - 0.5);
+    snapshot({"end", t_end, &filter, sim.trajectory().T_map_base(t_end)});
+  }
   score.finish(filter, r);
   r.sim_seconds = static_cast<double>(sim.turnCount()) * sim.lidar().turnPeriod_s();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -45,7 +45,7 @@ struct ScenarioResult {
 // What a snapshot needs at a moment of the run (the runner calls it at initialization, while
 // the particles cluster, and at convergence).
 struct SnapshotMoment {
-  std::string phase;  // initialization | clustering | convergence
+  std::string phase;  // initialization | clustering | convergence | end (not converged)
   double time_s = 0;
   const pf::ParticleFilter* filter = nullptr;
   Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();

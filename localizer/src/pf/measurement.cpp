@@ -18,11 +18,14 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   const double cy = std::cos(p.yaw), sy = std::sin(p.yaw);
   const double inv_az = 1.0 / (c.sigma_azimuth_deg * M_PI / 180.0), inv_el = 1.0 / (c.sigma_elevation_deg * M_PI / 180.0);
   const double inv_d = 1.0 / c.sigma_d_m;
+  const double margin_m = c.segment_margin_m;
   for (const auto& o : observations) {
     // The observed normal in the map (a plane moves with a pose: n' = R n).
     const double nx = cy * o.normal_base.x() - sy * o.normal_base.y(), ny = sy * o.normal_base.x() + cy * o.normal_base.y();
     const double azimuth = o.azimuth_base + p.yaw, elevation = o.elevation;
     const bim::WallAxis axis = std::abs(nx) >= std::abs(ny) ? bim::WallAxis::X : bim::WallAxis::Y;
+    const Eigen::Vector2d centroid(p.x + cy * o.centroid_base.x() - sy * o.centroid_base.y(),
+                                   p.y + sy * o.centroid_base.x() + cy * o.centroid_base.y());
     double best = gate;
     for (const auto& l : landmarks) {
       if (l.axis != axis) continue;  // the paper's semantic classes: x walls with x walls
@@ -33,7 +36,12 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       const double d_landmark = l.d + l.normal.x() * p.x + l.normal.y() * p.y + l.normal.z() * z_base;
       const double e_az = wrapAngle(azimuth - l.azimuth) * inv_az, e_el = (elevation - l.elevation) * inv_el;
       const double e_d = (o.d_offset - d_landmark) * inv_d;
-      best = std::min(best, e_az * e_az + e_el * e_el + e_d * e_d);
+      const double m2 = e_az * e_az + e_el * e_el + e_d * e_d;
+      if (m2 >= best) continue;
+      // The observed wall's points must lie along the face, not beside its end.
+      const double u = (centroid - l.start).dot(l.direction);
+      if (u < -margin_m || u > l.length_m + margin_m) continue;
+      best = m2;
     }
     // An observation that matches nothing is clutter (the site does not look like the plan
     // yet): it costs what a match at the gate would, so it cannot destroy a good particle.

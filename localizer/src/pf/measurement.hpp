@@ -16,6 +16,7 @@ struct Observation {
   double d_offset = 0;          // d_L - n_B · (lidar position in the yaw-free base frame)
   double azimuth_base = 0;      // atan2 of normal_base: a particle's yaw just adds to it
   double elevation = 0;         // asin(n_z): the same for every particle
+  Eigen::Vector2d centroid_base = Eigen::Vector2d::Zero();  // of its points, x y in the yaw-free base frame
 };
 
 struct MatchResult {

@@ -230,6 +230,8 @@ std::vector<detail::Observation> ParticleFilter::Impl::observe(const std::vector
     o.d_offset = w.d - o.normal_base.dot(t_bl);
     o.azimuth_base = std::atan2(o.normal_base.y(), o.normal_base.x());
     o.elevation = std::asin(std::clamp(o.normal_base.z(), -1.0, 1.0));
+    const Eigen::Vector3d centroid = R_bl * w.centroid + t_bl;
+    o.centroid_base = centroid.allFinite() ? centroid.head<2>() : Eigen::Vector2d(-o.d_offset * o.normal_base.head<2>());
     observations.push_back(o);
   }
   return observations;
@@ -276,6 +278,7 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   // Weigh (paper, "Update"): each particle's observations against its room's walls.
   ParticleFilterConfig annealed = m.config;
   annealed.sigma_azimuth_deg *= m.anneal, annealed.sigma_elevation_deg *= m.anneal, annealed.sigma_d_m *= m.anneal;
+  annealed.segment_margin_m *= m.anneal;
   const bool annealing = m.anneal > 1.0;
   m.anneal = std::max(1.0, m.anneal * m.config.anneal_rate);
   double best_raw = -1e300;  // the best fit of any particle, at the final (unannealed) sigmas
@@ -302,8 +305,9 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
     m.evidence.propose({hyps[k].x, hyps[k].y, hyps[k].yaw}, odom);
   const Particle& heaviest = m.particles[m.heaviest()];
   m.evidence.propose({heaviest.x, heaviest.y, heaviest.yaw}, odom);
-  const detail::PathVerdict path = m.evidence.verdict(odom);
+  detail::PathVerdict path = m.evidence.verdict(odom);
   report.path_margin = path.margin;
+  if (path.has_best) report.path_best = path.best;
   report.path_candidates = path.candidates;
   const bool decisive = path.has_best && path.margin >= m.config.evidence_margin;
   const double yaw_tol = m.config.converged_yaw_deg * M_PI / 180.0;
@@ -338,7 +342,15 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   }
   const bool clustered = near({best.x, best.y, best.yaw}, mean, m.config.converged_position_m, yaw_tol) &&
                          std::sqrt(var_xy) < m.config.converged_position_m && std::sqrt(var_yaw) < yaw_tol;
-  const bool agrees = clustered && (tracking || (decisive && near(mean, path.best, m.config.converged_position_m, yaw_tol)));
+  bool agrees = clustered && (tracking || (decisive && near(mean, path.best, m.config.converged_position_m, yaw_tol)));
+  if (agrees && !tracking) {
+    // About to count towards convergence: first make sure no look-alike is missing from the
+    // candidates, then ask again.
+    m.evidence.proposeEveryFit(observations, z, odom);
+    path = m.evidence.verdict(odom);
+    report.path_margin = path.margin, report.path_best = path.best, report.path_candidates = path.candidates;
+    agrees = path.margin >= m.config.evidence_margin && near(mean, path.best, m.config.converged_position_m, yaw_tol);
+  }
   m.agreeing_updates = agrees ? m.agreeing_updates + 1 : 0;
   if (m.agreeing_updates >= m.config.converged_updates) {
     // Paper Eq.: map <- odom = best particle (+) inverse of the odometry pose. After that it

@@ -1,5 +1,7 @@
 #include "path_evidence.hpp"
 
+#include "hypotheses.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -128,6 +130,17 @@ double PathEvidence::logLikelihoodOf(const Pose2& map_pose, const Pose2& odom) c
   double sum = 0;
   for (const auto& scan : scans_) sum += scoreOn(T_map_odom, scan);
   return sum;
+}
+
+void PathEvidence::proposeEveryFit(const std::vector<Observation>& observations, double z_base, const Pose2& odom) {
+  ParticleFilterConfig every = config_;
+  every.use_rooms = false;  // rooms_ holds every face for every room
+  const auto fits = poseHypotheses(observations, z_base, rooms_, every, std::numeric_limits<std::size_t>::max());
+  // Those that fit the scan within three clutter planes of the best fit.
+  for (const auto& h : fits) {
+    if (h.log_likelihood < fits.front().log_likelihood - 1.5 * config_.gate_mahalanobis2) break;
+    propose({h.x, h.y, h.yaw}, odom);
+  }
 }
 
 PathVerdict PathEvidence::verdict(const Pose2& odom) {

@@ -37,12 +37,14 @@ struct PathVerdict {
 
 class PathEvidence {
  public:
-  // The path is scored against what a pose can see: its room's faces and, through the doors,
-  // those of the rooms next to it. Strict room association would make the true pose pay for
-  // every wall it sees through a door, while a wrong pose may find those planes among its own
-  // room's faces by coincidence: over a path, that bias adds up to a wrong verdict.
+  // The path is scored against every wall face of the storey, each where it is (an observed
+  // plane matches a face only along it): the true pose sees walls of other rooms through
+  // doors and open plans, and the room graph does not say which. Room association would make
+  // it pay for each of them, while a wrong pose may find such planes among its own room's
+  // faces by coincidence: over a path, that bias adds up to a wrong verdict. The rooms still
+  // count: a path through no room's footprint (through walls, outside) scores lowest.
   PathEvidence(const bim::Storey& storey, const ParticleFilterConfig& config)
-      : rooms_(storey, config.use_rooms, /*neighbours=*/true), config_(config) {}
+      : rooms_(storey, /*use_rooms=*/false), config_(config) {}
 
   // A weighed scan at odometry pose `odom` (x, y, yaw of odom <- base): joins the window when
   // the robot moved enough since the last one that did. Returns whether it joined.
@@ -54,6 +56,10 @@ class PathEvidence {
   // near it: a candidate fitted to one scan is a little off on the others (noise, drift), and
   // comparing a fitted look-alike with an unfitted truth would favour the look-alike.
   PathVerdict verdict(const Pose2& odom);
+  // Before a verdict is trusted: every pose the scan `observations` fits, over every face of
+  // the storey, joins the candidates, so that the best's strongest rival cannot be missing
+  // (a look-alike the per-scan proposals left out would make any margin meaningless).
+  void proposeEveryFit(const std::vector<Observation>& observations, double z_base, const Pose2& odom);
   // The window's log-likelihood of the base at `map_pose` now (any pose, candidate or not).
   double logLikelihoodOf(const Pose2& map_pose, const Pose2& odom) const;
 

@@ -7,10 +7,14 @@
 
 namespace bimloc::pf::detail {
 
-Landmark makeLandmark(const Eigen::Vector3d& normal, double d) {
+Landmark makeLandmark(const bim::WallFace& face) {
   Landmark l;
-  l.normal = normal.normalized();
-  l.d = d;
+  l.normal = face.plane.n.normalized();
+  l.d = face.plane.d;
+  l.start = face.start.head<2>();
+  const Eigen::Vector2d along = face.end.head<2>() - l.start;
+  l.length_m = along.norm();
+  if (l.length_m > 1e-9) l.direction = along / l.length_m;
   l.azimuth = std::atan2(l.normal.y(), l.normal.x());
   l.elevation = std::asin(std::clamp(l.normal.z(), -1.0, 1.0));
   l.axis = std::abs(l.normal.x()) >= std::abs(l.normal.y()) ? bim::WallAxis::X : bim::WallAxis::Y;
@@ -26,7 +30,7 @@ std::vector<Landmark> facesOf(const bim::Storey& storey, const bim::Room& room) 
     const bim::Wall* wall = storey.findWall(rw.wall_id);
     if (!wall) continue;
     for (int f = 0; f < 2; ++f)
-      if (rw.face < 0 || rw.face == f) faces.push_back(makeLandmark(wall->faces[f].plane.n, wall->faces[f].plane.d));
+      if (rw.face < 0 || rw.face == f) faces.push_back(makeLandmark(wall->faces[f]));
   }
   return faces;
 }
@@ -43,7 +47,7 @@ bool shareAWall(const bim::Room& a, const bim::Room& b) {
 RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours, double cell_m) : cell_m_(cell_m) {
   std::vector<Landmark> every_face;
   for (const auto& wall : storey.walls)
-    for (const auto& face : wall.faces) every_face.push_back(makeLandmark(face.plane.n, face.plane.d));
+    for (const auto& face : wall.faces) every_face.push_back(makeLandmark(face));
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   for (const auto& room : storey.rooms) {
     rooms_.push_back(&room);

@@ -17,6 +17,11 @@ struct Landmark {
   double azimuth = 0;      // atan2(n_y, n_x)
   double elevation = 0;    // asin(n_z)
   bim::WallAxis axis = bim::WallAxis::X;
+  // The face's extent along the floor: an observed plane is this face only where its
+  // points lie along it (a coplanar wall elsewhere in the building is another landmark).
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();
+  Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  // unit, start -> end
+  double length_m = 0;
 };
 
 class RoomIndex {
@@ -43,7 +48,7 @@ class RoomIndex {
   int containing(double x, double y) const;
 };
 
-Landmark makeLandmark(const Eigen::Vector3d& normal, double d);
+Landmark makeLandmark(const bim::WallFace& face);
 // Into [-pi, pi]. The filter's inner loops call it for every particle, observation and
 // landmark: a branch instead of atan2(sin, cos).
 inline double wrapAngle(double a) {

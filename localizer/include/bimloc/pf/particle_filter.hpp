@@ -32,6 +32,9 @@ struct ParticleFilterConfig {
   double sigma_elevation_deg = 5.0;
   double sigma_d_m = 0.15;
   double gate_mahalanobis2 = 11.34;  // chi-square, 3 DoF, 99 %: beyond this, no association
+  // An observed plane matches a wall face only if the centroid of its points lies along the
+  // face, to within this (beyond the paper, which matches infinite planes).
+  double segment_margin_m = 0.5;
   // The planes of one scan, and of consecutive scans, are not independent evidence: the
   // log-likelihood is tempered by this power, and the filter weighs only after the robot
   // moved (as AMCL's update_min_d / update_min_a), or every max_static_scans scans.
@@ -93,7 +96,10 @@ struct UpdateReport {
   int hypotheses = 0;        // poses computed from the scan
   int injected = 0;          // particles moved to them
   bool converged = false;    // this update declared convergence (or it held before)
-  double path_margin = 0;    // how much better the path fits the best place than any other
+  // The path evidence: its best pose (map x, y, yaw) and how much better the recent path
+  // fits there than anywhere else (log-likelihood), of how many candidate places.
+  std::optional<Eigen::Vector3d> path_best;
+  double path_margin = 0;
   int path_candidates = 0;
   std::vector<std::string> warnings;
 };
