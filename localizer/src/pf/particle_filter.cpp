@@ -124,6 +124,7 @@ struct ParticleFilter::Impl {
   }
 
   double baseZ() const { return storey.elevation_m + odom.translation().z(); }
+  void applyMotion();
 
   std::vector<detail::Observation> observe(const std::vector<planes::ObservedPlane>& walls,
                                            std::vector<std::string>* warnings) const;
@@ -136,16 +137,17 @@ struct ParticleFilter::Impl {
   }
 
   // Low-variance resampling (Probabilistic Robotics, Table 4.4), then roughening.
-  void resample(const std::vector<double>& w) {
+  void resample(const std::vector<double>& w, std::size_t count) {
     std::vector<Particle> next;
-    next.reserve(particles.size());
-    const double n = static_cast<double>(particles.size());
+    next.reserve(count);
+    const double n = static_cast<double>(count);
     std::uniform_real_distribution<double> start(0.0, 1.0 / n);
     std::normal_distribution<double> jitter(0.0, 1.0);
     const double r = start(rng);
     double c = w[0];
-    std::size_t i = 0;
-    for (std::size_t m = 0; m < particles.size(); ++m) {
+    std::size_t i = 0, new_best = 0;
+    bool best_copied = false;
+    for (std::size_t m = 0; m < count; ++m) {
       const double u = r + static_cast<double>(m) / n;
       while (u > c && i + 1 < particles.size()) c += w[++i];
       Particle p = particles[i];
@@ -154,9 +156,11 @@ struct ParticleFilter::Impl {
       p.yaw = wrapAngle(p.yaw + config.roughening_yaw_deg * M_PI / 180.0 * jitter(rng));
       p.room = rooms.roomAt(p.x, p.y);
       p.log_weight = 0.0;
+      if (i == best && !best_copied) new_best = m, best_copied = true;
       next.push_back(p);
     }
     particles.swap(next);
+    best = new_best;  // a copy of the heaviest, or any: after resampling all weigh the same
   }
 
   // Weighted mean of the particles (circular mean for the heading).
@@ -189,28 +193,35 @@ ParticleFilter::ParticleFilter(ParticleFilter&&) noexcept = default;
 void ParticleFilter::predict(const Eigen::Isometry3d& T_odom_base) {
   auto& m = *impl_;
   if (!T_odom_base.matrix().allFinite()) return;  // a broken reading: keep the last one
+  const Eigen::Isometry3d step = m.odom.inverse() * T_odom_base;
+  const bool jump = m.last_odom && (step.translation().head<2>().norm() > kJumpM || std::abs(yawOf(step.linear())) > kJumpRad);
+  if (m.T_map_odom && jump) m.agreeing_updates = 0;
   m.odom = T_odom_base;
-  if (!m.last_odom) {
-    m.last_odom = T_odom_base;
-    return;
-  }
-  // Paper Eq. (u_R): the increment between consecutive odometry poses, in the base frame.
-  const Eigen::Isometry3d u = m.last_odom->inverse() * T_odom_base;
-  m.last_odom = T_odom_base;
+  if (!m.last_odom) m.last_odom = T_odom_base;
+  // The particles move when they are next weighed (AMCL does the same): the motion between
+  // two weighings as one increment, with its noise, instead of one per odometry reading.
+}
+
+void ParticleFilter::Impl::applyMotion() {
+  if (!last_odom) return;
+  // Paper Eq. (u_R): the increment between the odometry poses, in the base frame.
+  const Eigen::Isometry3d u = last_odom->inverse() * odom;
+  last_odom = odom;
   const double dx = u.translation().x(), dy = u.translation().y(), dyaw = yawOf(u.linear());
   const double trans = std::hypot(dx, dy);
-  const auto& c = m.config;
+  if (trans == 0.0 && dyaw == 0.0) return;
+  const auto& c = config;
   const double sigma_xy = c.motion_noise_xy_per_m * trans + 0.002;
   const double sigma_yaw = c.motion_noise_yaw_per_rad * std::abs(dyaw) + c.motion_noise_yaw_per_m_rad * trans + 0.001;
   std::normal_distribution<double> n(0.0, 1.0);
-  for (auto& p : m.particles) {
-    const double ex = dx + sigma_xy * n(m.rng), ey = dy + sigma_xy * n(m.rng);
-    p.x += std::cos(p.yaw) * ex - std::sin(p.yaw) * ey;
-    p.y += std::sin(p.yaw) * ex + std::cos(p.yaw) * ey;
-    p.yaw = wrapAngle(p.yaw + dyaw + sigma_yaw * n(m.rng));
-    p.room = m.rooms.roomAt(p.x, p.y);
+  for (auto& p : particles) {
+    const double ex = dx + sigma_xy * n(rng), ey = dy + sigma_xy * n(rng);
+    const double cy = std::cos(p.yaw), sy = std::sin(p.yaw);
+    p.x += cy * ex - sy * ey;
+    p.y += sy * ex + cy * ey;
+    p.yaw = wrapAngle(p.yaw + dyaw + sigma_yaw * n(rng));
+    p.room = rooms.roomAt(p.x, p.y);
   }
-  if (m.T_map_odom && (trans > kJumpM || std::abs(dyaw) > kJumpRad)) m.agreeing_updates = 0;
 }
 
 std::vector<detail::Observation> ParticleFilter::Impl::observe(const std::vector<planes::ObservedPlane>& walls,
@@ -263,6 +274,7 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
     return report;  // too little to weigh by, or nothing new: predict only
   }
   report.weighed = true;
+  m.applyMotion();
   m.odom_at_last_weighing = m.odom;
   m.scans_since_weighing = 0;
   const double z = m.baseZ();
@@ -362,8 +374,12 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   }
   report.converged = m.T_map_odom.has_value();
 
-  if (report.ess < m.config.resample_ess_fraction * n) {
-    m.resample(w);
+  const auto tracking_count = static_cast<std::size_t>(std::max(1, m.config.tracking_particles));
+  if (m.T_map_odom && m.particles.size() > tracking_count) {
+    m.resample(w, tracking_count);
+    report.resampled = true;
+  } else if (report.ess < m.config.resample_ess_fraction * n) {
+    m.resample(w, m.particles.size());
     report.resampled = true;
   } else {
     // Keep the weights bounded: only their differences matter.
@@ -379,13 +395,15 @@ std::optional<Eigen::Isometry3d> ParticleFilter::T_map_odom() const { return imp
 Eigen::Isometry3d ParticleFilter::T_map_base() const {
   const auto& m = *impl_;
   if (m.T_map_odom) return *m.T_map_odom * m.odom;
-  const Eigen::Vector3d mean = m.mean(m.normalisedWeights());
+  // The particles' mean, moved on by the odometry since they were last weighed.
+  const detail::Pose2 pending = m.last_odom ? planar(m.last_odom->inverse() * m.odom) : detail::Pose2::Zero();
+  const detail::Pose2 now = detail::compose(m.mean(m.normalisedWeights()), pending);
   Particle p;
-  p.x = mean.x(), p.y = mean.y(), p.yaw = mean.z();
+  p.x = now.x(), p.y = now.y(), p.yaw = now.z();
   return m.poseOf(p);
 }
 
-const std::vector<Particle>& ParticleFilter::particles() const { return impl_->particles; }
+const std::vector<Particle>& ParticleFilter::particles() const { return impl_->particles; }  // as last weighed
 const Particle& ParticleFilter::best() const { return impl_->particles[impl_->best]; }
 
 int ParticleFilter::estimateRoom() const {

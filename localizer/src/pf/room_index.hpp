@@ -52,8 +52,14 @@ Landmark makeLandmark(const bim::WallFace& face);
 // Into [-pi, pi]. The filter's inner loops call it for every particle, observation and
 // landmark: a branch instead of atan2(sin, cos).
 inline double wrapAngle(double a) {
-  if (a >= -M_PI && a <= M_PI) return a;
-  return std::remainder(a, 2.0 * M_PI);
+  if (a > M_PI) {
+    a -= 2.0 * M_PI;
+    if (a > M_PI) a = std::remainder(a, 2.0 * M_PI);
+  } else if (a < -M_PI) {
+    a += 2.0 * M_PI;
+    if (a < -M_PI) a = std::remainder(a, 2.0 * M_PI);
+  }
+  return a;
 }
 
 }  // namespace bimloc::pf::detail

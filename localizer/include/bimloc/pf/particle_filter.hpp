@@ -18,6 +18,7 @@ namespace bimloc::pf {
 
 struct ParticleFilterConfig {
   int particles = 6000;
+  int tracking_particles = 1000;  // after convergence the filter tracks one pose: fewer do
   bool use_rooms = true;  // the topological factor; false: match against every wall of the storey (ablation)
   // With the room factor: also match the faces of the rooms that share a wall with the
   // particle's room (seen through doors). False: the paper's strict room association.
@@ -39,14 +40,14 @@ struct ParticleFilterConfig {
   // log-likelihood is tempered by this power, and the filter weighs only after the robot
   // moved (as AMCL's update_min_d / update_min_a), or every max_static_scans scans.
   double likelihood_power = 0.3;
-  double update_min_translation_m = 0.15;
-  double update_min_rotation_deg = 10.0;
+  double update_min_translation_m = 0.2;
+  double update_min_rotation_deg = 20.0;
   int max_static_scans = 10;
   // Annealing: the sigmas start this many times wider and shrink by anneal_rate per weighing.
   // A uniform spread has almost no particle near the true pose; wide sigmas first let every
   // room's look-alike pose gather particles, instead of the room that was luckiest at the start.
   double anneal_start = 6.0;
-  double anneal_rate = 0.85;
+  double anneal_rate = 0.75;
   // Sensor resetting: poses computed from pairs of observed planes matched to pairs of room
   // faces. At the first weighing this share of the particles is drawn around them; later,
   // when they explain the scan better than the best particle by `injection_margin` (log-
@@ -76,7 +77,7 @@ struct ParticleFilterConfig {
   // spread (weighted standard deviation) within them too, for this many updates.
   double converged_position_m = 0.3;
   double converged_yaw_deg = 5.0;
-  int converged_updates = 8;
+  int converged_updates = 4;
   int min_observations = 2;  // fewer wall planes than this in a scan: predict only
   std::uint64_t seed = 0;
 };
@@ -127,6 +128,7 @@ class ParticleFilter {
   // The current estimate of map <- base: map <- odom composed with the odometry after
   // convergence, the weighted mean of the particles before.
   Eigen::Isometry3d T_map_base() const;
+  // As last weighed: predict() moves them at the next weighing, as one increment.
   const std::vector<Particle>& particles() const;
   const Particle& best() const;
   // Index of the room of the estimate, -1 when outside every room.
