@@ -44,6 +44,7 @@ bench: build
 	$(BIMLOC) bench lidar --plan worlds/$(DEFAULT_WORLD).ifc
 	$(BIMLOC) bench simulate scenarios/site_office_R101.yaml
 	$(BIMLOC) bench odometry
+	$(BIMLOC) bench loop
 
 # Regenerate the committed plans and meshes (tests check that they are up to date).
 worlds: build

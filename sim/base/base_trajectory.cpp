@@ -178,11 +178,20 @@ BaseTrajectory BaseTrajectory::plan(const World& world, std::size_t storey, cons
       for (const auto& w : motion.waypoints) script.addLeg({w.xy}, w.yaw_rad);
       break;
     case MotionConfig::Kind::Tour:
+    {
+      bool moved = false;
       for (const auto& name : motion.rooms) {
         const bim::Room& room = roomOrThrow(st, name);
-        script.addLeg(legTo(space, script.timeline.position(), roomGoal(space, room), "room " + room.name));
+        try {
+          script.addLeg(legTo(space, script.timeline.position(), roomGoal(space, room), "room " + room.name));
+          moved = true;
+        } catch (const MotionError&) {
+          if (!motion.skip_unreachable_rooms) throw;
+        }
       }
+      if (!moved && motion.skip_unreachable_rooms) randomWalk(script, st, motion, start, duration_s, seed);
       break;
+    }
     case MotionConfig::Kind::RandomWalk:
       randomWalk(script, st, motion, start, duration_s, seed);
       break;

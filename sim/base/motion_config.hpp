@@ -27,6 +27,9 @@ struct MotionConfig {
   std::vector<Waypoint> waypoints;  // Kind::Waypoints
   std::vector<std::string> rooms;   // Kind::Tour: room names or ids, visited in order through the doors
   std::string walk_room;            // Kind::RandomWalk: the room to wander in (default: the start room)
+  // Kind::Tour: rooms out of reach (another flat, closed doors) are left out instead of an
+  // error; reaching none, the base wanders in its start room. Generated tours set it.
+  bool skip_unreachable_rooms = false;
   double max_speed_mps = 0.8;
   double max_turn_rate_dps = 60.0;
   double max_accel_mps2 = 0.5;

@@ -9,4 +9,5 @@ void addBenchCommand(CLI::App& app) {
   addBenchLidarCommand(*bench);
   addBenchSimulateCommand(*bench);
   addBenchOdometryCommand(*bench);
+  addBenchLoopCommand(*bench);
 }

@@ -14,11 +14,12 @@ struct ExitCode {
 }  // namespace bimloc::cli
 
 void addExtractCommand(CLI::App& app);
-void addBenchCommand(CLI::App& app);  // bench extract | lidar | simulate
+void addBenchCommand(CLI::App& app);  // bench extract | lidar | simulate | odometry | loop
 void addBenchExtractCommand(CLI::App& bench);
 void addBenchLidarCommand(CLI::App& bench);
 void addBenchSimulateCommand(CLI::App& bench);
 void addBenchOdometryCommand(CLI::App& bench);
+void addBenchLoopCommand(CLI::App& bench);
 void addWorldgenCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);

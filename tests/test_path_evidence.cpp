@@ -1,0 +1,149 @@
+// The path evidence that guards convergence, and the measurement it sums: invariance to where
+// the plan is, look-alike rooms left undecided, a point-symmetric building never "localized".
+#include "sim_fixtures.hpp"
+#include "test_support.hpp"
+
+#include "sim/lidar/vlp16.hpp"
+#include "sim/runner/room_scenarios.hpp"
+#include "sim/runner/run_scenario.hpp"
+#include "sim/world/world.hpp"
+
+#include <bimloc/pf/particle_filter.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace bimloc;
+
+namespace {
+
+const sim::World& officeWorld() {
+  static const sim::World world = sim::World::fromPlan(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc");
+  return world;
+}
+
+Eigen::Isometry3d pose(double x, double y, double yaw, double z = 0.5) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(x, y, z);
+  return T;
+}
+
+std::vector<planes::ObservedPlane> wallsSeenFrom(const Eigen::Isometry3d& T_map_base, const Eigen::Isometry3d& T_base_lidar) {
+  sim::Vlp16Config c;
+  c.T_base_lidar = T_base_lidar;
+  const auto scan = sim::Vlp16(c).scan(officeWorld(), 0, [&](double) { return T_map_base; }, 0.0, 1, 0);
+  std::vector<Eigen::Vector3f> points;
+  for (const auto& p : scan.points) points.emplace_back(p.x, p.y, p.z);
+  return planes::extractPlanes(points).walls;
+}
+
+// The storey moved by t: planes n·p + d = 0 become n·p + (d - n·t) = 0.
+bim::Storey shifted(bim::Storey s, const Eigen::Vector3d& t) {
+  for (auto& wall : s.walls)
+    for (auto& face : wall.faces) {
+      face.plane.d -= face.plane.n.dot(t);
+      face.start += t, face.end += t;
+    }
+  for (auto& room : s.rooms) {
+    for (auto& q : room.footprint) q += t.head<2>();
+    room.centre += t.head<2>();
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST(Measurement, TheSameViewScoresTheSameWhereverThePlanIs) {
+  // Plane errors are taken at the particle: the score of a view cannot depend on how far the
+  // plan's origin is, not even for a pose whose heading is a little off.
+  const auto& storey = officeWorld().building().storeys[0];
+  const Eigen::Isometry3d mount = sim::Vlp16Config{}.T_base_lidar;
+  const Eigen::Vector3d far(400.0, -250.0, 0.0);
+  const bim::Storey moved = shifted(storey, far);
+  pf::ParticleFilter here(storey, mount, {}), there(moved, mount, {});
+  for (const char* name : {"R101", "R106", "C100", "S100"}) {
+    const bim::Room* room = storey.findRoom(name);
+    ASSERT_NE(room, nullptr);
+    const auto walls = wallsSeenFrom(pose(room->centre.x(), room->centre.y(), 0.4), mount);
+    for (const double heading_error_deg : {0.0, 2.0, -3.0}) {
+      const double yaw = 0.4 + heading_error_deg * M_PI / 180.0;
+      const auto a = here.score(room->centre.x(), room->centre.y(), yaw, walls);
+      const auto b = there.score(room->centre.x() + far.x(), room->centre.y() + far.y(), yaw, walls);
+      EXPECT_NEAR(a.first, b.first, 1e-6) << name << " heading error " << heading_error_deg;
+      EXPECT_EQ(a.second, b.second) << name;
+    }
+  }
+}
+
+TEST(PathEvidence, LookAlikeOfficesStayUndecidedWhileTheRobotTurnsInOne) {
+  // R104 and R103 are identical offices side by side: turning on the spot in one, the robot
+  // sees nothing that tells them apart, and the filter must not pick one.
+  const auto& storey = officeWorld().building().storeys[0];
+  const Eigen::Isometry3d mount = sim::Vlp16Config{}.T_base_lidar;
+  const bim::Room* r104 = storey.findRoom("R104");
+  const bim::Room* r103 = storey.findRoom("R103");
+  ASSERT_TRUE(r104 && r103);
+  pf::ParticleFilterConfig config;
+  config.seed = 5;
+  pf::ParticleFilter filter(storey, mount, config);
+  const double x = r104->centre.x() - 0.6, y = r104->centre.y() - 0.9;
+  pf::UpdateReport report;
+  int weighed = 0;
+  for (double t = 0; t < 12.0; t += 0.1) {
+    const double yaw = 0.6 * t;  // two turns
+    filter.predict(pose(0, 0, yaw, 0.5));
+    report = filter.update(wallsSeenFrom(pose(x, y, yaw), mount));
+    weighed += report.weighed;
+    EXPECT_FALSE(filter.converged()) << "t = " << t;
+  }
+  EXPECT_GT(weighed, 10);
+  EXPECT_LT(report.path_margin, config.evidence_margin);
+  // The same path one office to the west explains the scans as well as the truth does.
+  const double yaw = 0.6 * 11.9;
+  const double truth = filter.pathScore(x, y, yaw);
+  const double twin = filter.pathScore(x - (r104->centre.x() - r103->centre.x()), y, yaw);
+  EXPECT_NEAR(twin, truth, 1.0);
+  // ... and a pose half a metre off does not.
+  EXPECT_LT(filter.pathScore(x + 0.5, y, yaw), truth - config.evidence_margin);
+}
+
+TEST(SharedPlans, DuplexIsPointSymmetricSoNoStartRoomConverges) {
+  // The Duplex's two apartments are one turned by 180 degrees: every wall face of Level 1 has
+  // a twin under that turn, so walls alone cannot tell a pose from its twin. The localizer must
+  // say so by never converging, rather than pick one.
+  BIMLOC_REQUIRE_SHARED(plan, "Duplex_A_20110907.ifc");
+  const sim::World world = sim::World::fromPlan(plan);
+  const bim::Storey* level1 = world.building().findStorey("Level 1");
+  ASSERT_NE(level1, nullptr);
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const auto& room : level1->rooms) centre += room.centre;
+  centre /= static_cast<double>(level1->rooms.size());
+  for (const auto& wall : level1->walls)
+    for (const auto& face : wall.faces) {
+      // The face turned about the centre: n' = -n, through the turned closest point.
+      const Eigen::Vector2d n = face.plane.n.head<2>(), p = -face.plane.d * n;
+      const Eigen::Vector2d q = 2.0 * centre - p;
+      const double d_turned = n.dot(q);  // n'·q + d' = 0 with n' = -n
+      bool twin = false;
+      for (const auto& other : level1->walls)
+        for (const auto& f : other.faces)
+          twin |= (f.plane.n.head<2>() + n).norm() < 0.02 && std::abs(f.plane.d - d_turned) < 0.05;
+      EXPECT_TRUE(twin) << wall.name;
+    }
+
+  sim::RoomScenarioOptions options;
+  options.plan = plan;
+  options.storey = "Level 1";
+  options.duration_s = 25.0;
+  int runs = 0;
+  for (const auto& scenario : sim::roomScenarios(world, options)) {
+    if (scenario.start.room != "A102" && scenario.start.room != "B103") continue;
+    const sim::ScenarioResult r = sim::runScenario(scenario, world);
+    EXPECT_FALSE(r.converged) << scenario.name;
+    EXPECT_FALSE(r.false_convergence) << scenario.name;
+    ++runs;
+  }
+  EXPECT_EQ(runs, 2);
+}
