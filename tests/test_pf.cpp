@@ -124,6 +124,9 @@ TEST(ParticleFilter, BadInputWarnsAndGoesOn) {
   broken.translation().x() = std::numeric_limits<double>::infinity();
   filter.predict(broken);                  // ignored
   filter.predict(pose(50.0, 0.0, 2.0));    // an odometry jump: particles move, nothing breaks
+  report = filter.update({});
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("odometry jumped by 50.00 m"), std::string::npos) << report.warnings[0];
   for (const auto& p : filter.particles()) EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.yaw));
   EXPECT_FALSE(filter.converged());
 }

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 namespace bimloc::pf {
@@ -51,6 +52,7 @@ struct ParticleFilter::Impl {
   int scans_since_weighing = 0;
   double anneal = 1.0;
   bool weighed_once = false;
+  std::vector<std::string> pending_warnings;  // from predict(), reported by the next update()
 
   // Moves the `count` lightest particles to poses around the hypotheses (round robin over the
   // good ones), as heavy as the heaviest particle (plus `bonus`): this update's evidence then
@@ -195,7 +197,15 @@ void ParticleFilter::predict(const Eigen::Isometry3d& T_odom_base) {
   if (!T_odom_base.matrix().allFinite()) return;  // a broken reading: keep the last one
   const Eigen::Isometry3d step = m.odom.inverse() * T_odom_base;
   const bool jump = m.last_odom && (step.translation().head<2>().norm() > kJumpM || std::abs(yawOf(step.linear())) > kJumpRad);
-  if (m.T_map_odom && jump) m.agreeing_updates = 0;
+  if (jump) {
+    // Reported with the next update; the increment's noise (proportional to it) spreads the
+    // particles, and a converged filter has to agree again before it moves map <- odom.
+    char text[160];
+    std::snprintf(text, sizeof text, "odometry jumped by %.2f m and %.1f deg between two readings", step.translation().head<2>().norm(),
+                  std::abs(yawOf(step.linear())) * 180.0 / M_PI);
+    m.pending_warnings.emplace_back(text);
+    m.agreeing_updates = 0;
+  }
   m.odom = T_odom_base;
   if (!m.last_odom) m.last_odom = T_odom_base;
   // The particles move when they are next weighed (AMCL does the same): the motion between
@@ -265,6 +275,7 @@ double ParticleFilter::pathScore(double x, double y, double yaw) const {
 UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& walls) {
   auto& m = *impl_;
   UpdateReport report;
+  report.warnings.swap(m.pending_warnings);
   const std::vector<detail::Observation> observations = m.observe(walls, &report.warnings);
   report.observations = static_cast<int>(observations.size());
   const bool weigh = m.shouldWeigh();
@@ -325,7 +336,7 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   const double yaw_tol = m.config.converged_yaw_deg * M_PI / 180.0;
   std::vector<double> w = m.normalisedWeights();
   Eigen::Vector3d mean = m.mean(w);
-  if (decisive && !annealing && !tracking && !near(mean, path.best, m.config.converged_position_m, yaw_tol)) {
+  if (decisive && !tracking && !near(mean, path.best, m.config.converged_position_m, yaw_tol)) {
     // The path fits another place decisively better than where the particles are: a share of
     // them goes there, heavier than any (their evidence is the whole window, not one scan).
     detail::Hypothesis h;
