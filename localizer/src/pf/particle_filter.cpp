@@ -4,6 +4,7 @@
 
 #include "hypotheses.hpp"
 #include "measurement.hpp"
+#include "particle_set.hpp"
 #include "path_evidence.hpp"
 #include "room_index.hpp"
 
@@ -54,39 +55,6 @@ struct ParticleFilter::Impl {
   bool weighed_once = false;
   std::vector<std::string> pending_warnings;  // from predict(), reported by the next update()
 
-  // Moves the `count` lightest particles to poses around the hypotheses (round robin over the
-  // good ones), as heavy as the heaviest particle (plus `bonus`): this update's evidence then
-  // weighs them.
-  int inject(const std::vector<detail::Hypothesis>& hyps, std::size_t count, double bonus = 0.0) {
-    if (hyps.empty() || count == 0) return 0;
-    std::size_t good = 0;
-    while (good < hyps.size() && hyps[good].log_likelihood > hyps[0].log_likelihood - 3.0) ++good;
-    std::vector<std::size_t> order(particles.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    count = std::min(count, particles.size());
-    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count), order.end(),
-                      [&](std::size_t a, std::size_t b) { return particles[a].log_weight < particles[b].log_weight; });
-    double max_lw = -1e300;
-    for (const auto& p : particles) max_lw = std::max(max_lw, p.log_weight);
-    std::normal_distribution<double> n(0.0, 1.0);
-    std::uniform_int_distribution<std::size_t> pick(0, good - 1);  // no favourite among equals
-    for (std::size_t k = 0; k < count; ++k) {
-      const auto& h = hyps[pick(rng)];
-      Particle& p = particles[order[k]];
-      p.x = h.x + 0.05 * n(rng), p.y = h.y + 0.05 * n(rng), p.yaw = wrapAngle(h.yaw + 0.02 * n(rng));
-      p.room = rooms.roomAt(p.x, p.y);
-      p.log_weight = max_lw + bonus;
-    }
-    return static_cast<int>(count);
-  }
-
-  std::size_t heaviest() const {
-    std::size_t i = 0;
-    for (std::size_t k = 1; k < particles.size(); ++k)
-      if (particles[k].log_weight > particles[i].log_weight) i = k;
-    return i;
-  }
-
   // AMCL-style gate: weigh after enough motion, or after enough scans standing still.
   bool shouldWeigh() const {
     if (!odom_at_last_weighing || scans_since_weighing + 1 >= config.max_static_scans) return true;
@@ -97,32 +65,17 @@ struct ParticleFilter::Impl {
 
   Impl(const bim::Storey& s, const Eigen::Isometry3d& mount, const ParticleFilterConfig& c)
       : storey(s), T_base_lidar(mount), config(c), rooms(s, c.use_rooms, c.neighbour_rooms), evidence(s, c), rng(c.seed), anneal(c.anneal_start) {
-    spreadOverRooms();
+    particles = detail::spreadOverRooms(rooms, static_cast<std::size_t>(std::max(1, c.particles)), rng);
   }
 
-  // Uniform over the free space of the storey: a room by area, a point in it, any heading.
-  void spreadOverRooms() {
-    particles.assign(static_cast<std::size_t>(std::max(1, config.particles)), Particle{});
-    std::vector<double> areas;
-    for (std::size_t r = 0; r < rooms.roomCount(); ++r) areas.push_back(std::max(1e-6, rooms.room(int(r)).area_m2));
-    if (areas.empty()) return;
-    std::discrete_distribution<int> pick(areas.begin(), areas.end());
-    std::uniform_real_distribution<double> yaw(-M_PI, M_PI), unit(0.0, 1.0);
-    for (auto& p : particles) {
-      const bim::Room& room = rooms.room(pick(rng));
-      Eigen::Vector2d lo = room.footprint.front(), hi = lo;
-      for (const auto& v : room.footprint) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-      Eigen::Vector2d xy = room.centre;
-      for (int attempt = 0; attempt < 1000; ++attempt) {
-        const Eigen::Vector2d q(lo.x() + unit(rng) * (hi.x() - lo.x()), lo.y() + unit(rng) * (hi.y() - lo.y()));
-        if (bim::pointInPolygon(room.footprint, q)) {
-          xy = q;
-          break;
-        }
-      }
-      p.x = xy.x(), p.y = xy.y(), p.yaw = yaw(rng), p.log_weight = 0.0;
-      p.room = rooms.roomAt(p.x, p.y);
-    }
+  int inject(const std::vector<detail::Hypothesis>& hyps, std::size_t count, double bonus = 0.0) {
+    return detail::inject(particles, hyps, count, bonus, rooms, rng);
+  }
+  std::size_t heaviest() const { return detail::heaviest(particles); }
+  std::vector<double> normalisedWeights() const { return detail::normalisedWeights(particles); }
+  Eigen::Vector3d mean(const std::vector<double>& w) const { return detail::weightedMean(particles, w); }
+  void resample(const std::vector<double>& w, std::size_t count) {
+    best = detail::resample(particles, w, count, best, config.roughening_xy_m, config.roughening_yaw_deg * M_PI / 180.0, rooms, rng);
   }
 
   double baseZ() const { return storey.elevation_m + odom.translation().z(); }
@@ -138,52 +91,6 @@ struct ParticleFilter::Impl {
     return T;
   }
 
-  // Low-variance resampling (Probabilistic Robotics, Table 4.4), then roughening.
-  void resample(const std::vector<double>& w, std::size_t count) {
-    std::vector<Particle> next;
-    next.reserve(count);
-    const double n = static_cast<double>(count);
-    std::uniform_real_distribution<double> start(0.0, 1.0 / n);
-    std::normal_distribution<double> jitter(0.0, 1.0);
-    const double r = start(rng);
-    double c = w[0];
-    std::size_t i = 0, new_best = 0;
-    bool best_copied = false;
-    for (std::size_t m = 0; m < count; ++m) {
-      const double u = r + static_cast<double>(m) / n;
-      while (u > c && i + 1 < particles.size()) c += w[++i];
-      Particle p = particles[i];
-      p.x += config.roughening_xy_m * jitter(rng);
-      p.y += config.roughening_xy_m * jitter(rng);
-      p.yaw = wrapAngle(p.yaw + config.roughening_yaw_deg * M_PI / 180.0 * jitter(rng));
-      p.room = rooms.roomAt(p.x, p.y);
-      p.log_weight = 0.0;
-      if (i == best && !best_copied) new_best = m, best_copied = true;
-      next.push_back(p);
-    }
-    particles.swap(next);
-    best = new_best;  // a copy of the heaviest, or any: after resampling all weigh the same
-  }
-
-  // Weighted mean of the particles (circular mean for the heading).
-  Eigen::Vector3d mean(const std::vector<double>& w) const {
-    double x = 0, y = 0, s = 0, c = 0;
-    for (std::size_t i = 0; i < particles.size(); ++i) {
-      x += w[i] * particles[i].x, y += w[i] * particles[i].y;
-      s += w[i] * std::sin(particles[i].yaw), c += w[i] * std::cos(particles[i].yaw);
-    }
-    return {x, y, std::atan2(s, c)};
-  }
-
-  std::vector<double> normalisedWeights() const {
-    double max_lw = -1e300;
-    for (const auto& p : particles) max_lw = std::max(max_lw, p.log_weight);
-    std::vector<double> w(particles.size());
-    double sum = 0;
-    for (std::size_t i = 0; i < particles.size(); ++i) sum += w[i] = std::exp(particles[i].log_weight - max_lw);
-    for (auto& v : w) v /= sum;
-    return w;
-  }
 };
 
 ParticleFilter::ParticleFilter(const bim::Storey& storey, const Eigen::Isometry3d& T_base_lidar,
