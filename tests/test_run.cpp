@@ -65,3 +65,23 @@ TEST(Run, FailingExpectationsGiveANonZeroExit) {
   EXPECT_FALSE(j["scenarios"][0]["converged"]);
   EXPECT_FALSE(j["scenarios"][0]["false_convergence"]);
 }
+
+TEST(Run, TraceWritesARowPerWeighingEndingConverged) {
+  const std::string dir = tempDir("run");
+  const auto r = runBimloc("run '" + scenario(dir, "traced", "S100", 1) + "' --json --trace '" + dir + "/trace'");
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j["scenarios"][0]["converged"]) << r.err;
+  std::ifstream csv(dir + "/trace/traced.csv");
+  ASSERT_TRUE(csv.good());
+  std::string header, line, last;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("time_s,truth_x_m,truth_y_m,truth_yaw_deg,estimate_x_m", 0), 0u) << header;
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows, last = line;
+  EXPECT_GT(rows, 10);
+  EXPECT_EQ(last.substr(last.size() - 2), ",1");  // converged by the end
+  // Nothing but the CSV: no temporary left behind.
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir + "/trace")) ++files;
+  EXPECT_EQ(files, 1u);
+}

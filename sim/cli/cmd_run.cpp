@@ -3,6 +3,7 @@
 #include "sim/cli/progress.hpp"
 #include "sim/cli/run_report.hpp"
 #include "sim/cli/snapshots.hpp"
+#include "sim/cli/trace_writer.hpp"
 #include "sim/runner/room_scenarios.hpp"
 #include "sim/runner/run_scenario.hpp"
 
@@ -27,6 +28,7 @@ struct RunArgs {
   double duration_s = 40.0;
   bool json = false;
   std::string out;
+  std::string trace;
   int jobs = 1;
 };
 
@@ -45,16 +47,23 @@ class WorldCache {
   std::map<std::string, std::unique_ptr<World>> worlds_;
 };
 
-ScenarioResult runOne(const Scenario& s, WorldCache& worlds, const std::string& out, bool room_mode) {
+ScenarioResult runOne(const Scenario& s, WorldCache& worlds, const RunArgs& args, bool room_mode) {
   const World& world = worlds.get(s.world);
-  const SnapshotHook hook = out.empty() ? SnapshotHook{} : bimloc::cli::snapshotWriter(world, s, out);
+  const SnapshotHook hook = args.out.empty() ? SnapshotHook{} : bimloc::cli::snapshotWriter(world, s, args.out);
+  std::vector<TraceRow> rows;
+  std::vector<TraceRow>* trace = args.trace.empty() ? nullptr : &rows;
+  const auto traced = [&](ScenarioResult r) {
+    if (trace) bimloc::cli::writeTrace(args.trace, s.name, rows);
+    return r;
+  };
   try {
     checkScenarioAgainstWorld(s, world);
-    return runScenario(s, world, hook);
+    return traced(runScenario(s, world, hook, trace));
   } catch (const ScenarioError& e) {
     // A plan whose doors are closed in the mesh has no path out of the room: walk in it.
     if (room_mode) {
-      ScenarioResult r = runScenario(stayInRoom(s), world, hook);
+      rows.clear();
+      ScenarioResult r = traced(runScenario(stayInRoom(s), world, hook, trace));
       r.warnings.insert(r.warnings.begin(), std::string("no path out of the room, walked inside it: ") + e.what());
       return r;
     }
@@ -85,7 +94,7 @@ void run(const RunArgs& args) {
   const auto work = [&] {
     for (std::size_t i = next++; i < scenarios.size(); i = next++) {
       try {
-        results[i] = runOne(scenarios[i], worlds, args.out, args.all_rooms && i >= args.scenarios.size());
+        results[i] = runOne(scenarios[i], worlds, args, args.all_rooms && i >= args.scenarios.size());
       } catch (const std::exception& e) {
         errors[i] = e.what();
         results[i].name = scenarios[i].name;
@@ -134,6 +143,9 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--duration", args->duration_s, "seconds per --all-rooms scenario")->check(CLI::Range(1.0, 3600.0));
   cmd->add_flag("--json", args->json, "print one JSON object instead of the table");
   cmd->add_option("--out", args->out, "folder for top-view PNG snapshots (initialization, clustering, convergence)");
+  cmd->add_option("--trace", args->trace,
+                  "folder for one CSV per scenario: a row per weighing (truth, estimate, the path evidence's best "
+                  "place and margin)");
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->callback([args] { run(*args); });
 }

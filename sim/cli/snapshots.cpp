@@ -2,24 +2,18 @@
 
 #include "sim/render/snapshot.hpp"
 
+#include <bimloc/geometry/planar_pose.hpp>
+
 #include <cmath>
 #include <filesystem>
 #include <mutex>
 
 namespace bimloc::cli {
-namespace {
-
 std::string fileSafe(const std::string& name) {
   std::string out;
   for (const char c : name) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
   return out;
 }
-
-Eigen::Vector3d planar(const Eigen::Isometry3d& T) {
-  return {T.translation().x(), T.translation().y(), std::atan2(T.linear()(1, 0), T.linear()(0, 0))};
-}
-
-}  // namespace
 
 sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& scenario, const std::string& out_dir) {
   const std::string dir = (std::filesystem::path(out_dir) / fileSafe(scenario.name)).string();
@@ -32,8 +26,8 @@ sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& s
     double max_lw = -1e300;
     for (const auto& p : m.filter->particles()) max_lw = std::max(max_lw, p.log_weight);
     for (const auto& p : m.filter->particles()) scene.particles.push_back({p.x, p.y, p.yaw, std::exp(p.log_weight - max_lw)});
-    scene.truth = planar(m.truth);
-    scene.estimate = planar(m.filter->T_map_base());
+    scene.truth = planarPose(m.truth);
+    scene.estimate = planarPose(m.filter->T_map_base());
     scene.title = name;
     scene.time_s = m.time_s;
     scene.phase = m.phase;

@@ -8,6 +8,9 @@
 
 namespace bimloc::cli {
 
+// The scenario's name as a file or folder name: letters, digits and '-', the rest '_'.
+std::string fileSafe(const std::string& name);
+
 sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& scenario, const std::string& out_dir);
 
 }  // namespace bimloc::cli

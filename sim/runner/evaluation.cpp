@@ -2,6 +2,8 @@
 
 #include "sim/base/room_lookup.hpp"
 
+#include <bimloc/geometry/planar_pose.hpp>
+
 #include <cmath>
 
 namespace bimloc::sim {
@@ -9,8 +11,6 @@ namespace {
 
 constexpr double kFalsePositionM = 0.5;  // declared converged while farther off than this ...
 constexpr double kFalseYawDeg = 10.0;    // ... or turned more than this: a false convergence
-
-double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
 
 std::string roomName(const bim::Storey& storey, int index) {
   return index < 0 ? std::string("(outside)") : storey.rooms[static_cast<std::size_t>(index)].name;
@@ -25,7 +25,7 @@ std::string trueRoom(const bim::Storey& storey, const Eigen::Isometry3d& truth) 
 }  // namespace
 
 double yawErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  const double d = yawOf(a) - yawOf(b);
+  const double d = yawOf(a.linear()) - yawOf(b.linear());
   return std::abs(std::atan2(std::sin(d), std::cos(d))) * 180.0 / M_PI;
 }
 

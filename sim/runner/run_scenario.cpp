@@ -4,6 +4,7 @@
 #include "sim/simulation/simulator.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
+#include <bimloc/geometry/planar_pose.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -38,7 +39,7 @@ void judge(const Scenario& s, ScenarioResult& r) {
 
 }  // namespace
 
-ScenarioResult runScenario(const Scenario& s, const World& world, const SnapshotHook& snapshot) {
+ScenarioResult runScenario(const Scenario& s, const World& world, const SnapshotHook& snapshot, std::vector<TraceRow>* trace) {
   const auto wall_start = std::chrono::steady_clock::now();
   ScenarioResult r;
   r.name = s.name;
@@ -74,6 +75,7 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     ++updates;
     for (const auto& w : report.warnings) r.warnings.push_back("t=" + std::to_string(t) + ": " + w);
     const Eigen::Isometry3d truth = sim.trajectory().T_map_base(t);
+    if (trace && report.weighed) trace->push_back({t, planarPose(truth), planarPose(filter.T_map_base()), report});
     if (snapshot && updates == kClusteringUpdate && !filter.converged()) snapshot({"clustering", t, &filter, truth});
     if (score.add(t, filter, truth) && snapshot) snapshot({"convergence", t, &filter, truth});
   }

@@ -52,6 +52,17 @@ struct SnapshotMoment {
 };
 using SnapshotHook = std::function<void(const SnapshotMoment&)>;
 
-ScenarioResult runScenario(const Scenario& scenario, const World& world, const SnapshotHook& snapshot = {});
+// One weighing of the filter, for `bimloc run --trace`: what the filter believed, what the
+// path evidence said, and the truth, to see why a run converged when it did, or never.
+struct TraceRow {
+  double time_s = 0;
+  Eigen::Vector3d truth = Eigen::Vector3d::Zero();     // map x, y, yaw
+  Eigen::Vector3d estimate = Eigen::Vector3d::Zero();  // the filter's map <- base
+  pf::UpdateReport report;
+};
+
+// `trace`, when given, receives a row per weighing.
+ScenarioResult runScenario(const Scenario& scenario, const World& world, const SnapshotHook& snapshot = {},
+                           std::vector<TraceRow>* trace = nullptr);
 
 }  // namespace bimloc::sim

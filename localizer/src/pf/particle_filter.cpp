@@ -9,6 +9,7 @@
 #include "room_index.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
+#include <bimloc/geometry/planar_pose.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -20,12 +21,10 @@ namespace {
 
 using detail::wrapAngle;
 
-// Yaw of a rotation about z, and the rest (roll and pitch) as the rotation without it.
-double yawOf(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
+// The rotation without its yaw: roll and pitch.
 Eigen::Matrix3d tiltOf(const Eigen::Matrix3d& R) {
   return Eigen::AngleAxisd(-yawOf(R), Eigen::Vector3d::UnitZ()).toRotationMatrix() * R;
 }
-detail::Pose2 planar(const Eigen::Isometry3d& T) { return {T.translation().x(), T.translation().y(), yawOf(T.linear())}; }
 bool near(const detail::Pose2& a, const detail::Pose2& b, double metres, double radians) {
   return std::hypot(a.x() - b.x(), a.y() - b.y()) < metres && std::abs(wrapAngle(a.z() - b.z())) < radians;
 }
@@ -176,7 +175,7 @@ std::pair<double, int> ParticleFilter::score(double x, double y, double yaw,
 bool ParticleFilter::wantsObservations() const { return impl_->shouldWeigh(); }
 
 double ParticleFilter::pathScore(double x, double y, double yaw) const {
-  return impl_->evidence.logLikelihoodOf({x, y, yaw}, planar(impl_->odom));
+  return impl_->evidence.logLikelihoodOf({x, y, yaw}, planarPose(impl_->odom));
 }
 
 UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& walls) {
@@ -229,7 +228,7 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
 
   // The path's evidence: this scan joins the window, the scan's best poses and the filter's
   // best particle become candidates.
-  const detail::Pose2 odom = planar(m.odom);
+  const detail::Pose2 odom = planarPose(m.odom);
   m.evidence.addScan(odom, z, observations);
   for (std::size_t k = 0; k < hyps.size() && static_cast<int>(k) < m.config.evidence_proposals; ++k)
     m.evidence.propose({hyps[k].x, hyps[k].y, hyps[k].yaw}, odom);
@@ -314,7 +313,7 @@ Eigen::Isometry3d ParticleFilter::T_map_base() const {
   const auto& m = *impl_;
   if (m.T_map_odom) return *m.T_map_odom * m.odom;
   // The particles' mean, moved on by the odometry since they were last weighed.
-  const detail::Pose2 pending = m.last_odom ? planar(m.last_odom->inverse() * m.odom) : detail::Pose2::Zero();
+  const detail::Pose2 pending = m.last_odom ? planarPose(m.last_odom->inverse() * m.odom) : detail::Pose2::Zero();
   const detail::Pose2 now = detail::compose(m.mean(m.normalisedWeights()), pending);
   Particle p;
   p.x = now.x(), p.y = now.y(), p.yaw = now.z();
