@@ -19,14 +19,12 @@
 namespace bimloc::pf {
 namespace {
 
+using detail::near;
 using detail::wrapAngle;
 
 // The rotation without its yaw: roll and pitch.
 Eigen::Matrix3d tiltOf(const Eigen::Matrix3d& R) {
   return Eigen::AngleAxisd(-yawOf(R), Eigen::Vector3d::UnitZ()).toRotationMatrix() * R;
-}
-bool near(const detail::Pose2& a, const detail::Pose2& b, double metres, double radians) {
-  return std::hypot(a.x() - b.x(), a.y() - b.y()) < metres && std::abs(wrapAngle(a.z() - b.z())) < radians;
 }
 
 // Odometry jumps beyond these in one step are reported, and spread the particles accordingly.

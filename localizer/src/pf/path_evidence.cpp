@@ -27,11 +27,11 @@ constexpr double kOtherPlaceRad = 10.0 * M_PI / 180.0;
 constexpr double kSamePlaceM = 0.2;
 constexpr double kSamePlaceRad = 3.0 * M_PI / 180.0;
 
-bool within(const Pose2& a, const Pose2& b, double metres, double radians) {
+}  // namespace
+
+bool near(const Pose2& a, const Pose2& b, double metres, double radians) {
   return std::hypot(a.x() - b.x(), a.y() - b.y()) < metres && std::abs(wrapAngle(a.z() - b.z())) < radians;
 }
-
-}  // namespace
 
 double PathEvidence::scoreOn(const Pose2& T_map_odom, const Scan& scan) const {
   const Pose2 pose = compose(T_map_odom, scan.odom);
@@ -53,7 +53,7 @@ bool PathEvidence::addScan(const Pose2& odom, double z_base, const std::vector<O
   scans_.push_back({odom, z_base, observations, travelled_m_});
   for (auto& c : candidates_) {
     const double s = scoreOn(c.T_map_odom, scans_.back());
-    c.per_scan.push_back(static_cast<float>(s));
+    c.per_scan.push_back(s);
     c.log_likelihood += s;
   }
   dropOldScans();
@@ -78,7 +78,7 @@ PathEvidence::Candidate PathEvidence::scored(const Pose2& T_map_odom) const {
   c.T_map_odom = T_map_odom;
   for (const auto& scan : scans_) {
     const double s = scoreOn(T_map_odom, scan);
-    c.per_scan.push_back(static_cast<float>(s));
+    c.per_scan.push_back(s);
     c.log_likelihood += s;
   }
   return c;
@@ -88,7 +88,7 @@ void PathEvidence::propose(const Pose2& map_pose, const Pose2& odom) {
   if (!map_pose.allFinite()) return;
   Candidate fresh = scored(compose(map_pose, inverse(odom)));
   for (auto& c : candidates_)
-    if (within(compose(c.T_map_odom, odom), map_pose, kSamePlaceM, kSamePlaceRad)) {
+    if (near(compose(c.T_map_odom, odom), map_pose, kSamePlaceM, kSamePlaceRad)) {
       if (fresh.log_likelihood > c.log_likelihood) c = std::move(fresh);
       return;
     }
@@ -157,7 +157,7 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
     const Pose2 here = compose(best->T_map_odom, odom);
     auto rival = candidates_.end();
     for (auto it = candidates_.begin(); it != candidates_.end(); ++it)
-      if (!within(compose(it->T_map_odom, odom), here, kOtherPlaceM, kOtherPlaceRad) &&
+      if (!near(compose(it->T_map_odom, odom), here, kOtherPlaceM, kOtherPlaceRad) &&
           (rival == candidates_.end() || it->log_likelihood > rival->log_likelihood))
         rival = it;
     if (rival == candidates_.end()) break;
@@ -170,7 +170,7 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
   v.best_log_likelihood = best->log_likelihood;
   double other = -std::numeric_limits<double>::infinity();
   for (const auto& c : candidates_)
-    if (!within(compose(c.T_map_odom, odom), v.best, kOtherPlaceM, kOtherPlaceRad)) other = std::max(other, c.log_likelihood);
+    if (!near(compose(c.T_map_odom, odom), v.best, kOtherPlaceM, kOtherPlaceRad)) other = std::max(other, c.log_likelihood);
   v.margin = best->log_likelihood - other;
   return v;
 }

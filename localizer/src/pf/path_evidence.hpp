@@ -22,6 +22,8 @@ namespace bimloc::pf::detail {
 using Pose2 = Eigen::Vector3d;
 Pose2 compose(const Pose2& a, const Pose2& b);  // a (+) b
 Pose2 inverse(const Pose2& a);
+// Within `metres` and `radians` of each other.
+bool near(const Pose2& a, const Pose2& b, double metres, double radians);
 
 struct PathVerdict {
   bool has_best = false;
@@ -73,7 +75,7 @@ class PathEvidence {
   struct Candidate {
     Pose2 T_map_odom;
     double log_likelihood = 0;
-    std::deque<float> per_scan;  // aligned with scans_
+    std::deque<double> per_scan;  // aligned with scans_
   };
   double scoreOn(const Pose2& T_map_odom, const Scan& scan) const;
   Candidate scored(const Pose2& T_map_odom) const;
