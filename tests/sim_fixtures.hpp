@@ -2,11 +2,26 @@
 #pragma once
 
 #include <bimloc/bim/building.hpp>
+#include <bimloc/planes/plane_extraction.hpp>
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <string>
+#include <vector>
+
+namespace bimloc::sim {
+class World;
+}
 
 namespace bimloc::test {
+
+// The default world, loaded once.
+const sim::World& officeWorld();
+
+// A base pose in the plane at height z.
+Eigen::Isometry3d pose(double x, double y, double yaw, double z = 0.5);
+
+// The wall planes a VLP-16 on the base at T_map_base sees in the default world.
+std::vector<planes::ObservedPlane> wallsSeenFrom(const Eigen::Isometry3d& T_map_base, const Eigen::Isometry3d& T_base_lidar);
 
 // A closed box room [0, size.x] x [0, size.y] x [0, size.z], as a triangle mesh.
 bim::TriangleMesh boxRoom(const Eigen::Vector3f& size);

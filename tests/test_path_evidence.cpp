@@ -15,29 +15,11 @@
 #include <cmath>
 
 using namespace bimloc;
+using test::officeWorld;
+using test::pose;
+using test::wallsSeenFrom;
 
 namespace {
-
-const sim::World& officeWorld() {
-  static const sim::World world = sim::World::fromPlan(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc");
-  return world;
-}
-
-Eigen::Isometry3d pose(double x, double y, double yaw, double z = 0.5) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(x, y, z);
-  return T;
-}
-
-std::vector<planes::ObservedPlane> wallsSeenFrom(const Eigen::Isometry3d& T_map_base, const Eigen::Isometry3d& T_base_lidar) {
-  sim::Vlp16Config c;
-  c.T_base_lidar = T_base_lidar;
-  const auto scan = sim::Vlp16(c).scan(officeWorld(), 0, [&](double) { return T_map_base; }, 0.0, 1, 0);
-  std::vector<Eigen::Vector3f> points;
-  for (const auto& p : scan.points) points.emplace_back(p.x, p.y, p.z);
-  return planes::extractPlanes(points).walls;
-}
 
 // The storey moved by t: planes n·p + d = 0 become n·p + (d - n·t) = 0.
 bim::Storey shifted(bim::Storey s, const Eigen::Vector3d& t) {
