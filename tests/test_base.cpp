@@ -4,6 +4,7 @@
 #include "sim/world/world.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
+#include <bimloc/geometry/planar_pose.hpp>
 
 #include <gtest/gtest.h>
 
@@ -27,7 +28,7 @@ const bim::Room& roomNamed(const std::string& name) {
   throw std::runtime_error("no room " + name);
 }
 
-double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
+double yawOf(const Eigen::Isometry3d& T) { return bimloc::yawOf(T.linear()); }
 
 // Distance from p to the triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
 double pointTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,

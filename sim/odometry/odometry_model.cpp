@@ -1,5 +1,7 @@
 #include "sim/odometry/odometry_model.hpp"
 
+#include <bimloc/geometry/planar_pose.hpp>
+
 #include <cmath>
 
 namespace bimloc::sim {
@@ -60,7 +62,7 @@ OdometrySample NoisyOdometry::step(double t_s, const Eigen::Isometry3d& T_map_ba
   // Height, roll and pitch: what the legs and the IMU measure, relative to the odom frame.
   const Eigen::Isometry3d T_odom_base_true = T_map_odom_.inverse() * T_map_base;
   const Eigen::Matrix3d R_true = T_odom_base_true.linear();
-  const double true_yaw = std::atan2(R_true(1, 0), R_true(0, 0));
+  const double true_yaw = yawOf(R_true);
   OdometrySample sample;
   sample.stamp_s = t_s;
   sample.T_odom_base = fromPlanar(estimate_, T_odom_base_true.translation().z());
