@@ -157,6 +157,7 @@ std::vector<detail::Observation> ParticleFilter::Impl::observe(const std::vector
     o.elevation = std::asin(std::clamp(o.normal_base.z(), -1.0, 1.0));
     const Eigen::Vector3d centroid = R_bl * w.centroid + t_bl;
     o.centroid_base = centroid.allFinite() ? centroid.head<2>() : Eigen::Vector2d(-o.d_offset * o.normal_base.head<2>());
+    o.range_m = centroid.allFinite() ? centroid.norm() : std::abs(o.d_offset);
     observations.push_back(o);
   }
   return observations;
@@ -236,18 +237,21 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   report.path_margin = path.margin;
   if (path.has_best) report.path_best = path.best;
   report.path_candidates = path.candidates;
-  const bool decisive = path.has_best && path.margin >= m.config.evidence_margin;
+  report.path_rivals = path.rivals;
+  const bool decisive = path.has_best && path.margin >= m.config.evidenceMargin();
   const double yaw_tol = m.config.converged_yaw_deg * M_PI / 180.0;
   std::vector<double> w = m.normalisedWeights();
   Eigen::Vector3d mean = m.mean(w);
-  if (decisive && !tracking && !near(mean, path.best, m.config.converged_position_m, yaw_tol)) {
-    // The path fits another place decisively better than where the particles are: a share of
-    // them goes there, heavier than any (their evidence is the whole window, not one scan).
+  if (decisive && !tracking) {
+    // The path fits one place decisively better than any other: a share of the particles goes
+    // to its pose, heavier than any (their evidence is the whole window, not one scan). Where
+    // the particles are elsewhere, that moves them; where they are already around it, the
+    // window's fitted pose tightens the cloud (one scan's planes alone leave it wide).
     detail::Hypothesis h;
     h.x = path.best.x(), h.y = path.best.y(), h.yaw = path.best.z();
     report.injected += m.inject({h}, static_cast<std::size_t>(m.config.evidence_injection_fraction * n),
-                                m.config.likelihood_power * m.config.evidence_margin);
-    m.agreeing_updates = 0;
+                                m.config.likelihood_power * m.config.evidenceMargin());
+    if (!near(mean, path.best, m.config.converged_position_m, yaw_tol)) m.agreeing_updates = 0;
     w = m.normalisedWeights();
     mean = m.mean(w);
   }
@@ -276,7 +280,8 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
     m.evidence.proposeEveryFit(observations, z, odom);
     path = m.evidence.verdict(odom);
     report.path_margin = path.margin, report.path_best = path.best, report.path_candidates = path.candidates;
-    agrees = path.margin >= m.config.evidence_margin && near(mean, path.best, m.config.converged_position_m, yaw_tol);
+    report.path_rivals = path.rivals;
+    agrees = path.margin >= m.config.evidenceMargin() && near(mean, path.best, m.config.converged_position_m, yaw_tol);
   }
   m.agreeing_updates = agrees ? m.agreeing_updates + 1 : 0;
   if (m.agreeing_updates >= m.config.converged_updates) {
