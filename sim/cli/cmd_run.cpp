@@ -23,6 +23,8 @@ struct RunArgs {
   std::string out;
   std::string trace;
   int jobs = 1;
+  std::vector<std::string> rooms, prior_rooms;
+  std::string prior_pose;
 };
 
 void run(const RunArgs& args) {
@@ -33,10 +35,12 @@ void run(const RunArgs& args) {
     if (args.plan.empty()) throw std::runtime_error("--all-rooms needs --plan PLAN");
     RoomScenarioOptions o;
     o.plan = args.plan, o.storey = args.storey, o.seeds = args.seeds, o.method = args.method, o.duration_s = args.duration_s;
-    const auto generated = roomScenarios(worlds.get(args.plan), o);
+    auto generated = roomScenarios(worlds.get(args.plan), o);
+    bimloc::cli::keepStartRooms(generated, args.rooms);
     scenarios.insert(scenarios.end(), generated.begin(), generated.end());
   }
   if (scenarios.empty()) throw std::runtime_error("nothing to run: give scenario files, or --plan PLAN --all-rooms");
+  bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
 
   // Scenarios in parallel, results in input order: the same output whatever --jobs.
   const auto start = std::chrono::steady_clock::now();
@@ -86,6 +90,12 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--trace", args->trace,
                   "folder for one CSV per scenario: a row per weighing (truth, estimate, the path evidence's best "
                   "place and margin)");
+  cmd->add_option("--rooms", args->rooms, "with --all-rooms: only these start rooms (comma-separated)")->delimiter(',');
+  cmd->add_option("--prior-room", args->prior_rooms,
+                  "what you know of the start: it was in one of these rooms (comma-separated); places elsewhere are not "
+                  "considered")
+      ->delimiter(',');
+  cmd->add_option("--prior-pose", args->prior_pose, "what you know of the start: x,y,yaw_deg,sigma_m (map frame)");
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->callback([args] { run(*args); });
 }

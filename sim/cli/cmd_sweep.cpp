@@ -27,6 +27,8 @@ struct SweepArgs {
   double duration_s = 40.0;
   int jobs = 1;
   bool json = false;
+  std::vector<std::string> prior_rooms;
+  std::string prior_pose;
 };
 
 double quantile(std::vector<double> v, double q) {
@@ -78,6 +80,7 @@ void run(const SweepArgs& args) {
     }
   }
   if (scenarios.empty()) throw std::runtime_error("no storey with rooms and walls in the given plans");
+  bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
   const auto start = std::chrono::steady_clock::now();
   bimloc::cli::RunPoolOptions pool;
   pool.jobs = args.jobs, pool.progress_label = "sweeping " + std::to_string(scenarios.size()) + " runs";
@@ -139,5 +142,7 @@ void addSweepCommand(CLI::App& app) {
   cmd->add_option("--duration", args->duration_s, "seconds per run")->check(CLI::Range(1.0, 3600.0))->capture_default_str();
   cmd->add_option("--jobs", args->jobs, "runs in parallel")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->add_flag("--json", args->json, "one JSON object: groups, summary, every run");
+  cmd->add_option("--prior-room", args->prior_rooms, "the start was in one of these rooms (comma-separated)")->delimiter(',');
+  cmd->add_option("--prior-pose", args->prior_pose, "the start was near x,y,yaw_deg,sigma_m (map frame)");
   cmd->callback([args] { run(*args); });
 }

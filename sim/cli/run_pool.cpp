@@ -48,6 +48,41 @@ ScenarioResult runOne(const Scenario& s, WorldCache& worlds, const RunPoolOption
 
 }  // namespace
 
+void applyPrior(std::vector<Scenario>& scenarios, const std::vector<std::string>& rooms, const std::string& pose) {
+  std::vector<double> v;
+  if (!pose.empty()) {
+    std::size_t at = 0;
+    while (at <= pose.size()) {
+      const std::size_t comma = std::min(pose.find(',', at), pose.size());
+      try {
+        std::size_t used = 0;
+        v.push_back(std::stod(pose.substr(at, comma - at), &used));
+        if (used != comma - at) throw std::invalid_argument("");
+      } catch (const std::exception&) {
+        throw std::invalid_argument("--prior-pose '" + pose + "': expected x,y,yaw_deg,sigma_m");
+      }
+      at = comma + 1;
+    }
+    if (v.size() != 4 || !(v[3] > 0)) throw std::invalid_argument("--prior-pose '" + pose + "': expected x,y,yaw_deg,sigma_m");
+  }
+  for (auto& s : scenarios) {
+    if (!rooms.empty()) s.localizer["prior_rooms"] = rooms;
+    if (!v.empty()) s.localizer["prior_pose"] = {v[0], v[1], v[2]}, s.localizer["prior_sigma_m"] = v[3];
+  }
+}
+
+void keepStartRooms(std::vector<Scenario>& scenarios, const std::vector<std::string>& rooms) {
+  if (rooms.empty()) return;
+  std::vector<Scenario> kept;
+  for (const auto& name : rooms) {
+    bool found = false;
+    for (const auto& s : scenarios)
+      if (s.start.room == name) kept.push_back(s), found = true;
+    if (!found) throw std::invalid_argument("--rooms: no start room '" + name + "' on this storey");
+  }
+  scenarios = std::move(kept);
+}
+
 std::vector<PooledRun> runPool(const std::vector<Scenario>& scenarios, const std::vector<bool>& generated, WorldCache& worlds,
                                const RunPoolOptions& options) {
   std::vector<PooledRun> runs(scenarios.size());

@@ -34,6 +34,15 @@ struct PooledRun {
   std::string error;  // the scenario could not run at all
 };
 
+// What a user knows of the start, for every scenario: --prior-room NAME[,NAME...] and
+// --prior-pose x,y,yaw_deg,sigma_m (the scenario's localizer.prior_* keys). Throws
+// std::invalid_argument for a malformed pose.
+void applyPrior(std::vector<sim::Scenario>& scenarios, const std::vector<std::string>& rooms, const std::string& pose);
+
+// Keeps the scenarios whose start room is one of `rooms` (all when empty); throws naming an
+// unknown room.
+void keepStartRooms(std::vector<sim::Scenario>& scenarios, const std::vector<std::string>& rooms);
+
 // `generated[i]`: scenario i was made from a plan (--all-rooms); when its tour finds no path
 // out of the start room (doors closed in the mesh), it walks inside the room instead.
 std::vector<PooledRun> runPool(const std::vector<sim::Scenario>& scenarios, const std::vector<bool>& generated,

@@ -122,7 +122,9 @@ PathEvidence::Candidate PathEvidence::scored(const Pose2& T_map_odom, bool detai
 
 void PathEvidence::propose(const Pose2& map_pose, const Pose2& odom) {
   if (!map_pose.allFinite()) return;
-  Candidate fresh = scored(compose(map_pose, inverse(odom)));
+  const Pose2 T_map_odom = compose(map_pose, inverse(odom));
+  if (prior_ && !prior_->admits(compose(T_map_odom, odom_start_))) return;
+  Candidate fresh = scored(T_map_odom);
   for (auto& c : candidates_)
     if (near(compose(c.T_map_odom, odom), map_pose, kSamePlaceM, kSamePlaceRad)) {
       if (fresh.log_likelihood > c.log_likelihood) c = std::move(fresh);

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "measurement.hpp"
+#include "start_prior.hpp"
 
 #include <deque>
 #include <vector>
@@ -72,6 +73,9 @@ class PathEvidence {
   // that fixes no pose (fewer than two walls at an angle) hands over to the latest one of the
   // window that does.
   void proposeEveryFit(const std::vector<Observation>& observations, double z_base, const Pose2& odom);
+  // Candidates whose start pose (at odometry pose `odom_start`) the prior rules out are not
+  // places at all: never proposed, never rivals.
+  void setPrior(const StartPrior* prior, const Pose2& odom_start) { prior_ = prior, odom_start_ = odom_start; }
   // The window's log-likelihood of the base at `map_pose` now (any pose, candidate or not).
   double logLikelihoodOf(const Pose2& map_pose, const Pose2& odom) const;
 
@@ -108,6 +112,8 @@ class PathEvidence {
   double distinctMargin(const Candidate& p, const Candidate& q) const;
 
   RoomIndex rooms_;
+  const StartPrior* prior_ = nullptr;
+  Pose2 odom_start_ = Pose2::Zero();
   ParticleFilterConfig config_;  // with the sigmas of the window's error model
   std::deque<Scan> scans_;
   std::vector<Candidate> candidates_;

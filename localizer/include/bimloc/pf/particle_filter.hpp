@@ -95,6 +95,13 @@ struct ParticleFilterConfig {
   // ruled out.
   double outside_rooms_penalty = 50.0;
   int min_observations = 2;  // fewer wall planes than this in a scan: predict only
+  // What a user knows of the start: it was in one of these rooms (names or GlobalIds), and/or
+  // within 3 sigmas of this pose (map x, y, yaw in radians). Places the start cannot have
+  // been are not considered at all: "we start in flat B" decides the point-symmetric Duplex.
+  std::vector<std::string> prior_rooms;
+  std::optional<Eigen::Vector3d> prior_pose;
+  double prior_sigma_m = 1.0;
+  double prior_sigma_yaw_deg = 180.0;  // the heading unknown unless given
   std::uint64_t seed = 0;
 };
 
