@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 namespace bimloc::pf::detail {
 namespace {
@@ -106,12 +108,29 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observati
     return a.log_likelihood != b.log_likelihood ? a.log_likelihood > b.log_likelihood
                                                 : std::tie(a.x, a.y, a.yaw) < std::tie(b.x, b.y, b.yaw);
   });
-  std::vector<Hypothesis> kept;  // best first, without near-duplicates
+  // Best first, without near-duplicates (within 0.2 m and the angle tolerance of a better
+  // one): a grid of 0.2 m cells holds the kept ones, so a look-up visits the 3 x 3 cells around.
+  std::vector<Hypothesis> kept;
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> cells;
+  const auto cellKey = [](std::int64_t ix, std::int64_t iy) { return ix * 73856093 ^ iy * 19349663; };
   for (const auto& h : all) {
+    const auto ix = static_cast<std::int64_t>(std::floor(h.x / 0.2)), iy = static_cast<std::int64_t>(std::floor(h.y / 0.2));
     bool duplicate = false;
-    for (const auto& k : kept)
-      duplicate |= std::hypot(h.x - k.x, h.y - k.y) < 0.2 && std::abs(wrapAngle(h.yaw - k.yaw)) < kAngleTolerance;
-    if (!duplicate) kept.push_back(h);
+    for (std::int64_t dx = -1; dx <= 1 && !duplicate; ++dx)
+      for (std::int64_t dy = -1; dy <= 1 && !duplicate; ++dy) {
+        const auto it = cells.find(cellKey(ix + dx, iy + dy));
+        if (it == cells.end()) continue;
+        for (const std::size_t k : it->second) {
+          const Hypothesis& o = kept[k];
+          if ((h.x - o.x) * (h.x - o.x) + (h.y - o.y) * (h.y - o.y) < 0.04 && std::abs(wrapAngle(h.yaw - o.yaw)) < kAngleTolerance) {
+            duplicate = true;
+            break;
+          }
+        }
+      }
+    if (duplicate) continue;
+    cells[cellKey(ix, iy)].push_back(kept.size());
+    kept.push_back(h);
     if (kept.size() >= max_count) break;
   }
   return kept;

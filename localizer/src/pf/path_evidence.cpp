@@ -30,7 +30,8 @@ constexpr double kSamePlaceRad = 3.0 * M_PI / 180.0;
 }  // namespace
 
 bool near(const Pose2& a, const Pose2& b, double metres, double radians) {
-  return std::hypot(a.x() - b.x(), a.y() - b.y()) < metres && std::abs(wrapAngle(a.z() - b.z())) < radians;
+  const double dx = a.x() - b.x(), dy = a.y() - b.y();
+  return dx * dx + dy * dy < metres * metres && std::abs(wrapAngle(a.z() - b.z())) < radians;
 }
 
 namespace {
