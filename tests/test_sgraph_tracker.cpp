@@ -71,7 +71,9 @@ struct Outcome {
   std::vector<sgraph::WallDeviation> deviations;
   std::vector<sgraph::NewPlane> new_planes;
   std::vector<sgraph::KeyframeInfo> history;
+  std::vector<sgraph::RoomNode> rooms;
   int max_window = 0;
+  int wanted_mismatches = 0;  // scans where wantsObservations() did not foretell a keyframe
 };
 
 double rms(const std::vector<double>& v, std::size_t from = 0) {
@@ -105,8 +107,9 @@ Outcome run(const Walk& w) {
     if (scan == w.nan_pose_at) T_odom_base.translation().x() = std::nan("");
     if (w.jump_from >= 0 && scan >= w.jump_from) T_odom_base.translation().x() += 3.0;
     std::vector<planes::ObservedPlane> walls;
+    const bool wanted = tracker.wantsObservations(T_odom_base);
     const bool blind = scan >= w.blind_from && scan < w.blind_to;
-    if (tracker.wantsObservations(T_odom_base) && !blind)
+    if (wanted && !blind)
       walls = w.lidar ? w.lidar(truth) : test::syntheticWalls(*w.truth, w.openings, truth * mount, {}, rng);
     if (w.nan_plane_from >= 0 && scan >= w.nan_plane_from && !walls.empty() && !nan_plane_done) {
       walls[0].d = std::nan("");
@@ -116,6 +119,7 @@ Outcome run(const Walk& w) {
     const sgraph::SGraphResult r = tracker.addScan(t, T_odom_base, walls);
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ++scan;
+    if (wanted != r.keyframe_added) ++out.wanted_mismatches;
     for (const auto& warning : r.warnings)  // the plan's own warnings are checked apart
       if (std::find(tracker.warnings().begin(), tracker.warnings().end(), warning) == tracker.warnings().end()) out.warnings.push_back(warning);
     out.max_window = std::max(out.max_window, r.window_keyframes);
@@ -132,6 +136,7 @@ Outcome run(const Walk& w) {
   out.deviations = tracker.wallDeviations();
   out.new_planes = tracker.newPlanes();
   out.history = tracker.keyframes();
+  out.rooms = tracker.rooms();
   return out;
 }
 
@@ -168,12 +173,24 @@ TEST(SGraphTracker, TracksAWalkThroughTheOfficeWithinCentimetresBetterThanOdomet
   EXPECT_LT(tracked, 0.5 * odometry);
   EXPECT_TRUE(o.warnings.empty()) << o.warnings.front();
   EXPECT_LE(o.max_window, w.config.window_keyframes);
+  EXPECT_EQ(o.wanted_mismatches, 0);
   // The plan is the building here: its walls stay within their tolerance, nothing new appears.
   for (const auto& d : o.deviations) {
     EXPECT_LT(std::abs(d.offset_m), 0.03) << d.wall_id;
     EXPECT_LT(std::abs(d.angle_deg), 0.5) << d.wall_id;
   }
   EXPECT_TRUE(o.new_planes.empty());
+  // Every keyframe is in the history, the last ones in the window.
+  ASSERT_EQ(o.history.size(), o.keyframes.size());
+  EXPECT_EQ(std::count_if(o.history.begin(), o.history.end(), [](const auto& k) { return k.in_window; }), w.config.window_keyframes);
+  for (std::size_t i = 0; i < o.history.size(); ++i) EXPECT_EQ(o.history[i].id, o.keyframes[i].keyframe);
+  // The topological layer: the offices, the WC and the store (the corridor with its lobby is
+  // no rectangle), their centres where their walls put them.
+  EXPECT_EQ(o.rooms.size(), 10u);
+  for (const auto& room : o.rooms) {
+    EXPECT_NE(room.name, "C100");
+    EXPECT_LT((room.centre - room.plan_centre).norm(), 0.03) << room.name;
+  }
   std::printf("office walk: %zu keyframes, RMS error %.3f m (odometry alone %.3f m), max %.3f m\n", o.keyframes.size(), tracked,
               odometry, *std::max_element(o.error_m.begin() + 2, o.error_m.end()));
 }
@@ -204,7 +221,9 @@ TEST(SGraphTracker, AWallBuiltOffItsPlanMovesItsNodeNotTheRobot) {
   EXPECT_NEAR(deviation->offset_m, 0.10, 0.03);
   EXPECT_NEAR(deviation->angle_deg, 0.0, 0.5);
   for (const auto& d : shifted.deviations)
-    if (d.wall != int(east)) EXPECT_LT(std::abs(d.offset_m), 0.04) << d.wall_id;
+    if (d.wall != int(east)) {
+      EXPECT_LT(std::abs(d.offset_m), 0.04) << d.wall_id;
+    }
   // The robot stays where it is: errors as with the wall where the plan has it.
   const double rms_shifted = rms(shifted.error_m, 2), rms_planned = rms(planned.error_m, 2);
   EXPECT_LT(rms_shifted, 0.03);
@@ -304,6 +323,22 @@ TEST(SGraphTracker, BadInputIsWarnedAboutAndTrackingGoesOn) {
   EXPECT_LE(o.max_window, 2);
   EXPECT_LT(rms(o.error_m, 2), 0.05);
   for (const auto& r : o.keyframes) EXPECT_EQ(r.state, sgraph::TrackingState::Tracking);
+}
+
+TEST(SGraphTracker, BeforeAndAtItsFirstScanTheTrackerHasItsInitialPose) {
+  const Eigen::Isometry3d T_map_odom = test::pose(3.0, 4.0, 0.5, 0.0);
+  sgraph::SGraphTracker tracker(office(), sim::Vlp16Config{}.T_base_lidar, {}, T_map_odom);
+  EXPECT_TRUE(tracker.keyframes().empty());
+  EXPECT_TRUE(tracker.wallDeviations().empty());
+  EXPECT_TRUE(tracker.newPlanes().empty());
+  EXPECT_TRUE(T_map_odom.isApprox(tracker.T_map_odom()));
+  // A first scan with no walls at all: a keyframe at the initial pose, nothing to optimize.
+  const Eigen::Isometry3d T_odom_base = test::pose(1.0, 0.0, 0.0);
+  const auto r = tracker.addScan(0.0, T_odom_base, {});
+  EXPECT_TRUE(r.keyframe_added);
+  EXPECT_TRUE(r.T_map_base.isApprox(T_map_odom * T_odom_base, 1e-9));
+  EXPECT_EQ(r.state, sgraph::TrackingState::Tracking);
+  EXPECT_EQ(tracker.keyframes().size(), 1u);
 }
 
 TEST(SGraphTracker, WithoutWallsForLongItReportsLostThenRecovers) {

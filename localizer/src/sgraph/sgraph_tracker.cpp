@@ -3,6 +3,7 @@
 #include "association.hpp"
 #include "config_check.hpp"
 #include "graph.hpp"
+#include "loss_monitor.hpp"
 #include "marginalization.hpp"
 #include "plan_layers.hpp"
 #include "room_association.hpp"
@@ -10,7 +11,6 @@
 
 #include <bimloc/geometry/planar_pose.hpp>
 
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -43,16 +43,16 @@ struct SGraphTracker::Impl {
   std::optional<Eigen::Isometry3d> last_odom;
   double last_stamp = -std::numeric_limits<double>::infinity();
   bool jump_pending = false;
-  TrackingState state = TrackingState::Tracking;
-  int bad_streak = 0, good_streak = 0;
+  std::optional<detail::LossMonitor> loss;
 
   // Steps of addScan, in the order of the paper's S-Graph stage.
   bool checkOdometry(double stamp_s, const Eigen::Isometry3d& T_odom_base, SGraphResult& r);
   Eigen::Vector3d predict(const Eigen::Vector3d& odom) const;
   bool needsKeyframe(const Eigen::Vector3d& odom) const;
   detail::Keyframe& addKeyframe(double stamp_s, const Eigen::Isometry3d& T_odom_base, const Eigen::Vector3d& predicted);
-  void checkLoss(const detail::Keyframe& kf, const std::vector<detail::ScanObservation>& observed, const detail::SolveReport& solve,
-                 SGraphResult& r);
+  std::vector<detail::ScanObservation> associate(detail::Keyframe& kf, const std::vector<planes::ObservedPlane>& walls, SGraphResult& r);
+  detail::SolveReport optimize(const detail::Keyframe& kf, SGraphResult& r);
+  void slide();
   void report(const Eigen::Vector3d& planar, const Eigen::Isometry3d& T_odom_base, SGraphResult& r) const;
 };
 
@@ -62,6 +62,7 @@ SGraphTracker::SGraphTracker(const bim::Storey& storey, const Eigen::Isometry3d&
   Impl& m = *impl_;
   m.T_base_lidar = T_base_lidar;
   m.config = detail::checkedConfig(config, m.warnings);
+  m.loss.emplace(m.config);
   m.T_map_odom_initial = T_map_odom;
   if (!T_map_odom.matrix().allFinite()) {
     m.warnings.emplace_back("the initial map <- odom is not finite: using the identity");
@@ -87,7 +88,7 @@ SGraphResult SGraphTracker::addScan(double stamp_s, const Eigen::Isometry3d& T_o
     r.T_map_base = m.last_odom ? r.T_map_odom * *m.last_odom : r.T_map_odom;
     r.keyframe = m.graph.window.empty() ? -1 : m.graph.window.back().id;
     r.window_keyframes = static_cast<int>(m.graph.window.size());
-    r.state = m.state;
+    r.state = m.loss->state();
     return r;
   }
   const Eigen::Vector3d odom = planarPose(T_odom_base);
@@ -96,27 +97,12 @@ SGraphResult SGraphTracker::addScan(double stamp_s, const Eigen::Isometry3d& T_o
     m.report(predicted, T_odom_base, r);
     return r;
   }
-  // keyframe -> associate planes -> associate rooms -> optimize window -> slide -> check loss
+  // keyframe -> associate (its measurements are the new factors) -> optimize window -> slide -> check loss
   detail::Keyframe& kf = m.addKeyframe(stamp_s, T_odom_base, predicted);
-  const auto observations = detail::prepareObservations(kf, walls, m.config, r);
-  detail::associate(m.graph, kf, observations, m.config, r);
-  detail::associateRooms(m.graph, kf, m.config, r);
-  kf.plan_walls = 0;
-  for (const auto& p : kf.planes) kf.plan_walls += m.graph.nodes[static_cast<std::size_t>(p.node)].kind == detail::WallNode::Kind::Plan;
-  const detail::SolveReport solve = detail::optimizeWindow(m.graph, m.config);
-  if (!solve.usable) r.warnings.push_back("keyframe " + std::to_string(kf.id) + ": the optimization failed (" + solve.message + "), estimate kept");
-  while (static_cast<int>(m.graph.window.size()) > m.config.window_keyframes) detail::marginalizeOldest(m.graph, m.config);
-  for (const detail::Keyframe& w : m.graph.window) {
-    KeyframeInfo& info = m.graph.history[static_cast<std::size_t>(w.id)];
-    info.T_map_base = w.T_map_base();
-    info.plan_walls = w.plan_walls;
-  }
-  m.checkLoss(kf, observations, solve, r);
-  r.keyframe_added = true;
-  r.iterations = solve.iterations;
-  r.initial_cost = solve.initial_cost;
-  r.final_cost = solve.final_cost;
-  r.solve_time_s = solve.time_s;
+  const auto observations = m.associate(kf, walls, r);
+  const detail::SolveReport solve = m.optimize(kf, r);
+  m.slide();
+  m.loss->update(detail::keyframeDoubt(m.graph, kf, observations, solve.usable, m.config), r.warnings);
   m.report(kf.planar(), T_odom_base, r);
   return r;
 }
@@ -184,34 +170,36 @@ detail::Keyframe& SGraphTracker::Impl::addKeyframe(double stamp_s, const Eigen::
   return graph.window.back();
 }
 
-void SGraphTracker::Impl::checkLoss(const detail::Keyframe& kf, const std::vector<detail::ScanObservation>& observed,
-                                    const detail::SolveReport& solve, SGraphResult& r) {
-  const double residual2 = detail::meanPlaneResidual2(graph, kf);
-  const double correction = (kf.planar() - kf.predicted).head<2>().norm();
-  // Walls seen and walls matched to the plan, per class: a robot metres off along a corridor
-  // still matches the corridor's walls, but none of the walls across it.
-  std::array<int, 2> seen{}, matched{};
-  for (const auto& o : observed) ++seen[o.axis == bim::WallAxis::X ? 0 : 1];
-  for (const auto& p : kf.planes) {
-    const auto& node = graph.nodes[static_cast<std::size_t>(p.node)];
-    if (node.kind == detail::WallNode::Kind::Plan) ++matched[node.axis(p.face) == bim::WallAxis::X ? 0 : 1];
-  }
-  std::string why;
-  if (kf.plan_walls < config.min_plan_associations) why = std::to_string(kf.plan_walls) + " plan walls matched";
-  for (int c = 0; c < 2 && why.empty(); ++c)
-    if (matched[c] < config.min_plan_fraction * seen[c])
-      why = std::to_string(matched[c]) + " of " + std::to_string(seen[c]) + (c == 0 ? " x" : " y") + " walls matched the plan";
-  else if (residual2 > config.loss_residual2) why = format("planes' mean squared residual %.1f", residual2);
-  else if (correction > config.loss_correction_m) why = format("moved %.2f m from its odometry prediction", correction);
-  else if (!solve.usable) why = "optimization failed";
-  if (why.empty()) ++good_streak, bad_streak = 0;
-  else ++bad_streak, good_streak = 0;
-  if (state == TrackingState::Tracking && bad_streak >= config.lost_after_keyframes) {
-    state = TrackingState::Lost;
-    r.warnings.push_back("lost: " + std::to_string(bad_streak) + " bad keyframes in a row (last: " + why + ")");
-  } else if (state == TrackingState::Lost && good_streak >= config.recover_after_keyframes) {
-    state = TrackingState::Tracking;
-    r.warnings.push_back("tracking again after " + std::to_string(good_streak) + " good keyframes");
+// Planes with the plan's walls and the new planes (paper, "Plane Association"), then rooms
+// with the plan's rooms ("Room Association"), which may merge new planes into plan walls.
+std::vector<detail::ScanObservation> SGraphTracker::Impl::associate(detail::Keyframe& kf, const std::vector<planes::ObservedPlane>& walls,
+                                                                    SGraphResult& r) {
+  auto observations = detail::prepareObservations(kf, walls, config, r);
+  detail::associate(graph, kf, observations, config, r);
+  detail::associateRooms(graph, kf, config, r);
+  kf.plan_walls = 0;
+  for (const auto& p : kf.planes) kf.plan_walls += graph.nodes[static_cast<std::size_t>(p.node)].kind == detail::WallNode::Kind::Plan;
+  return observations;
+}
+
+detail::SolveReport SGraphTracker::Impl::optimize(const detail::Keyframe& kf, SGraphResult& r) {
+  const detail::SolveReport solve = detail::optimizeWindow(graph, config);
+  if (!solve.usable) r.warnings.push_back("keyframe " + std::to_string(kf.id) + ": the optimization failed (" + solve.message + "), estimate kept");
+  r.keyframe_added = true;
+  r.iterations = solve.iterations;
+  r.initial_cost = solve.initial_cost;
+  r.final_cost = solve.final_cost;
+  r.solve_time_s = solve.time_s;
+  return solve;
+}
+
+// Marginalize what leaves the window; the history keeps every keyframe's latest pose.
+void SGraphTracker::Impl::slide() {
+  while (static_cast<int>(graph.window.size()) > config.window_keyframes) detail::marginalizeOldest(graph, config);
+  for (const detail::Keyframe& w : graph.window) {
+    KeyframeInfo& info = graph.history[static_cast<std::size_t>(w.id)];
+    info.T_map_base = w.T_map_base();
+    info.plan_walls = w.plan_walls;
   }
 }
 
@@ -222,7 +210,7 @@ void SGraphTracker::Impl::report(const Eigen::Vector3d& planar, const Eigen::Iso
   r.T_map_odom = r.T_map_base * T_odom_base.inverse();
   r.keyframe = graph.window.empty() ? -1 : graph.window.back().id;
   r.window_keyframes = static_cast<int>(graph.window.size());
-  r.state = state;
+  r.state = loss->state();
 }
 
 bool SGraphTracker::wantsObservations(const Eigen::Isometry3d& T_odom_base) const {
@@ -235,7 +223,7 @@ bool SGraphTracker::wantsObservations(const Eigen::Isometry3d& T_odom_base) cons
   return m.needsKeyframe(planarPose(T_odom_base));
 }
 
-TrackingState SGraphTracker::state() const { return impl_->state; }
+TrackingState SGraphTracker::state() const { return impl_->loss->state(); }
 
 Eigen::Isometry3d SGraphTracker::T_map_odom() const {
   const auto& g = impl_->graph;
