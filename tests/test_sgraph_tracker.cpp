@@ -415,3 +415,23 @@ TEST(SGraphTracker, TimePerKeyframeStaysFlatOverATenMinuteWalk) {
               iterations / o.keyframes.size(), rms(o.error_m, 2), *std::max_element(o.error_m.begin() + 2, o.error_m.end()),
               rms(o.odometry_error_m, 2));
 }
+
+TEST(SGraphTracker, WithTwoParallelWallsInViewTheRobotsHistorySaysWhichIsOff) {
+  // The divider between R101 and R102 stands 10 cm into R101. In R101 the robot sees two x
+  // walls, the outer one and the divider: which is off, only the way it came in can say.
+  // It comes from the corridor, localized there.
+  const std::size_t divider = wallIndex(office(), "DIV-S1");
+  const bim::Storey truth = test::shiftedWall(office(), divider, 0.10);
+  static const sim::BaseTrajectory walk =
+      plannedWalk({8.0, 6.1, M_PI}, {{3.2, 6.1}, {3.2, 4.3}, {2.6, 2.8}, {1.0, 2.8}, {1.0, 1.0}, {2.8, 1.0}, {2.8, 2.6}}, 40.0);
+  Walk w = onTrajectory(walk);
+  w.truth = &truth;
+  w.initial_error = {0.05, 0.0, 1.0 * kDeg};
+  const Outcome o = run(w);
+  const auto deviation = std::find_if(o.deviations.begin(), o.deviations.end(), [&](const auto& d) { return d.wall == int(divider); });
+  ASSERT_NE(deviation, o.deviations.end());
+  std::printf("divider 10 cm off, two x walls in view: estimated %.3f m; robot RMS %.3f m, max %.3f m\n", deviation->offset_m,
+              rms(o.error_m, 2), *std::max_element(o.error_m.begin() + 2, o.error_m.end()));
+  EXPECT_NEAR(deviation->offset_m, 0.10, 0.03);
+  EXPECT_LT(rms(o.error_m, 2), 0.03);
+}

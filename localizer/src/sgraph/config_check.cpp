@@ -38,10 +38,10 @@ SGraphConfig checkedConfig(const SGraphConfig& config, std::vector<std::string>&
       {"room_factor_sigma_m", &SGraphConfig::room_factor_sigma_m},
       {"wall_evidence_min_sigma_m", &SGraphConfig::wall_evidence_min_sigma_m},
       {"wall_evidence_min_sigma_deg", &SGraphConfig::wall_evidence_min_sigma_deg},
-      {"huber_plane", &SGraphConfig::huber_plane},
-      {"huber_odometry", &SGraphConfig::huber_odometry},
-      {"cauchy_wall_prior", &SGraphConfig::cauchy_wall_prior},
-      {"huber_room", &SGraphConfig::huber_room},
+      {"huber_plane_sigmas", &SGraphConfig::huber_plane_sigmas},
+      {"huber_odometry_sigmas", &SGraphConfig::huber_odometry_sigmas},
+      {"cauchy_wall_prior_sigmas", &SGraphConfig::cauchy_wall_prior_sigmas},
+      {"huber_room_sigmas", &SGraphConfig::huber_room_sigmas},
   };
   for (const auto& [name, member] : positive) {
     if (std::isfinite(c.*member) && c.*member > 0) continue;
@@ -54,7 +54,7 @@ SGraphConfig checkedConfig(const SGraphConfig& config, std::vector<std::string>&
       {"odometry_sigma_xy_per_m", &SGraphConfig::odometry_sigma_xy_per_m},
       {"odometry_sigma_yaw_per_rad", &SGraphConfig::odometry_sigma_yaw_per_rad},
       {"odometry_sigma_yaw_per_m_deg", &SGraphConfig::odometry_sigma_yaw_per_m_deg},
-      {"loss_residual2", &SGraphConfig::loss_residual2},
+      {"loss_mahalanobis2", &SGraphConfig::loss_mahalanobis2},
       {"min_plan_fraction", &SGraphConfig::min_plan_fraction},
       {"loss_correction_m", &SGraphConfig::loss_correction_m},
   };

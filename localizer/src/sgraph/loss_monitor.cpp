@@ -24,7 +24,7 @@ std::string keyframeDoubt(const Graph& g, const Keyframe& kf, const std::vector<
     if (matched[k] < c.min_plan_fraction * seen[k])
       return std::to_string(matched[k]) + " of " + std::to_string(seen[k]) + (k == 0 ? " x" : " y") + " walls matched the plan";
   const double residual2 = meanPlaneResidual2(g, kf);
-  if (residual2 > c.loss_residual2) {
+  if (residual2 > c.loss_mahalanobis2) {
     std::snprintf(text, sizeof text, "planes' mean squared residual %.1f", residual2);
     return text;
   }

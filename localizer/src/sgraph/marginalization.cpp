@@ -63,7 +63,7 @@ void marginalizeOldest(Graph& g, const SGraphConfig& c) {
   b0 += a.J[0].transpose() * a.r;
 
   const std::unique_ptr<ceres::CostFunction> odometry(odometryCost(k0, k1, c));
-  const Linearized o = linearize(*odometry, {k0.pose.data(), k1.pose.data()}, c.huber_odometry);
+  const Linearized o = linearize(*odometry, {k0.pose.data(), k1.pose.data()}, c.huber_odometry_sigmas);
   H00 += o.J[0].transpose() * o.J[0];
   H01 += o.J[0].transpose() * o.J[1];
   H11 += o.J[1].transpose() * o.J[1];
@@ -79,7 +79,7 @@ void marginalizeOldest(Graph& g, const SGraphConfig& c) {
     WallNode& node = g.nodes[static_cast<std::size_t>(m.node)];
     if (!node.active) continue;
     const std::unique_ptr<ceres::CostFunction> cost(planeCost(g, k0, m));
-    planes.push_back({m.node, linearize(*cost, {k0.pose.data(), node.params.data()}, c.huber_plane)});
+    planes.push_back({m.node, linearize(*cost, {k0.pose.data(), node.params.data()}, c.huber_plane_sigmas)});
     const Linearized& l = planes.back().lin;
     H00 += l.J[0].transpose() * l.J[0];
     b0 += l.J[0].transpose() * l.r;

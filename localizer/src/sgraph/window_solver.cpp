@@ -66,10 +66,10 @@ SolveReport optimizeWindow(Graph& g, const SGraphConfig& c) {
   if (g.window.empty()) return report;
   ceres::Problem problem;
   // One kernel object per kind: the problem owns them and deletes each once.
-  ceres::LossFunction* huber_plane = new ceres::HuberLoss(c.huber_plane);
-  ceres::LossFunction* huber_odometry = new ceres::HuberLoss(c.huber_odometry);
-  ceres::LossFunction* cauchy_wall = new ceres::CauchyLoss(c.cauchy_wall_prior);
-  ceres::LossFunction* huber_room = new ceres::HuberLoss(c.huber_room);
+  ceres::LossFunction* huber_plane = new ceres::HuberLoss(c.huber_plane_sigmas);
+  ceres::LossFunction* huber_odometry = new ceres::HuberLoss(c.huber_odometry_sigmas);
+  ceres::LossFunction* cauchy_wall = new ceres::CauchyLoss(c.cauchy_wall_prior_sigmas);
+  ceres::LossFunction* huber_room = new ceres::HuberLoss(c.huber_room_sigmas);
 
   // Tracking layer: the window's keyframes, the prior on the oldest, odometry between them.
   for (Keyframe& kf : g.window) problem.AddParameterBlock(kf.pose.data(), 3);

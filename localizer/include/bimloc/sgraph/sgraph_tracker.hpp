@@ -84,26 +84,26 @@ struct SGraphConfig {
   double wall_evidence_min_sigma_deg = 0.1;
 
   // Robust kernels, in sigmas of each factor (residuals are whitened): Huber on measurements.
-  double huber_plane = 2.0;
-  double huber_odometry = 3.0;
-  double huber_room = 2.0;
+  double huber_plane_sigmas = 2.0;
+  double huber_odometry_sigmas = 3.0;
+  double huber_room_sigmas = 2.0;
   // The as-built prior has a Cauchy kernel: a wall is either within its tolerance or built
   // somewhere else, by any amount (a mixture, not a wider Gaussian). With two parallel walls
   // in view, one off its plan, a Gaussian or Huber prior would share the error between them
   // and move the robot; with Cauchy the graph keeps the explanation its history supports.
-  double cauchy_wall_prior = 1.0;
+  double cauchy_wall_prior_sigmas = 1.0;
 
   int max_iterations = 30;  // Levenberg-Marquardt, per keyframe
 
   // Loss of track: a keyframe is bad when it matches fewer plan walls than this, or fewer than
   // min_plan_fraction of the x (or of the y) walls it sees (a robot metres off along a
   // corridor still matches the corridor's walls, not those across it), when its planes' mean squared
-  // Mahalanobis residual after optimization exceeds loss_residual2, or when the optimization
+  // Mahalanobis residual after optimization exceeds loss_mahalanobis2, or when the optimization
   // moved it more than loss_correction_m from its odometry prediction.
   // This many bad keyframes in a row -> lost; recover_after_keyframes good ones -> tracking.
   int min_plan_associations = 2;
   double min_plan_fraction = 0.5;
-  double loss_residual2 = 9.0;
+  double loss_mahalanobis2 = 9.0;
   double loss_correction_m = 0.5;
   int lost_after_keyframes = 5;
   int recover_after_keyframes = 3;
