@@ -69,7 +69,7 @@ struct SGraphConfig {
 
   // As-built tolerance of the plan: each wall may sit off its plan position by about this
   // (shift along its normal, rotation about its centre), so a wall built off the plan is
-  // estimated instead of dragging the robot. Rooms likewise.
+  // estimated instead of dragging the robot.
   double wall_prior_sigma_m = 0.05;
   double wall_prior_sigma_deg = 1.0;
   double wall_thickness_sigma_m = 0.02;  // thickness vs the plan (seen only from both sides)
@@ -186,6 +186,7 @@ class SGraphTracker {
   // `T_map_odom` from the particle filter at convergence (paper: "When the particle filter
   // provides the initial pose estimation, S-Graphs starts creating its first robot-tracking
   // layer"). Walls the graph cannot use (zero length, not vertical) are named in warnings().
+  // The tracker copies what it needs of the storey: it keeps no reference to it.
   SGraphTracker(const bim::Storey& storey, const Eigen::Isometry3d& T_base_lidar, const SGraphConfig& config,
                 const Eigen::Isometry3d& T_map_odom);
   ~SGraphTracker();
