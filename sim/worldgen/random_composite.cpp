@@ -192,7 +192,7 @@ void drawComposite(Floor& f, CompositePlan p) {
 
   // Draw A, then B on A's north side, then the end hall.
   A.corridor_label = f.room(p.corridor_use);
-  A.a_start = ext / 2, A.t_start = ext, A.b_south = ext / 2, A.t_south = A.t_north = ext;
+  A.a_start = kSiteMargin + ext / 2, A.t_start = ext, A.b_south = kSiteMargin + ext / 2, A.t_south = A.t_north = ext;
   A.corridor = p.corridor, A.corridor_wall = p.corridor_wall;
   A.t_end = p.end_hall > 0 ? p.corridor_wall : ext;
   A.a_end = A.faceStart() + LA + A.t_end / 2;

@@ -14,6 +14,12 @@
 
 namespace bimloc::worldgen::layout {
 
+// The building's outline starts this far from the plan's axes. IFC++ fails to cut a door
+// opening out of a wall along y when the opening straddles x = 0 (for some thicknesses: 0.10,
+// 0.15, 0.24, 0.36-0.40 m; the reader then warns "faces approximated"), and an entrance in a
+// west wall whose outer face is at x = 0 does.
+constexpr Mm kSiteMargin = 1000;
+
 // std::mt19937_64's sequence is fixed by the standard; everything else is integer arithmetic
 // here, so a seed gives the same world everywhere.
 class Random {

@@ -64,8 +64,8 @@ void drawResidential(Floor& f, int rooms) {
   const Apartment ap = apartment(rng, partition, door, &width, &depth);
   if (rooms <= 8) {  // a house: one apartment, entered from outside
     Wing w;
-    w.a_start = f.exterior / 2, w.t_start = w.t_end = f.exterior;
-    w.b_south = f.exterior / 2, w.t_south = w.t_north = f.exterior;
+    w.a_start = kSiteMargin + f.exterior / 2, w.t_start = w.t_end = f.exterior;
+    w.b_south = kSiteMargin + f.exterior / 2, w.t_south = w.t_north = f.exterior;
     w.a_end = w.faceStart() + width + f.exterior / 2;
     w.south.depth = depth;
     w.south.items = {apartmentItem(ap, width, party)};
