@@ -1,5 +1,6 @@
-// The composite floor of random_styles.hpp: wings A (+ B in an L or a T), an end hall, entrances,
-// fire doors and free-standing walls, drawn symmetric and then changed in one place.
+// The composite floor of random_styles.hpp: wing A (+ wings B in an L, a T or a comb), an end hall,
+// entrances and fire doors, drawn symmetric and then changed in one place. Free-standing walls:
+// random_free_walls.cpp.
 #include "sim/worldgen/random_styles.hpp"
 
 #include <algorithm>

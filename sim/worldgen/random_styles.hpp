@@ -1,5 +1,5 @@
 // The random worlds' styles (random_world.hpp) and the composite floor they share: one wing
-// along x (A), optionally a second wing along y (B) whose corridor meets A's in an L or a T,
+// along x (A), optionally wings along y (B) whose corridors meet A's in an L, a T or a comb,
 // optionally a large room at A's east end (an assembly hall, an open-plan office).
 #pragma once
 
