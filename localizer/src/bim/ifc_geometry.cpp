@@ -14,6 +14,7 @@
 #include <ifcpp/IFC4/include/IfcRelAggregates.h>
 #include <ifcpp/IFC4/include/IfcRelContainedInSpatialStructure.h>
 #include <ifcpp/IFC4/include/IfcRelSpaceBoundary.h>
+#include <ifcpp/IFC4/include/IfcRelVoidsElement.h>
 #include <ifcpp/IFC4/include/IfcSpace.h>
 #include <ifcpp/IFC4/include/IfcVirtualElement.h>
 #include <ifcpp/IFC4/include/IfcWall.h>
@@ -28,6 +29,7 @@
 
 #include <chrono>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace bimloc::bim::detail {
 namespace {
@@ -220,6 +222,25 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
     if (is_wall) raw.walls.push_back(std::move(p));
     else if (is_space) raw.spaces.push_back(std::move(p));
     else raw.elements.push_back(std::move(p));
+  }
+
+  // Openings of the elements rebuilt from their extrusions: IFC++ cut the others already.
+  std::unordered_set<int> rebuilt;
+  for (const auto* group : {&raw.walls, &raw.elements})
+    for (const auto& p : *group)
+      if (p.mesh.empty() && p.extrusion) rebuilt.insert(p.entity_id);
+  for (const auto& [id, entity] : model->getMapIfcEntities()) {
+    auto rel = dynamic_pointer_cast<IfcRelVoidsElement>(entity);
+    if (!rel || !rel->m_RelatingBuildingElement || !rel->m_RelatedOpeningElement) continue;
+    if (!rebuilt.count(rel->m_RelatingBuildingElement->m_entity_id)) continue;
+    const auto& opening = rel->m_RelatedOpeningElement;
+    RawOpening o;
+    o.global_id = globalId(opening);
+    o.name = label(opening->m_Name);
+    o.ifc_class = opening->className();
+    o.voided_entity_id = rel->m_RelatingBuildingElement->m_entity_id;
+    o.extrusion = profiles.bodyExtrusion(opening, o.geometry_problem);
+    raw.openings.push_back(std::move(o));
   }
 
   for (const auto& [id, entity] : model->getMapIfcEntities()) {
