@@ -132,6 +132,9 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     if (!problem.empty()) building.warnings.push_back(describe(p) + ": " + problem);
     building.storeys[static_cast<std::size_t>(s)].walls.push_back(std::move(*wall));
   }
+  if (std::all_of(building.storeys.begin(), building.storeys.end(), [](const Storey& s) { return s.walls.empty(); }))
+    throw BimError(path + ": no usable wall: every one of its " + std::to_string(raw.walls.size()) +
+                   " IfcWall was skipped (" + building.warnings.back() + ")");
   for (const auto& p : raw.spaces) {
     std::string problem;
     auto room = detail::roomFromGeometry(p, problem);
