@@ -2,11 +2,16 @@
 // a non-zero exit, and no output files.
 #include "test_support.hpp"
 
+#include "bim/step_references.hpp"
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <regex>
+#include <sstream>
 
 namespace fs = std::filesystem;
 using bimloc::test::runBimloc;
@@ -101,6 +106,105 @@ TEST(BadInput, UnknownOptionIsAUsageError) {
   const auto r = runBimloc("extract --no-such-option x.ifc");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("no-such-option"), std::string::npos) << r.err;
+}
+
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The shared plan's text with `from` replaced by `to` (which must occur exactly once).
+std::string mutated(const std::string& text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  EXPECT_EQ(text.find(from, at + 1), std::string::npos) << from;
+  std::string out = text;
+  if (at != std::string::npos) out.replace(at, from.size(), to);
+  return out;
+}
+
+// The id of the first instance of an IFC class in the text ("#390").
+std::string firstOf(const std::string& text, const std::string& ifc_class) {
+  std::smatch m;
+  EXPECT_TRUE(std::regex_search(text, m, std::regex("(#[0-9]+)= ?" + ifc_class + "\\(")));
+  return m.empty() ? std::string("#0") : m[1].str();
+}
+
+nlohmann::json extractJson(const std::string& path) {
+  const auto r = runBimloc("extract '" + path + "' --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  try {
+    return nlohmann::json::parse(r.out);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << e.what() << ": " << r.out;
+    return {};
+  }
+}
+
+bool anyWarningHas(const nlohmann::json& doc, const std::string& a, const std::string& b) {
+  for (const auto& w : doc.value("warnings", nlohmann::json::array()))
+    if (w.get<std::string>().find(a) != std::string::npos && w.get<std::string>().find(b) != std::string::npos)
+      return true;
+  return false;
+}
+
+}  // namespace
+
+// IFC++ reads a reference of the wrong type as a null pointer, and its curve converter
+// dereferenced it: a segfault in every command. revit_quantities' #47 is the 'Axis' polyline
+// of the wall 2OPn9Eo7X5uQL7Jvq1iSyR; its first point is made the polyline itself, a profile
+// and an IfcSpace. The wall keeps its body; the warning names it and the broken instance.
+TEST(BadInput, PointsOfTheWrongTypeAreSkippedWithAWarningNotACrash) {
+  BIMLOC_REQUIRE_SHARED(plan, "revit_quantities.ifc");
+  const std::string text = slurp(plan);
+  const auto dir = tempDir("wrong-type");
+  for (const std::string point : {std::string("#47"), firstOf(text, "IFCRECTANGLEPROFILEDEF"), firstOf(text, "IFCSPACE")}) {
+    const std::string path = write(dir, "point.ifc", mutated(text, "#47=IFCPOLYLINE((#4,#46));", "#47=IFCPOLYLINE((" + point + ",#46));"));
+    const auto doc = extractJson(path);
+    ASSERT_TRUE(doc.contains("storeys")) << point;
+    EXPECT_EQ(doc["storeys"][0]["walls"], 10) << point;
+    EXPECT_TRUE(anyWarningHas(doc, "2OPn9Eo7X5uQL7Jvq1iSyR", "#47 IfcPolyline")) << point << ": " << doc["warnings"];
+  }
+}
+
+TEST(BadInput, AWallWhoseBodyCannotBeReadIsSkippedAndNamed) {
+  BIMLOC_REQUIRE_SHARED(plan, "revit_quantities.ifc");
+  const std::string text = slurp(plan);
+  const auto dir = tempDir("wrong-type");
+  // The swept area of that wall's body extrusion (#53) becomes an IfcSpace.
+  const std::string path = write(dir, "body.ifc", mutated(text, "#53=IFCEXTRUDEDAREASOLID(#51,",
+                                                          "#53=IFCEXTRUDEDAREASOLID(" + firstOf(text, "IFCSPACE") + ","));
+  const auto doc = extractJson(path);
+  ASSERT_TRUE(doc.contains("storeys"));
+  EXPECT_EQ(doc["storeys"][0]["walls"], 9);
+  EXPECT_TRUE(anyWarningHas(doc, "2OPn9Eo7X5uQL7Jvq1iSyR", "wall skipped")) << doc["warnings"];
+}
+
+TEST(BadInput, APlanLeftWithNoUsableWallIsAnError) {
+  BIMLOC_REQUIRE_SHARED(plan, "revit_quantities.ifc");
+  const std::string text = slurp(plan);
+  // The model context every body refers to gets an IfcSpace for its coordinate system.
+  const std::string path = write(tempDir("wrong-type"), "context.ifc",
+                                 mutated(text, "#27=IFCGEOMETRICREPRESENTATIONCONTEXT($,'Model',3,1.E-009,#26,$);",
+                                         "#27=IFCGEOMETRICREPRESENTATIONCONTEXT($,'Model',3,1.E-009," +
+                                             firstOf(text, "IFCSPACE") + ",$);"));
+  expectCleanFailure(path, "no usable wall");
+}
+
+TEST(StepReferences, CountsTheReferencesOfEachInstanceOutsideStringsAndComments) {
+  const std::string text =
+      "ISO-10303-21;\nHEADER;\nFILE_NAME('#1 is not a reference',$);\nENDSEC;\nDATA;\n"
+      "#1=IFCPOLYLINE((#2,#3));\n"
+      "#2 = IFCCARTESIANPOINT((0.,0.));\n"
+      "/* #9=IFCPOLYLINE((#2)); */ #4=IFCWALL('it''s #5',#2,\n  #3, $);\n"
+      "#12=IFCX(#1,'#7;',(#2,#3,#4));\nENDSEC;\nEND-ISO-10303-21;\n";
+  const auto counts = bimloc::bim::detail::stepReferenceCounts(text);
+  const std::vector<std::pair<int, int>> expected{{1, 2}, {4, 2}, {12, 4}};
+  EXPECT_EQ(counts, expected);
 }
 
 TEST(Cli, HelpExplainsEverySubcommand) {

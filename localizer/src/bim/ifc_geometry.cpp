@@ -14,6 +14,7 @@
 #include <ifcpp/IFC4/include/IfcRelAggregates.h>
 #include <ifcpp/IFC4/include/IfcRelContainedInSpatialStructure.h>
 #include <ifcpp/IFC4/include/IfcRelSpaceBoundary.h>
+#include <ifcpp/IFC4/include/IfcRelVoidsElement.h>
 #include <ifcpp/IFC4/include/IfcSpace.h>
 #include <ifcpp/IFC4/include/IfcVirtualElement.h>
 #include <ifcpp/IFC4/include/IfcWall.h>
@@ -23,11 +24,13 @@
 #include <ifcpp/reader/ReaderSTEP.h>
 
 #include "ifc_profile.hpp"
+#include "ifc_references.hpp"
 
 #include <carve/triangulator.hpp>
 
 #include <chrono>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace bimloc::bim::detail {
 namespace {
@@ -138,6 +141,10 @@ TriangleMesh worldMesh(ProductShapeData& shape) {
   return body.empty() ? other : body;
 }
 
+std::string describe(const RawProduct& p) {
+  return p.ifc_class + " " + p.global_id + (p.name.empty() ? "" : " '" + p.name + "'");
+}
+
 RawProduct makeProduct(const shared_ptr<IfcProduct>& product, ProductShapeData& shape, int storey) {
   RawProduct raw;
   raw.entity_id = product->m_entity_id;
@@ -174,8 +181,14 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
   raw.parse_s = secondsSince(t_parse);
 
   const auto t_geometry = Clock::now();
+  // References of the wrong type would crash the converter: drop what reaches them first.
+  const ReferenceCheck references(*model, stepReferenceCounts(plan.text));
+  const std::map<int, GeometryDrop> drops = dropUnreadableGeometry(*model, references);
   GeometryConverter converter(model);
   converter.setMessageCallBack(&sink, &MessageSink::collect);
+  // Colours and layers are not needed, and are reached through inverse links the check skips.
+  converter.getGeomSettings()->setHandleStyledItems(false);
+  converter.getGeomSettings()->setHandleLayerAssignments(false);
   try {
     converter.convertGeometry();
   } catch (const std::exception& e) {
@@ -213,13 +226,40 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
                             !dynamic_pointer_cast<IfcVirtualElement>(product);
     if (!is_wall && !is_space && !is_element) continue;
     RawProduct p = makeProduct(product, *shape, storeyOf(id, parent, storey_index));
-    // The converter skips some bodies (e.g. profiles over IfcIndexedPolyCurve): read the
-    // extrusion ourselves. Spaces always: their profile is the exact room footprint.
-    if (p.mesh.empty() || is_space) p.extrusion = profiles.bodyExtrusion(product, p.geometry_problem);
+    const auto drop = drops.find(id);
+    if (drop != drops.end() && (drop->second.all ? !is_wall && !is_space : true))
+      raw.warnings.push_back(describe(p) + (drop->second.all ? ": geometry skipped: " : ": ignored ") +
+                             drop->second.reason);
+    if (drop != drops.end() && drop->second.all) {
+      p.geometry_problem = "geometry cannot be read: " + drop->second.reason;
+    } else if (p.mesh.empty() || is_space) {
+      // The converter skips some bodies (e.g. profiles over IfcIndexedPolyCurve): read the
+      // extrusion ourselves. Spaces always: their profile is the exact room footprint.
+      p.extrusion = profiles.bodyExtrusion(product, p.geometry_problem);
+    }
     if (is_space) p.long_name = label(dynamic_pointer_cast<IfcSpace>(product)->m_LongName);
     if (is_wall) raw.walls.push_back(std::move(p));
     else if (is_space) raw.spaces.push_back(std::move(p));
     else raw.elements.push_back(std::move(p));
+  }
+
+  // Openings of the elements rebuilt from their extrusions: IFC++ cut the others already.
+  std::unordered_set<int> rebuilt;
+  for (const auto* group : {&raw.walls, &raw.elements})
+    for (const auto& p : *group)
+      if (p.mesh.empty() && p.extrusion) rebuilt.insert(p.entity_id);
+  for (const auto& [id, entity] : model->getMapIfcEntities()) {
+    auto rel = dynamic_pointer_cast<IfcRelVoidsElement>(entity);
+    if (!rel || !rel->m_RelatingBuildingElement || !rel->m_RelatedOpeningElement) continue;
+    if (!rebuilt.count(rel->m_RelatingBuildingElement->m_entity_id)) continue;
+    const auto& opening = rel->m_RelatedOpeningElement;
+    RawOpening o;
+    o.global_id = globalId(opening);
+    o.name = label(opening->m_Name);
+    o.ifc_class = opening->className();
+    o.voided_entity_id = rel->m_RelatingBuildingElement->m_entity_id;
+    o.extrusion = profiles.bodyExtrusion(opening, o.geometry_problem);
+    raw.openings.push_back(std::move(o));
   }
 
   for (const auto& [id, entity] : model->getMapIfcEntities()) {

@@ -18,6 +18,7 @@
 #include <ifcpp/IFC4/include/IfcIndexedPolyCurve.h>
 #include <ifcpp/IFC4/include/IfcLabel.h>
 #include <ifcpp/IFC4/include/IfcLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcMappedItem.h>
 #include <ifcpp/IFC4/include/IfcPolyline.h>
 #include <ifcpp/IFC4/include/IfcPositiveLengthMeasure.h>
 #include <ifcpp/IFC4/include/IfcProduct.h>
@@ -25,6 +26,8 @@
 #include <ifcpp/IFC4/include/IfcReal.h>
 #include <ifcpp/IFC4/include/IfcRectangleProfileDef.h>
 #include <ifcpp/IFC4/include/IfcRepresentation.h>
+#include <ifcpp/IFC4/include/IfcRepresentationMap.h>
+#include <ifcpp/IFC4/include/IfcCartesianTransformationOperator.h>
 #include <ifcpp/geometry/Carve/PlacementConverter.h>
 
 #include <optional>
@@ -54,7 +57,8 @@ class ProfileReader {
   // The first extruded solid of the product's 'Body' representation, in world coordinates.
   // Returns nothing and says why in `problem` when there is none it can read.
   std::optional<Extrusion> bodyExtrusion(const shared_ptr<IfcProduct>& product, std::string& problem) const {
-    shared_ptr<IfcExtrudedAreaSolid> solid = findBodySolid(product);
+    carve::math::Matrix item_transform;  // of a mapped item (BlenderBIM's openings), else identity
+    shared_ptr<IfcExtrudedAreaSolid> solid = findBodySolid(product, item_transform);
     if (!solid) {
       problem = "no extruded solid in its Body representation";
       return std::nullopt;
@@ -77,7 +81,7 @@ class ProfileReader {
     dir.normalize();
     const double depth = solid->m_Depth->m_value * unit_m_;
 
-    carve::math::Matrix T = placementMatrix(product->m_ObjectPlacement);
+    carve::math::Matrix T = placementMatrix(product->m_ObjectPlacement) * item_transform;
     if (solid->m_Position) {
       shared_ptr<TransformData> position;
       placements_->convertIfcAxis2Placement3D(solid->m_Position, position);
@@ -104,21 +108,52 @@ class ProfileReader {
   static double value(const shared_ptr<IfcReal>& r) { return r ? r->m_value : 0.0; }
   static double value(const shared_ptr<IfcLengthMeasure>& r) { return r ? r->m_value : 0.0; }
 
-  static shared_ptr<IfcExtrudedAreaSolid> unwrap(const shared_ptr<IfcRepresentationItem>& item, int depth = 0) {
-    if (!item || depth > 16) return nullptr;
+  // The extruded solid of a representation item; `transform` accumulates the mapping of
+  // mapped items (IFC++'s convention: MappingTarget * MappingOrigin).
+  shared_ptr<IfcExtrudedAreaSolid> unwrap(const shared_ptr<IfcRepresentationItem>& item, carve::math::Matrix& transform,
+                                          int depth = 0) const {
+    if (!item || depth > 16) return nullptr;  // bounded: a broken file may hold a cycle
     if (auto solid = dynamic_pointer_cast<IfcExtrudedAreaSolid>(item)) return solid;
     // Clipped walls (under a roof) keep their extrusion as the first operand.
     if (auto boolean = dynamic_pointer_cast<IfcBooleanResult>(item))
-      return unwrap(dynamic_pointer_cast<IfcRepresentationItem>(boolean->m_FirstOperand), depth + 1);
+      return unwrap(dynamic_pointer_cast<IfcRepresentationItem>(boolean->m_FirstOperand), transform, depth + 1);
+    if (auto mapped = dynamic_pointer_cast<IfcMappedItem>(item)) {
+      const auto& source = mapped->m_MappingSource;
+      if (!source || !source->m_MappedRepresentation) return nullptr;
+      carve::math::Matrix mapping;
+      if (mapped->m_MappingTarget) {
+        shared_ptr<TransformData> target;
+        placements_->convertTransformationOperator(mapped->m_MappingTarget, target);
+        if (target) mapping = target->m_matrix;
+      }
+      if (auto origin = dynamic_pointer_cast<IfcPlacement>(source->m_MappingOrigin)) {
+        shared_ptr<TransformData> placement;
+        placements_->convertIfcPlacement(origin, placement);
+        if (placement) mapping = mapping * placement->m_matrix;
+      }
+      for (const auto& inner : source->m_MappedRepresentation->m_Items) {
+        carve::math::Matrix inner_transform = transform * mapping;
+        if (auto solid = unwrap(inner, inner_transform, depth + 1)) {
+          transform = inner_transform;
+          return solid;
+        }
+      }
+    }
     return nullptr;
   }
 
-  static shared_ptr<IfcExtrudedAreaSolid> findBodySolid(const shared_ptr<IfcProduct>& product) {
+  shared_ptr<IfcExtrudedAreaSolid> findBodySolid(const shared_ptr<IfcProduct>& product,
+                                                 carve::math::Matrix& transform) const {
     if (!product->m_Representation) return nullptr;
     for (const auto& rep : product->m_Representation->m_Representations) {
       if (!rep || !rep->m_RepresentationIdentifier || rep->m_RepresentationIdentifier->m_value != L"Body") continue;
-      for (const auto& item : rep->m_Items)
-        if (auto solid = unwrap(item)) return solid;
+      for (const auto& item : rep->m_Items) {
+        carve::math::Matrix item_transform;
+        if (auto solid = unwrap(item, item_transform)) {
+          transform = item_transform;
+          return solid;
+        }
+      }
     }
     return nullptr;
   }

@@ -5,11 +5,13 @@
 #include "extraction.hpp"
 #include "ifc_file.hpp"
 #include "ifc_geometry.hpp"
+#include "openings.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <unordered_map>
 
 namespace bimloc::bim {
 namespace {
@@ -47,10 +49,12 @@ int storeyFor(const RawProduct& p, const std::vector<int>& new_index, const std:
   return best;
 }
 
-TriangleMesh bodyMesh(const RawProduct& p) {
+// IFC++'s mesh, else the body rebuilt from its extrusion with its openings cut out.
+const TriangleMesh& bodyMesh(const RawProduct& p, const std::unordered_map<int, TriangleMesh>& rebuilt) {
+  static const TriangleMesh none;
   if (!p.mesh.empty()) return p.mesh;
-  if (p.extrusion) return detail::prismMesh(*p.extrusion);
-  return {};
+  const auto it = rebuilt.find(p.entity_id);
+  return it == rebuilt.end() ? none : it->second;
 }
 
 bool isSlab(const RawProduct& p) {
@@ -63,6 +67,7 @@ bool isDoor(const RawProduct& p) { return p.ifc_class == "IfcDoor" || p.ifc_clas
 
 void buildStoreyMeshes(const RawModel& raw, const std::vector<int>& new_index, bool door_leaves, Building& building) {
   auto& storeys = building.storeys;
+  const auto rebuilt = detail::rebuiltBodies(raw, building.warnings);
   for (std::size_t s = 0; s < storeys.size(); ++s) {
     const double floor = storeys[s].elevation_m;
     double top = s + 1 < storeys.size() ? storeys[s + 1].elevation_m : floor;
@@ -76,7 +81,7 @@ void buildStoreyMeshes(const RawModel& raw, const std::vector<int>& new_index, b
         const bool own = in == static_cast<int>(s);
         const bool floor_or_ceiling = !own && isSlab(p) && maxZ(p) > floor - 0.6 && minZ(p) < top + 0.6 &&
                                       (std::abs(maxZ(p) - floor) < 0.6 || std::abs(minZ(p) - top) < 0.6);
-        if (own || floor_or_ceiling) detail::appendMesh(mesh, bodyMesh(p));
+        if (own || floor_or_ceiling) detail::appendMesh(mesh, bodyMesh(p, rebuilt));
       }
     }
   }
@@ -127,6 +132,9 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     if (!problem.empty()) building.warnings.push_back(describe(p) + ": " + problem);
     building.storeys[static_cast<std::size_t>(s)].walls.push_back(std::move(*wall));
   }
+  if (std::all_of(building.storeys.begin(), building.storeys.end(), [](const Storey& s) { return s.walls.empty(); }))
+    throw BimError(path + ": no usable wall: every one of its " + std::to_string(raw.walls.size()) +
+                   " IfcWall was skipped (" + building.warnings.back() + ")");
   for (const auto& p : raw.spaces) {
     std::string problem;
     auto room = detail::roomFromGeometry(p, problem);

@@ -43,6 +43,17 @@ struct RawStorey {
   double placement_z_m = 0.0;         // world z of the storey's placement
 };
 
+// A void cut into an element (IfcRelVoidsElement): IFC++ subtracts it from the meshes it makes;
+// the bodies we rebuild from their extrusions need it subtracted by us (openings.cpp).
+struct RawOpening {
+  std::string global_id;
+  std::string name;
+  std::string ifc_class;  // IfcOpeningElement, IfcVoidingFeature, ...
+  int voided_entity_id = 0;             // RawProduct::entity_id of the element it cuts
+  std::optional<Extrusion> extrusion;   // its body, world frame; read only for rebuilt elements
+  std::string geometry_problem;         // why there is no extrusion
+};
+
 struct SpaceBoundary {
   std::string space_id;    // GlobalId of the IfcSpace
   std::string element_id;  // GlobalId of the bounding element
@@ -56,6 +67,7 @@ struct RawModel {
   std::vector<RawProduct> spaces;    // IfcSpace
   std::vector<RawProduct> elements;  // every other physical element, for the storey meshes
   std::vector<SpaceBoundary> space_boundaries;
+  std::vector<RawOpening> openings;  // those of the elements that have no IFC++ mesh
   std::vector<std::string> warnings;
   double parse_s = 0.0;
   double geometry_s = 0.0;

@@ -1,0 +1,160 @@
+// Guards IFC++'s geometry converter against references of the wrong type. IFC++ reads a
+// reference to an entity of another type than the attribute's (a polyline point that is a
+// polyline, a profile or an IfcSpace) as a null pointer, and its converters dereference such
+// pointers unchecked: a segfault in CurveConverter, reached from every command. So before the
+// conversion, every instance is checked against the text (stepReferenceCounts): one with fewer
+// resolved references than its text names is broken, and so is everything that reaches it.
+// Products lose the representations (or, for their body or placement, all geometry) that
+// reach a broken instance, and say why.
+// Header-only on purpose: included by ifc_geometry.cpp alone, the one IFC++ translation unit.
+#pragma once
+
+#include "step_references.hpp"
+#include "utf8.hpp"
+
+#include <ifcpp/IFC4/include/IfcLabel.h>
+#include <ifcpp/IFC4/include/IfcObjectPlacement.h>
+#include <ifcpp/IFC4/include/IfcProduct.h>
+#include <ifcpp/IFC4/include/IfcProductRepresentation.h>
+#include <ifcpp/IFC4/include/IfcRepresentation.h>
+#include <ifcpp/model/AttributeObject.h>
+#include <ifcpp/model/BuildingModel.h>
+
+#include <deque>
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace bimloc::bim::detail {
+
+class ReferenceCheck {
+ public:
+  ReferenceCheck(const BuildingModel& model, const std::vector<std::pair<int, int>>& text_counts) {
+    // Instances whose text names no reference cannot have lost one (most: points, directions).
+    std::vector<std::pair<std::string, shared_ptr<BuildingObject>>> attributes;
+    auto named = text_counts.begin();
+    for (const auto& [id, entity] : model.getMapIfcEntities()) {
+      while (named != text_counts.end() && named->first < id) ++named;
+      if (named == text_counts.end()) break;
+      if (named->first != id || !entity) continue;
+      attributes.clear();
+      entity->getAttributes(attributes);
+      int resolved = 0;
+      for (const auto& attribute : attributes) collect(id, attribute.second, resolved, nullptr, 0);
+      if (named->second > resolved) {
+        const int lost = named->second - resolved;
+        broken_.emplace(id, "#" + std::to_string(id) + " " + entity->className() + " names " + std::to_string(lost) +
+                                " entit" + (lost == 1 ? "y" : "ies") + " of a type its attribute does not take");
+      }
+    }
+    if (broken_.empty()) return;
+    // Everything that reaches a broken instance, with the first one it reaches (by id order).
+    std::vector<std::pair<int, int>> edges;  // (referencing, referenced)
+    for (const auto& [id, entity] : model.getMapIfcEntities()) {
+      if (!entity) continue;
+      attributes.clear();
+      entity->getAttributes(attributes);
+      int resolved = 0;
+      for (const auto& attribute : attributes) collect(id, attribute.second, resolved, &edges, 0);
+    }
+    std::unordered_map<int, std::vector<int>> referenced_by;
+    for (const auto& [from, to] : edges) referenced_by[to].push_back(from);
+    for (const auto& [id, why] : broken_) {
+      if (tainted_.count(id)) continue;
+      std::deque<int> queue{id};
+      tainted_.emplace(id, why);
+      while (!queue.empty()) {
+        const int at = queue.front();
+        queue.pop_front();
+        for (int parent : referenced_by[at])
+          if (tainted_.emplace(parent, why).second) queue.push_back(parent);
+      }
+    }
+  }
+
+  bool clean() const { return broken_.empty(); }
+  // Why an entity's graph cannot be converted, or nullptr when it can.
+  const std::string* problem(const BuildingEntity* entity) const {
+    if (!entity) return nullptr;
+    const auto it = tainted_.find(entity->m_entity_id);
+    return it == tainted_.end() ? nullptr : &it->second;
+  }
+  const std::string* brokenItself(int id) const {
+    const auto it = broken_.find(id);
+    return it == broken_.end() ? nullptr : &it->second;
+  }
+
+ private:
+  static void collect(int from, const shared_ptr<BuildingObject>& object, int& resolved,
+                      std::vector<std::pair<int, int>>* edges, int depth) {
+    if (!object || depth > 8) return;
+    if (auto entity = dynamic_cast<const BuildingEntity*>(object.get())) {
+      ++resolved;
+      if (edges) edges->emplace_back(from, entity->m_entity_id);
+    } else if (auto list = dynamic_cast<const AttributeObjectVector*>(object.get())) {
+      for (const auto& item : list->m_vec) collect(from, item, resolved, edges, depth + 1);
+    }
+  }
+
+  std::map<int, std::string> broken_;  // by id: the same order in every run
+  std::unordered_map<int, std::string> tainted_;
+};
+
+// What was removed from a product before the conversion.
+struct GeometryDrop {
+  bool all = false;    // its body or placement: the product has no usable geometry
+  std::string reason;  // names the representation and the broken instance
+};
+
+// Removes from every product the geometry that reaches a broken instance: the representations
+// that do (all of them when one is the body, or when the placement or the product itself is
+// broken). Returns what was removed, by product entity id.
+inline std::map<int, GeometryDrop> dropUnreadableGeometry(const BuildingModel& model, const ReferenceCheck& check) {
+  std::map<int, GeometryDrop> drops;
+  if (check.clean()) return drops;
+  for (const auto& [id, entity] : model.getMapIfcEntities()) {
+    auto product = dynamic_pointer_cast<IfcProduct>(entity);
+    if (!product) continue;
+    const std::string* whole = check.brokenItself(id);
+    std::string where = "itself";
+    if (!whole && (whole = check.problem(product->m_ObjectPlacement.get()))) where = "its placement";
+    const auto& shape = product->m_Representation;
+    if (!whole && shape && check.brokenItself(shape->m_entity_id)) whole = check.brokenItself(shape->m_entity_id),
+                                                                     where = "its representation list";
+    if (whole) {
+      product->m_Representation.reset();
+      product->m_ObjectPlacement.reset();
+      drops[id] = {true, where + ": " + *whole};
+      continue;
+    }
+    if (!shape) continue;
+    std::vector<shared_ptr<IfcRepresentation>> kept;
+    std::string dropped;
+    bool body = false;
+    for (const auto& rep : shape->m_Representations) {
+      const std::string* why = rep ? check.problem(rep.get()) : nullptr;
+      if (rep && !why) {
+        kept.push_back(rep);
+        continue;
+      }
+      if (!rep) continue;
+      const std::wstring identifier = rep->m_RepresentationIdentifier ? rep->m_RepresentationIdentifier->m_value : L"";
+      const bool is_body = identifier == L"Body" || identifier.empty();
+      // Name the body when it is among them: it is what the product loses.
+      if (dropped.empty() || (is_body && !body)) dropped = "its '" + utf8(identifier) + "' representation: " + *why;
+      body |= is_body;
+    }
+    if (dropped.empty()) continue;
+    if (body) {
+      product->m_Representation.reset();
+      drops[id] = {true, dropped};
+    } else {
+      shape->m_Representations = kept;
+      drops[id] = {false, dropped};
+    }
+  }
+  return drops;
+}
+
+}  // namespace bimloc::bim::detail
