@@ -1,12 +1,15 @@
-// The six real plans of ../shared/ifc, against the entity counts of SOURCES.md and against
+// The nine real plans of ../shared/ifc, against the entity counts of SOURCES.md and against
 // each other (the same house exported to IFC2X3 and IFC4). Skips when the folder is absent.
 #include "test_support.hpp"
 
+#include <bimloc/bim/geometry2d.hpp>
 #include <bimloc/bim/ifc_reader.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 using namespace bimloc::bim;
@@ -24,6 +27,8 @@ const Expected kPlans[] = {
     {"AC20-FZK-Haus.ifc", "IFC4", 2, 7, 13},     {"AC11-FZK-Haus-IFC.ifc", "IFC2X3", 2, 7, 13},
     {"Duplex_A_20110907.ifc", "IFC2X3", 4, 21, 57}, {"SampleHouse4.ifc", "IFC4", 2, 4, 5},
     {"revit_quantities.ifc", "IFC2X3", 1, 7, 10},  {"ExampleHOM.ifc", "IFC4", 3, 11, 20},
+    {"AC90R1-Jasmin-Sun-105-2x3.ifc", "IFC2X3", 3, 10, 19}, {"example.ifc", "IFC2X3", 1, 4, 18},
+    {"Jesse.1.ifc", "IFC2X3", 8, 0, 160},
 };
 
 // Printed in test names and failures as the file name, not as bytes.
@@ -52,7 +57,14 @@ TEST_P(SharedPlan, CountsMatchSources) {
   const Building& b = plan(path);
   EXPECT_EQ(b.schema, GetParam().schema);
   EXPECT_EQ(b.storeys.size(), GetParam().storeys);
-  EXPECT_EQ(total(b, [](const Storey& s) { return s.rooms.size(); }), GetParam().spaces);
+  // Rooms from IfcSpace; a storey with walls and no IfcSpace has inferred rooms besides.
+  EXPECT_EQ(total(b,
+                  [](const Storey& s) {
+                    return static_cast<std::size_t>(std::count_if(s.rooms.begin(), s.rooms.end(), [](const Room& r) {
+                      return r.source == "IfcSpace";
+                    }));
+                  }),
+            GetParam().spaces);
   EXPECT_EQ(total(b, [](const Storey& s) { return s.walls.size(); }), GetParam().walls);
   for (std::size_t i = 1; i < b.storeys.size(); ++i) EXPECT_LE(b.storeys[i - 1].elevation_m, b.storeys[i].elevation_m);
 }
@@ -176,4 +188,82 @@ TEST(SharedPlans, DuplexElevationsMatchSources) {
   const double expected[] = {-1.25, 0.0, 3.1, 6.0};
   ASSERT_EQ(b.storeys.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(b.storeys[i].elevation_m, expected[i], 1e-6);
+}
+
+TEST(SharedPlans, JasminSunHasACellarAndAnAtticStorey) {
+  BIMLOC_REQUIRE_SHARED(path, "AC90R1-Jasmin-Sun-105-2x3.ifc");
+  const Building& b = plan(path);
+  const double expected[] = {-2.9, 0.0, 2.9};  // SOURCES.md
+  const std::size_t rooms[] = {3, 4, 3};
+  ASSERT_EQ(b.storeys.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(b.storeys[i].elevation_m, expected[i], 1e-6);
+    EXPECT_EQ(b.storeys[i].rooms.size(), rooms[i]) << b.storeys[i].name;
+    for (const auto& r : b.storeys[i].rooms) EXPECT_FALSE(r.walls.empty()) << r.name;
+  }
+}
+
+TEST(SharedPlans, ExampleIfcNamesItsTwoApproximatedOuterWalls) {
+  BIMLOC_REQUIRE_SHARED(path, "example.ifc");
+  const Building& b = plan(path);
+  std::vector<std::string> approximated;
+  for (const auto& w : b.storeys[0].walls)
+    if (w.approximated) approximated.push_back(w.name);
+  std::sort(approximated.begin(), approximated.end());
+  ASSERT_EQ(approximated, (std::vector<std::string>{"Outer Wall IV", "Outer Wall XII"}));
+  for (const auto& name : approximated) {
+    bool warned = false;
+    for (const auto& w : b.warnings) warned |= w.find(name) != std::string::npos && w.find("approximated") != std::string::npos;
+    EXPECT_TRUE(warned) << name;
+  }
+  // Its one storey holds two levels (walls at z = 0 and 3.1 m), and rooms on both.
+  std::size_t upper = 0;
+  for (const auto& r : b.storeys[0].rooms) upper += r.floor_z > 3.0;
+  EXPECT_EQ(upper, 2u);
+}
+
+TEST(SharedPlans, JesseHasNoIfcSpaceSoRoomsAreInferredOnTheStoreysWithWalls) {
+  BIMLOC_REQUIRE_SHARED(path, "Jesse.1.ifc");
+  const Building& b = plan(path);
+  ASSERT_EQ(b.storeys.size(), 8u);
+  EXPECT_NEAR(b.storeys.front().elevation_m, -1.26, 1e-6);  // millimetres in the file
+  EXPECT_NEAR(b.storeys.back().elevation_m, 8.74, 1e-6);
+  std::printf("Jesse.1.ifc: storey, walls, inferred rooms (extraction %.2f s)\n",
+              b.times.parse_s + b.times.geometry_s + b.times.model_s);
+  std::size_t with_rooms = 0;
+  for (const auto& s : b.storeys) {
+    std::printf("  %-20s z %6.2f  walls %3zu  rooms %3zu\n", s.name.c_str(), s.elevation_m, s.walls.size(), s.rooms.size());
+    const std::string announced = "storey '" + s.name + "': no IfcSpace, " + std::to_string(s.rooms.size()) + " rooms inferred";
+    bool warned = false;
+    for (const auto& w : b.warnings) warned |= w.rfind(announced, 0) == 0;
+    EXPECT_EQ(warned, !s.walls.empty()) << s.name;  // storeys without walls: no rooms, no word
+    if (s.walls.empty()) {
+      EXPECT_TRUE(s.rooms.empty()) << s.name;
+    }
+    with_rooms += !s.rooms.empty();
+    for (std::size_t i = 0; i < s.rooms.size(); ++i) {
+      const Room& r = s.rooms[i];
+      EXPECT_EQ(r.source, "inferred");
+      EXPECT_GE(r.area_m2, 1.0) << s.name << " " << r.name;
+      EXPECT_GT(signedArea(r.footprint), 0.0) << s.name << " " << r.name;
+      EXPECT_NEAR(r.area_m2, signedArea(r.footprint), 1e-9);
+      for (std::size_t j = i + 1; j < s.rooms.size(); ++j)  // rooms of one level never overlap
+        if (std::abs(s.rooms[j].floor_z - r.floor_z) < 0.3) {
+          EXPECT_LT(polygonIoU(r.footprint, s.rooms[j].footprint), 0.01) << r.name << " / " << s.rooms[j].name;
+        }
+    }
+  }
+  // The basement, and the main floors: the building's rooms are there.
+  EXPECT_GE(b.findStorey("Level -1")->rooms.size(), 20u);
+  EXPECT_GE(b.findStorey("Level 1")->rooms.size(), 10u);
+  EXPECT_GE(with_rooms, 4u);
+  // "T.O. level 1 floor" has only 0.36 m high walls (curbs): no rooms, and the walls are named.
+  EXPECT_TRUE(b.findStorey("T.O. level 1 floor")->rooms.empty());
+  // Same file, same rooms.
+  const Building again = readIfc(path);
+  for (std::size_t s = 0; s < b.storeys.size(); ++s) {
+    ASSERT_EQ(again.storeys[s].rooms.size(), b.storeys[s].rooms.size());
+    for (std::size_t i = 0; i < b.storeys[s].rooms.size(); ++i)
+      EXPECT_EQ(again.storeys[s].rooms[i].footprint, b.storeys[s].rooms[i].footprint);
+  }
 }

@@ -15,6 +15,7 @@ struct ExtractArgs {
   std::string plan;
   std::string out;
   bool json = false;
+  bool infer_rooms = false;
 };
 
 void printReport(const bimloc::bim::Building& b, double seconds, const std::vector<std::string>& files,
@@ -40,6 +41,7 @@ void printReport(const bimloc::bim::Building& b, double seconds, const std::vect
 void run(const ExtractArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   bimloc::bim::ExtractOptions options;
+  options.infer_rooms = args.infer_rooms;
   const bimloc::bim::Building building = bimloc::bim::readIfc(args.plan, options);
   std::vector<std::string> files;
   if (!args.out.empty()) files = bimloc::sim::exportPlan(building, args.out);
@@ -64,5 +66,8 @@ void addExtractCommand(CLI::App& app) {
   cmd->add_option("plan", args->plan, "IFC file (STEP physical file, .ifc)")->required();
   cmd->add_option("--out", args->out, "directory to write building.json, walls.csv and the storey meshes into");
   cmd->add_flag("--json", args->json, "print one JSON summary object on stdout instead of the table");
+  cmd->add_flag("--infer-rooms", args->infer_rooms,
+                "infer every storey's rooms from its walls, dropping its IfcSpace rooms (to compare the two;\n"
+                "a storey with walls and no IfcSpace always gets inferred rooms)");
   cmd->callback([args] { run(*args); });
 }

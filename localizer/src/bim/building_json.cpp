@@ -67,7 +67,7 @@ json roomJson(const Room& r) {
   json footprint = json::array(), walls = json::array();
   for (const auto& p : r.footprint) footprint.push_back(vec(p));
   for (const auto& w : r.walls) walls.push_back({{"wall", w.wall_id}, {"face", w.face}});
-  return {{"id", r.id}, {"name", r.name}, {"long_name", r.long_name}, {"footprint", footprint},
+  return {{"id", r.id}, {"name", r.name}, {"long_name", r.long_name}, {"source", r.source}, {"footprint", footprint},
           {"area_m2", r.area_m2}, {"centre", vec(r.centre)}, {"floor_z_m", r.floor_z}, {"height_m", r.height_m},
           {"walls", walls}, {"topology_source", r.topology_source}};
 }
@@ -77,6 +77,7 @@ Room roomFromJson(const json& j, const std::string& where) {
   r.id = field(j, "id", where).get<std::string>();
   r.name = j.value("name", "");
   r.long_name = j.value("long_name", "");
+  r.source = j.value("source", "IfcSpace");  // written since rooms can be inferred; older files had only IfcSpace
   for (const auto& p : field(j, "footprint", where)) r.footprint.push_back(vec2(p, where + ".footprint"));
   r.area_m2 = field(j, "area_m2", where).get<double>();
   r.centre = vec2(field(j, "centre", where), where + ".centre");

@@ -28,6 +28,9 @@ bool faceBoundsEdge(const WallFace& face, const Eigen::Vector2d& a, const Eigen:
 void linkRoomsToWalls(Storey& storey, const std::vector<SpaceBoundary>& boundaries,
                       const ExtractOptions& options);
 
+// Room::walls from geometry alone: the wall faces lying on the room's footprint, looking in.
+void linkRoomByGeometry(Room& room, const std::vector<Wall>& walls, const ExtractOptions& options);
+
 // Triangles of a vertical prism (for bodies read from their extrusion).
 TriangleMesh prismMesh(const Extrusion& extrusion);
 

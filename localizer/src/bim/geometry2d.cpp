@@ -101,6 +101,28 @@ Rectangle2 minAreaRectangle(const Polygon2& hull) {
   return best;
 }
 
+double polygonIoU(const Polygon2& a, const Polygon2& b, double resolution_m) {
+  const double area_a = std::abs(signedArea(a)), area_b = std::abs(signedArea(b));
+  if (a.size() < 3 || b.size() < 3 || area_a + area_b <= 0) return 0.0;
+  Eigen::Vector2d lo_a = a.front(), hi_a = a.front(), lo_b = b.front(), hi_b = b.front();
+  for (const auto& p : a) lo_a = lo_a.cwiseMin(p), hi_a = hi_a.cwiseMax(p);
+  for (const auto& p : b) lo_b = lo_b.cwiseMin(p), hi_b = hi_b.cwiseMax(p);
+  const Eigen::Vector2d lo = lo_a.cwiseMax(lo_b), hi = hi_a.cwiseMin(hi_b);
+  if (lo.x() >= hi.x() || lo.y() >= hi.y()) return 0.0;
+  std::size_t inside = 0;
+  const long nx = std::lround(std::ceil((hi.x() - lo.x()) / resolution_m));
+  const long ny = std::lround(std::ceil((hi.y() - lo.y()) / resolution_m));
+  const double hx = (hi.x() - lo.x()) / double(nx), hy = (hi.y() - lo.y()) / double(ny);
+  for (long j = 0; j < ny; ++j)
+    for (long i = 0; i < nx; ++i) {
+      const Eigen::Vector2d p(lo.x() + (double(i) + 0.5) * hx, lo.y() + (double(j) + 0.5) * hy);
+      inside += pointInPolygon(a, p) && pointInPolygon(b, p);
+    }
+  // Sampling may overshoot by a fraction of a cell row; the intersection is never larger than either.
+  const double intersection = std::min({double(inside) * hx * hy, area_a, area_b});
+  return intersection / (area_a + area_b - intersection);
+}
+
 Polygon2 simplifyPolygon(const Polygon2& polygon, double tol_m) {
   Polygon2 out;
   for (const auto& p : polygon)

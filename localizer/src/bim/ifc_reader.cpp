@@ -7,6 +7,8 @@
 #include "ifc_geometry.hpp"
 #include "openings.hpp"
 
+#include <bimloc/bim/geometry2d.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -87,6 +89,47 @@ void buildStoreyMeshes(const RawModel& raw, const std::vector<int>& new_index, b
   }
 }
 
+// The footprint of a wall body as XY polygons: its mesh's triangles seen from above, or its
+// extruded profile.
+std::vector<Polygon2> footprintShape(const RawProduct& p) {
+  std::vector<Polygon2> shape;
+  for (const auto& t : p.mesh.triangles) {
+    Polygon2 triangle;
+    for (const auto v : t) triangle.emplace_back(p.mesh.vertices[v].x(), p.mesh.vertices[v].y());
+    if (std::abs(signedArea(triangle)) > 1e-6) shape.push_back(triangle);
+  }
+  if (shape.empty() && p.extrusion && p.extrusion->footprint.size() >= 3) shape.push_back(p.extrusion->footprint);
+  return shape;
+}
+
+// A curtain wall and the panels and mullions it is made of (IfcPlate and IfcMember are used
+// for other things too, rafters, stringers: cut at a level's probe height, those are small).
+bool isCurtainWallPart(const RawProduct& p) {
+  return p.ifc_class == "IfcCurtainWall" || p.ifc_class == "IfcPlate" || p.ifc_class == "IfcMember";
+}
+
+// A storey with walls and no room (no IfcSpace) gets rooms inferred from its walls; with
+// options.infer_rooms every storey does, its IfcSpace rooms dropped.
+void inferMissingRooms(Storey& storey, const RoomBounds& bounds, const ExtractOptions& options,
+                       std::vector<std::string>& warnings) {
+  const std::size_t replaced = options.infer_rooms ? storey.rooms.size() : 0;
+  if (!storey.rooms.empty() && !options.infer_rooms) return;
+  if (options.infer_rooms) storey.rooms.clear();
+  if (storey.walls.empty()) {  // e.g. a "top of" level: no walls, no rooms, no error
+    if (replaced > 0) warnings.push_back("storey '" + storey.name + "': " + std::to_string(replaced) +
+                                         " IfcSpace rooms dropped, no walls to infer rooms from");
+    return;
+  }
+  InferredRooms inferred = inferRooms(storey, options.room_inference, bounds);
+  warnings.insert(warnings.end(), inferred.warnings.begin(), inferred.warnings.end());
+  const std::string count = std::to_string(inferred.rooms.size());
+  warnings.push_back("storey '" + storey.name + "': " +
+                     (options.infer_rooms ? std::to_string(replaced) + " IfcSpace rooms replaced, " + count
+                                          : "no IfcSpace, " + count) +
+                     " rooms inferred from the walls");
+  storey.rooms = std::move(inferred.rooms);
+}
+
 }  // namespace
 
 Building readIfc(const std::string& path, const ExtractOptions& options) {
@@ -121,6 +164,7 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     building.storeys.push_back(storey);
   }
 
+  WallShapes shapes;  // the exact footprints of the walls that are not boxes, for room inference
   for (const auto& p : raw.walls) {
     std::string problem;
     auto wall = detail::wallFromGeometry(p, problem);
@@ -130,6 +174,7 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
       continue;
     }
     if (!problem.empty()) building.warnings.push_back(describe(p) + ": " + problem);
+    if (wall->approximated) shapes[wall->id] = footprintShape(p);
     building.storeys[static_cast<std::size_t>(s)].walls.push_back(std::move(*wall));
   }
   if (std::all_of(building.storeys.begin(), building.storeys.end(), [](const Storey& s) { return s.walls.empty(); }))
@@ -145,11 +190,24 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     }
     building.storeys[static_cast<std::size_t>(s)].rooms.push_back(std::move(*room));
   }
-  for (auto& storey : building.storeys) {
+  // Curtain walls are no wall landmarks (glass), but they bound rooms.
+  std::vector<std::vector<RoomBarrier>> barriers(building.storeys.size());
+  for (const auto& p : raw.elements) {
+    const int s = storeyFor(p, new_index, building.storeys);
+    if (s >= 0 && isCurtainWallPart(p))
+      barriers[static_cast<std::size_t>(s)].push_back({p.global_id, bodyMesh(p)});
+  }
+  for (std::size_t s = 0; s < building.storeys.size(); ++s) {
+    auto& storey = building.storeys[s];
+    RoomBounds bounds{shapes, std::move(barriers[s]), {}};
+    for (const auto& other : building.storeys)
+      if (&other != &storey) bounds.other_storeys.push_back(&other);
+    inferMissingRooms(storey, bounds, options, building.warnings);
     detail::linkRoomsToWalls(storey, raw.space_boundaries, options);
     for (const auto& room : storey.rooms)
       if (room.walls.empty())
-        building.warnings.push_back("IfcSpace " + room.id + " '" + room.name + "': no bounding wall found");
+        building.warnings.push_back((room.source == "IfcSpace" ? "IfcSpace " + room.id : "storey '" + storey.name + "': room") +
+                                    " '" + room.name + "': no bounding wall found");
   }
   if (options.build_meshes) buildStoreyMeshes(raw, new_index, options.door_leaves, building);
 

@@ -3,6 +3,7 @@
 
 #include <bimloc/bim/geometry2d.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -10,6 +11,8 @@ namespace bimloc::bim::detail {
 namespace {
 
 Eigen::Vector2d xy(const Eigen::Vector3d& p) { return p.head<2>(); }
+
+constexpr double kMinVerticalOverlap_m = 0.1;
 
 // The face of `wall` that looks into `room`, or -1: first a face lying on the footprint,
 // else the face the room's centre is in front of, nearest first.
@@ -65,18 +68,28 @@ void linkRoomsToWalls(Storey& storey, const std::vector<SpaceBoundary>& boundari
       room.topology_source = "IfcRelSpaceBoundary";
       continue;
     }
-    room.topology_source = "geometry";
-    const auto& poly = room.footprint;
-    for (const auto& wall : storey.walls)
-      for (int f = 0; f < 2; ++f) {
-        bool bounds = false;
-        for (std::size_t i = 0; i < poly.size() && !bounds; ++i)
-          bounds = faceBoundsEdge(wall.faces[f], poly[i], poly[(i + 1) % poly.size()], options);
-        if (bounds) {
-          room.walls.push_back({wall.id, f});
-          break;
-        }
+    linkRoomByGeometry(room, storey.walls, options);
+  }
+}
+
+void linkRoomByGeometry(Room& room, const std::vector<Wall>& walls, const ExtractOptions& options) {
+  room.walls.clear();
+  room.topology_source = "geometry";
+  const auto& poly = room.footprint;
+  for (const auto& wall : walls) {
+    // One storey may hold rooms on two levels (example.ifc): a wall bounds the rooms it stands beside.
+    const double overlap = std::min(wall.start.z() + wall.height_m, room.floor_z + room.height_m) -
+                           std::max(wall.start.z(), room.floor_z);
+    if (room.height_m > 0 && wall.height_m > 0 && overlap < kMinVerticalOverlap_m) continue;
+    for (int f = 0; f < 2; ++f) {
+      bool bounds = false;
+      for (std::size_t i = 0; i < poly.size() && !bounds; ++i)
+        bounds = faceBoundsEdge(wall.faces[f], poly[i], poly[(i + 1) % poly.size()], options);
+      if (bounds) {
+        room.walls.push_back({wall.id, f});
+        break;
       }
+    }
   }
 }
 

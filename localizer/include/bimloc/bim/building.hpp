@@ -56,9 +56,10 @@ struct RoomWall {
 };
 
 struct Room {
-  std::string id;  // IFC GlobalId of the IfcSpace
+  std::string id;  // IFC GlobalId of the IfcSpace; "<storey id>/R<n>" for an inferred room
   std::string name;
   std::string long_name;
+  std::string source = "IfcSpace";  // or "inferred": from the storey's walls (room_inference.hpp)
   std::vector<Eigen::Vector2d> footprint;  // counter-clockwise polygon in world XY
   double area_m2 = 0.0;
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // area centroid of the footprint

@@ -22,6 +22,10 @@ struct Rectangle2 {
 };
 Rectangle2 minAreaRectangle(const Polygon2& hull);
 
+// Intersection over union of two simple polygons (either orientation): the areas exactly,
+// the intersection by sampling on a grid of resolution_m (error about perimeter x resolution / 2).
+double polygonIoU(const Polygon2& a, const Polygon2& b, double resolution_m = 0.01);
+
 // Drops repeated and collinear vertices (within tol_m) and makes the polygon counter-clockwise.
 Polygon2 simplifyPolygon(const Polygon2& polygon, double tol_m = 1e-4);
 

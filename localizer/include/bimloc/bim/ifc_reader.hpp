@@ -2,6 +2,7 @@
 #pragma once
 
 #include <bimloc/bim/building.hpp>
+#include <bimloc/bim/room_inference.hpp>
 
 #include <stdexcept>
 #include <string>
@@ -24,6 +25,10 @@ struct ExtractOptions {
   // Door leaves (IfcDoor) in the storey meshes. The simulator leaves them out: a building under
   // construction has doorways before it has doors, and closed leaves would wall every room in.
   bool door_leaves = true;
+  // Rooms of a storey that has walls and no IfcSpace are inferred from its walls. With
+  // infer_rooms, every storey's rooms are inferred, its IfcSpace rooms dropped (to compare).
+  bool infer_rooms = false;
+  RoomInferenceConfig room_inference;
 };
 
 // Throws BimError for a file that cannot be read, is not IFC, is truncated, or has no
