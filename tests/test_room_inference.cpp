@@ -133,6 +133,21 @@ TEST(RoomInference, AnOpeningWiderThanADoorIsAnOpenPlanNotTwoRooms) {
   EXPECT_NEAR(inferred.rooms[0].area_m2, 8.2 * 3 - 2 * 0.5 * 0.2, 0.02);
 }
 
+TEST(RoomInference, GapsInTheFacadeKeepTheOutsideOut) {
+  // A 12 x 4 m hall whose south façade is five 1.2 m pieces with 1.2 m gaps (windows of a
+  // curtain wall at the probe height, or doors), and a U of walls open by 4 m: not a room.
+  std::vector<Wall> walls = {wall("E", {12.1, -0.2}, {12.1, 4.2}), wall("N", {12.2, 4.1}, {-0.2, 4.1}),
+                             wall("W", {-0.1, 4.2}, {-0.1, -0.2})};
+  for (int k = 0; k < 5; ++k) walls.push_back(wall("S" + std::to_string(k), {-0.2 + 2.4 * k, -0.1}, {1.0 + 2.4 * k, -0.1}));
+  walls.push_back(wall("U-a", {20, 0}, {20, 4}));
+  walls.push_back(wall("U-b", {20, 4}, {24, 4}));
+  walls.push_back(wall("U-c", {24, 4}, {24, 0}));
+  const InferredRooms inferred = inferRooms(storeyOf(walls));
+  ASSERT_EQ(inferred.rooms.size(), 1u);
+  // The hall, give or take the window bays up to the façade line.
+  EXPECT_GT(polygonIoU(inferred.rooms[0].footprint, rect(0, 0, 12, 4)), 0.97);
+}
+
 TEST(RoomInference, CornersThatDoNotQuiteMeetStillClose) {
   // The four walls stop 1 cm short of each other at every corner.
   const double t = 0.2, g = 0.01;

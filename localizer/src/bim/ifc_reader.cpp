@@ -190,16 +190,13 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     }
     building.storeys[static_cast<std::size_t>(s)].rooms.push_back(std::move(*room));
   }
-  // Curtain walls are no wall landmarks (glass), but they bound rooms.
-  std::vector<std::vector<RoomBarrier>> barriers(building.storeys.size());
-  for (const auto& p : raw.elements) {
-    const int s = storeyFor(p, new_index, building.storeys);
-    if (s >= 0 && isCurtainWallPart(p))
-      barriers[static_cast<std::size_t>(s)].push_back({p.global_id, bodyMesh(p)});
-  }
-  for (std::size_t s = 0; s < building.storeys.size(); ++s) {
-    auto& storey = building.storeys[s];
-    RoomBounds bounds{shapes, std::move(barriers[s]), {}};
+  // Curtain walls are no wall landmarks (glass), but they bound rooms. Every storey's: a
+  // façade filed under the storey below stands through this one (Jesse.1.ifc).
+  RoomBounds bounds{std::move(shapes), {}, {}};
+  for (const auto& p : raw.elements)
+    if (isCurtainWallPart(p)) bounds.barriers.push_back({p.global_id, bodyMesh(p)});
+  for (auto& storey : building.storeys) {
+    bounds.other_storeys.clear();
     for (const auto& other : building.storeys)
       if (&other != &storey) bounds.other_storeys.push_back(&other);
     inferMissingRooms(storey, bounds, options, building.warnings);

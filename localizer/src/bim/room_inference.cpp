@@ -4,8 +4,8 @@
 //   rasterize     wall boxes (or the exact shapes of walls that are not boxes) and barriers
 //                 (curtain walls), cell_m
 //   close gaps    closing by max_gap_m / 2: walls that don't quite meet at corners
-//   outside       the walls closed by envelope_gap_m / 2 (entrances, stair openings), then
-//                 flooded from the raster's border: the exterior is not a room
+//   outside       where a disk of diameter envelope_gap_m rolling in from the raster's border
+//                 reaches (it does not pass entrances, windows, stair openings): not a room
 //   seeds         4-connected components of the free space farther than door_width_m / 2
 //                 from every wall: a doorway splits them, an open plan doesn't
 //   watershed     seeds (and the exterior) grown back into all the free space, highest
@@ -179,8 +179,8 @@ void inferLevel(const Storey& storey, const Level& level, const RoomInferenceCon
     const double width = 2.0 * std::max(0.0, (std::sqrt(double(region.max_d2)) - 0.5) * cell);
     const Eigen::Vector2d at = region.sum / double(region.cells);
     const std::string name = where + fmt("free region at (%.2f, %.2f), %.2f m2", at.x(), at.y(), area);
-    // A region the envelope's closing cut out of the outside (between two wings, a fillet in
-    // a corner) is bounded by the outside more than by walls. A room open to a courtyard isn't.
+    // A region out of the rolling disk's reach but outside all the same (between two wings
+    // closer than the disk, an acute corner) is bounded by the outside more than by walls.
     if (double(region.open_edges) > config.max_open_fraction * double(region.boundary_edges)) {
       out.warnings.push_back(name + fmt(": not a room: open to the outside along %.0f%% of its boundary",
                                         100.0 * double(region.open_edges) / double(region.boundary_edges)));

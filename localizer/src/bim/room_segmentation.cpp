@@ -15,7 +15,7 @@ Segmentation segmentFreeSpace(const std::vector<Polygon2>& obstacles, const Room
       if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   if (!(lo.x() <= hi.x())) return out;
 
-  // The raster covers the walls and a margin wider than the envelope's closing, so that the
+  // The raster covers the walls and a margin wider than the rolling disk (see outside), so that the
   // outside reaches around the building.
   Raster& raster = out.raster;
   raster.cell_m = config.cell_m;
@@ -44,12 +44,18 @@ Segmentation segmentFreeSpace(const std::vector<Polygon2>& obstacles, const Room
   out.clearance_d2 = squaredDistance(raster, closed);
   const auto& d2 = out.clearance_d2;
 
-  // Outside: what the border reaches around the envelope (the walls closed over gaps up to
-  // envelope_gap_m: entrances modelled as a gap, the stair opening of a split-level storey).
-  const Mask envelope = closing(raster, closed, 0.5 * config.envelope_gap_m / cell);
-  Mask outside(raster.size());
-  for (std::size_t k = 0; k < outside.size(); ++k) outside[k] = !envelope[k];
-  const Mask exterior = reachedFromBorder(raster, outside);
+  // Outside: where a disk of diameter envelope_gap_m rolling in from the border reaches. It
+  // does not pass a gap narrower than that (entrances modelled as a gap, windows of a curtain
+  // wall at the probe height, a split-level's stair opening): the building's inside is closed.
+  const double envelope_r = 0.5 * config.envelope_gap_m / cell;
+  Mask fits(raster.size());
+  for (std::size_t k = 0; k < fits.size(); ++k) fits[k] = d2[k] > (envelope_r + 0.5) * (envelope_r + 0.5);
+  const auto to_centres = squaredDistance(raster, reachedFromBorder(raster, fits));
+  Mask exterior(raster.size());
+  for (std::size_t k = 0; k < exterior.size(); ++k) exterior[k] = free[k] && to_centres[k] <= envelope_r * envelope_r;
+  // The outside's marker keeps off the walls by half the disk: near a gap, the watershed, not
+  // the disk's edge, puts the boundary, at the gap's narrowest line.
+  const double marker_r = 0.5 * envelope_r;
 
   // Seeds: inside, and farther from every wall than half a door: a doorway separates them.
   Labels& labels = out.labels;
@@ -57,7 +63,7 @@ Segmentation segmentFreeSpace(const std::vector<Polygon2>& obstacles, const Room
   Mask seeds(raster.size(), 0);
   const double door = 0.5 * config.door_width_m / cell + 0.5;
   for (std::size_t k = 0; k < labels.size(); ++k) {
-    if (exterior[k]) labels[k] = kExteriorLabel;
+    if (exterior[k] && to_centres[k] <= marker_r * marker_r) labels[k] = kExteriorLabel;
     seeds[k] = free[k] && !exterior[k] && d2[k] > door * door;
   }
   std::int32_t next = labelComponents(raster, seeds, labels, kExteriorLabel + 1);

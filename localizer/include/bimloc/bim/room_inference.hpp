@@ -38,8 +38,9 @@ struct RoomInferenceConfig {
   // Passages up to this width split rooms: the doorways where a plan splits a wall at a door.
   // (Wall boxes are full rectangles, so doors hosted by a wall are closed already.)
   double door_width_m = 1.0;
-  // Gaps in the building's envelope up to this width count as closed when deciding what is
-  // outside: entrances modelled as a gap, the stair opening of a split-level storey.
+  // The outside is where a disk of this diameter rolling in from far away reaches: gaps in
+  // the building's envelope narrower than this keep it out (entrances modelled as a gap,
+  // windows of a curtain wall at the probe height, a split-level's stair opening).
   double envelope_gap_m = 3.0;
   // ... but a region open to the outside along more than this fraction of its boundary is
   // outside (the space between two wings closer than envelope_gap_m).
@@ -72,7 +73,7 @@ struct RoomBarrier {
 // What bounds a storey's rooms beyond its own walls' boxes (readIfc fills it from the plan).
 struct RoomBounds {
   WallShapes shapes;
-  std::vector<RoomBarrier> barriers;  // the storey's curtain walls
+  std::vector<RoomBarrier> barriers;  // curtain walls, of any storey: cut at each level's probe height
   // The building's other storeys. A wall of theirs that stands in none of their own levels
   // (a wall on a landing, filed under the storey below) bounds this storey's rooms where it
   // stands at a level's probe height and reaches its ceiling (the median top of the level's
