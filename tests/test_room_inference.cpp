@@ -375,3 +375,25 @@ INSTANTIATE_TEST_SUITE_P(Plans, InferredVersusIfcSpace, ::testing::ValuesIn(kPla
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return n;
                          });
+
+TEST(RoomInference, AReferenceLevelHoldingTheFacadeIsNotAFloorOfItsOwn) {
+  // Ground floor (two rooms), a "top of" reference storey at 0.9 m holding only the façade (as
+  // Jesse.1.ifc's "T.O." storeys), and a real first floor at 3 m.
+  auto ground_walls = box(0, 0, 8.2, 3);
+  ground_walls.push_back(wall("mid", {4.1, 0}, {4.1, 3}));
+  std::vector<Storey> storeys = {storeyOf(ground_walls), storeyOf(box(0, 0, 8.2, 3, 0.2, 0.9, "facade-")),
+                                 storeyOf(box(0, 0, 8.2, 3, 0.2, 3.0, "first-"))};
+  for (auto& w : storeys[1].walls) w.height_m = 5.0;
+  for (std::size_t s = 0; s < storeys.size(); ++s) {
+    storeys[s].name = "storey " + std::to_string(s);
+    storeys[s].id = "S" + std::to_string(s);
+    storeys[s].rooms = inferRooms(storeys[s]).rooms;
+    ASSERT_EQ(storeys[s].rooms.size(), s == 0 ? 2u : 1u);
+  }
+  const auto warnings = dropRoomsOfLowerStoreys(storeys);
+  EXPECT_EQ(storeys[0].rooms.size(), 2u);
+  EXPECT_TRUE(storeys[1].rooms.empty());  // the ground floor's walls stand through it
+  EXPECT_EQ(storeys[2].rooms.size(), 1u);  // they end below its probe height
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("storey 'storey 1': inferred room R1"), std::string::npos) << warnings[0];
+}

@@ -109,25 +109,21 @@ bool isCurtainWallPart(const RawProduct& p) {
 }
 
 // A storey with walls and no room (no IfcSpace) gets rooms inferred from its walls; with
-// options.infer_rooms every storey does, its IfcSpace rooms dropped.
-void inferMissingRooms(Storey& storey, const RoomBounds& bounds, const ExtractOptions& options,
+// options.infer_rooms every storey does, its IfcSpace rooms dropped. Returns whether it did.
+bool inferMissingRooms(Storey& storey, const RoomBounds& bounds, const ExtractOptions& options,
                        std::vector<std::string>& warnings) {
   const std::size_t replaced = options.infer_rooms ? storey.rooms.size() : 0;
-  if (!storey.rooms.empty() && !options.infer_rooms) return;
+  if (!storey.rooms.empty() && !options.infer_rooms) return false;
   if (options.infer_rooms) storey.rooms.clear();
   if (storey.walls.empty()) {  // e.g. a "top of" level: no walls, no rooms, no error
     if (replaced > 0) warnings.push_back("storey '" + storey.name + "': " + std::to_string(replaced) +
                                          " IfcSpace rooms dropped, no walls to infer rooms from");
-    return;
+    return false;
   }
   InferredRooms inferred = inferRooms(storey, options.room_inference, bounds);
   warnings.insert(warnings.end(), inferred.warnings.begin(), inferred.warnings.end());
-  const std::string count = std::to_string(inferred.rooms.size());
-  warnings.push_back("storey '" + storey.name + "': " +
-                     (options.infer_rooms ? std::to_string(replaced) + " IfcSpace rooms replaced, " + count
-                                          : "no IfcSpace, " + count) +
-                     " rooms inferred from the walls");
   storey.rooms = std::move(inferred.rooms);
+  return true;
 }
 
 }  // namespace
@@ -190,16 +186,35 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     }
     building.storeys[static_cast<std::size_t>(s)].rooms.push_back(std::move(*room));
   }
-  // Curtain walls are no wall landmarks (glass), but they bound rooms. Every storey's: a
-  // façade filed under the storey below stands through this one (Jesse.1.ifc).
+  // Curtain walls are no wall landmarks (glass), but they bound rooms; a façade filed under
+  // the storey below may stand through this one (Jesse.1.ifc).
   RoomBounds bounds{std::move(shapes), {}, {}};
-  for (const auto& p : raw.elements)
-    if (isCurtainWallPart(p)) bounds.barriers.push_back({p.global_id, bodyMesh(p)});
-  for (auto& storey : building.storeys) {
+  for (const auto& p : raw.elements) {
+    const int s = storeyFor(p, new_index, building.storeys);
+    if (isCurtainWallPart(p))
+      bounds.barriers.push_back({p.global_id, bodyMesh(p), s >= 0 ? building.storeys[static_cast<std::size_t>(s)].id : ""});
+  }
+  std::vector<std::size_t> replaced(building.storeys.size(), 0);
+  std::vector<bool> inferred(building.storeys.size(), false);
+  for (std::size_t s = 0; s < building.storeys.size(); ++s) {
+    auto& storey = building.storeys[s];
     bounds.other_storeys.clear();
     for (const auto& other : building.storeys)
       if (&other != &storey) bounds.other_storeys.push_back(&other);
-    inferMissingRooms(storey, bounds, options, building.warnings);
+    replaced[s] = options.infer_rooms ? storey.rooms.size() : 0;
+    inferred[s] = inferMissingRooms(storey, bounds, options, building.warnings);
+  }
+  const auto dropped = dropRoomsOfLowerStoreys(building.storeys, options.room_inference);
+  building.warnings.insert(building.warnings.end(), dropped.begin(), dropped.end());
+  for (std::size_t s = 0; s < building.storeys.size(); ++s) {
+    auto& storey = building.storeys[s];
+    if (inferred[s]) {
+      const std::string count = std::to_string(storey.rooms.size());
+      building.warnings.push_back("storey '" + storey.name + "': " +
+                                  (options.infer_rooms ? std::to_string(replaced[s]) + " IfcSpace rooms replaced, " + count
+                                                       : "no IfcSpace, " + count) +
+                                  " rooms inferred from the walls");
+    }
     detail::linkRoomsToWalls(storey, raw.space_boundaries, options);
     for (const auto& room : storey.rooms)
       if (room.walls.empty())

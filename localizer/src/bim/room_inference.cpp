@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 namespace bimloc::bim {
@@ -149,7 +150,17 @@ void inferLevel(const Storey& storey, const Level& level, const RoomInferenceCon
     walls.push_back(*wall);
   }
   const double probe = level.floor_z + config.probe_height_m;
-  for (const auto& barrier : bounds.barriers) cutAt(barrier.mesh, probe, 1.5 * config.cell_m, obstacles);
+  for (const auto& barrier : bounds.barriers) {
+    // Another storey's barrier counts where it rises from below through this level's floor
+    // (Jesse.1's façades, filed under level 0, stand through Level 1), not where it starts
+    // above the floor: it is another floor's then (a "top of" level's is under level 0).
+    if (!barrier.storey_id.empty() && barrier.storey_id != storey.id) {
+      float base = std::numeric_limits<float>::infinity();
+      for (const auto& v : barrier.mesh.vertices) base = std::min(base, v.z());
+      if (base > level.floor_z + config.level_tolerance_m) continue;
+    }
+    cutAt(barrier.mesh, probe, 1.5 * config.cell_m, obstacles);
+  }
   const detail::Segmentation seg = detail::segmentFreeSpace(obstacles, config);
   const double cell = seg.raster.cell_m;
   if (seg.coarsened)
@@ -263,6 +274,40 @@ InferredRooms inferRooms(const Storey& storey, const RoomInferenceConfig& config
     inferLevel(storey, level, config, bounds, out);
   }
   return out;
+}
+
+std::vector<std::string> dropRoomsOfLowerStoreys(std::vector<Storey>& storeys, const RoomInferenceConfig& config) {
+  std::vector<std::string> warnings;
+  for (std::size_t a = 0; a < storeys.size(); ++a) {
+    auto& rooms = storeys[a].rooms;
+    for (auto r = rooms.begin(); r != rooms.end();) {
+      if (r->source != "inferred") {
+        ++r;
+        continue;
+      }
+      const double probe = r->floor_z + config.probe_height_m;
+      double covered = 0.0;
+      std::string under;
+      for (std::size_t b = 0; b < a; ++b)
+        for (const auto& q : storeys[b].rooms) {
+          if (q.floor_z >= r->floor_z - config.level_tolerance_m || q.floor_z + q.height_m < probe) continue;
+          const double iou = polygonIoU(r->footprint, q.footprint, 0.05);
+          if (iou <= 0) continue;
+          covered += iou * (r->area_m2 + q.area_m2) / (1.0 + iou);  // the intersection's area
+          if (under.empty()) under = storeys[b].name;
+        }
+      if (covered > config.max_overlap_of_lower * r->area_m2) {
+        warnings.push_back("storey '" + storeys[a].name + "': inferred room " + r->name +
+                           fmt(" (%.1f m2 at (%.2f, %.2f))", r->area_m2, r->centre.x(), r->centre.y()) +
+                           " dropped: it lies in rooms of storey '" + under +
+                           "', whose walls stand through it (not a floor of its own)");
+        r = rooms.erase(r);
+      } else {
+        ++r;
+      }
+    }
+  }
+  return warnings;
 }
 
 }  // namespace bimloc::bim

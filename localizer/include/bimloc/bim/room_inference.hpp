@@ -51,6 +51,7 @@ struct RoomInferenceConfig {
   // A footprint edge is moved onto a wall face parallel to it (within the angle) and this close.
   double snap_distance_m = 0.12;
   double snap_angle_deg = 10.0;
+  double max_overlap_of_lower = 0.5;  // see dropRoomsOfLowerStoreys
 };
 
 struct InferredRooms {
@@ -67,13 +68,15 @@ using WallShapes = std::map<std::string, std::vector<Polygon2>>;
 // body is cut at each level's probe height; what it cuts there bounds rooms.
 struct RoomBarrier {
   std::string id;
-  TriangleMesh mesh;  // world frame
+  TriangleMesh mesh;     // world frame
+  std::string storey_id;  // the storey it is filed under; one of another storey counts where it
+                          // rises through a level's floor (a façade filed under the storey below)
 };
 
 // What bounds a storey's rooms beyond its own walls' boxes (readIfc fills it from the plan).
 struct RoomBounds {
   WallShapes shapes;
-  std::vector<RoomBarrier> barriers;  // curtain walls, of any storey: cut at each level's probe height
+  std::vector<RoomBarrier> barriers;  // curtain walls, cut at each level's probe height
   // The building's other storeys. A wall of theirs that stands in none of their own levels
   // (a wall on a landing, filed under the storey below) bounds this storey's rooms where it
   // stands at a level's probe height and reaches its ceiling (the median top of the level's
@@ -85,5 +88,11 @@ struct RoomBounds {
 // Rooms of one storey from its walls alone: the storey's own rooms are ignored. A storey
 // without walls has no rooms. Deterministic: the same storey gives the same rooms.
 InferredRooms inferRooms(const Storey& storey, const RoomInferenceConfig& config = {}, const RoomBounds& bounds = {});
+
+// An inferred room lying mostly (more than max_overlap_of_lower of its area) within rooms of
+// a lower storey whose walls stand through its probe height is that storey's space seen
+// again, not a floor of its own (Jesse.1's "top of" reference levels hold the façade walls):
+// such rooms are dropped; returns the warnings naming them. Storeys in height order.
+std::vector<std::string> dropRoomsOfLowerStoreys(std::vector<Storey>& storeys, const RoomInferenceConfig& config = {});
 
 }  // namespace bimloc::bim
