@@ -192,7 +192,8 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
   for (const auto& p : raw.elements) {
     const int s = storeyFor(p, new_index, building.storeys);
     if (isCurtainWallPart(p))
-      bounds.barriers.push_back({p.global_id, bodyMesh(p), s >= 0 ? building.storeys[static_cast<std::size_t>(s)].id : ""});
+      bounds.barriers.push_back({p.global_id, p.mesh.empty() && p.extrusion ? detail::prismMesh(*p.extrusion) : p.mesh,
+                                 s >= 0 ? building.storeys[static_cast<std::size_t>(s)].id : ""});
   }
   std::vector<std::size_t> replaced(building.storeys.size(), 0);
   std::vector<bool> inferred(building.storeys.size(), false);
