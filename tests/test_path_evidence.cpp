@@ -81,14 +81,14 @@ TEST(PathEvidence, LookAlikeOfficesStayUndecidedWhileTheRobotTurnsInOne) {
     EXPECT_FALSE(filter.converged()) << "t = " << t;
   }
   EXPECT_GT(weighed, 10);
-  EXPECT_LT(report.path_margin, config.evidence_margin);
+  EXPECT_LT(report.path_margin, config.evidenceMargin());
   // The same path one office to the west explains the scans as well as the truth does.
   const double yaw = 0.6 * 11.9;
   const double truth = filter.pathScore(x, y, yaw);
   const double twin = filter.pathScore(x - (r104->centre.x() - r103->centre.x()), y, yaw);
   EXPECT_NEAR(twin, truth, 1.0);
   // ... and a pose half a metre off does not.
-  EXPECT_LT(filter.pathScore(x + 0.5, y, yaw), truth - config.evidence_margin);
+  EXPECT_LT(filter.pathScore(x + 0.5, y, yaw), truth - config.evidenceMargin());
 }
 
 TEST(SharedPlans, DuplexIsPointSymmetricSoNoStartRoomConverges) {

@@ -4,11 +4,13 @@
 // scenario in the same run. Real-time factors, and the localizer's share of the loop.
 #include "sim/cli/commands.hpp"
 #include "sim/cli/table.hpp"
+#include "sim/runner/room_scenarios.hpp"
 #include "sim/runner/run_scenario.hpp"
 #include "sim/simulation/simulator.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 
 namespace {
@@ -19,19 +21,46 @@ using Clock = std::chrono::steady_clock;
 struct LoopBenchArgs {
   std::vector<std::string> scenarios{"scenarios/site_office/R104_seed1.yaml", "scenarios/site_office/C100_seed1.yaml",
                                      "scenarios/site_office/S100_seed1.yaml"};
+  std::vector<std::string> plans;  // more: a few start rooms of each plan's storey (--plan)
+  std::string storey = "0";
+  int rooms_per_plan = 3;
+  std::string method = "pf";
   int rounds = 2;
   bool json = false;
 };
+
+// Start rooms spread over the plan's storey (every k-th room), as `bimloc run --all-rooms`.
+std::vector<Scenario> planScenarios(const LoopBenchArgs& args) {
+  std::vector<Scenario> out;
+  for (const auto& plan : args.plans) {
+    const World world = World::load(plan);
+    RoomScenarioOptions o;
+    o.plan = plan, o.storey = args.storey, o.method = args.method;
+    const auto all = roomScenarios(world, o);
+    const std::size_t step = std::max<std::size_t>(1, all.size() / static_cast<std::size_t>(std::max(1, args.rooms_per_plan)));
+    for (std::size_t i = 0, taken = 0; i < all.size() && static_cast<int>(taken) < args.rooms_per_plan; i += step, ++taken) {
+      out.push_back(all[i]);
+      out.back().name = std::filesystem::path(plan).stem().string() + " " + out.back().name;
+    }
+  }
+  return out;
+}
 
 double seconds(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 void run(const LoopBenchArgs& args) {
   nlohmann::json rows = nlohmann::json::array();
-  bimloc::cli::Table table({"scenario", "simulated [s]", "simulator alone [x RT]", "whole loop [x RT]", "localizer share"});
+  bimloc::cli::Table table({"scenario", "wall faces", "simulated [s]", "simulator alone [x RT]", "whole loop [x RT]", "localizer share"});
   double total_sim = 0, total_loop = 0, total_alone = 0;
-  for (const auto& file : args.scenarios) {
-    const Scenario scenario = loadScenario(file);
+  std::vector<Scenario> scenarios;
+  for (const auto& file : args.scenarios) scenarios.push_back(loadScenario(file));
+  for (auto& s : planScenarios(args)) scenarios.push_back(std::move(s));
+  for (const auto& scenario : scenarios) {
+    const std::string& file = scenario.name;
     const World world = World::load(scenario.world);
+    const std::size_t storey = scenarioStorey(scenario, world);
+    std::size_t faces = 0;
+    for (const auto& w : world.building().storeys[storey].walls) faces += w.faces.size();
     // Best of the rounds, the two measurements interleaved: the machine's noise hits both alike.
     double alone = 1e300, loop = 1e300;
     ScenarioResult result;
@@ -43,12 +72,18 @@ void run(const LoopBenchArgs& args) {
       const auto odometry = sim.odometry();
       alone = std::min(alone, seconds(t0));
       t0 = Clock::now();
-      result = runScenario(scenario, world);
+      try {
+        checkScenarioAgainstWorld(scenario, world);
+        result = runScenario(scenario, world);
+      } catch (const ScenarioError&) {
+        result = runScenario(stayInRoom(scenario), world);  // doors closed in the mesh, as `run` does
+      }
       loop = std::min(loop, seconds(t0));
     }
     const double sim_s = result.sim_seconds;
     total_sim += sim_s, total_loop += loop, total_alone += alone;
     rows.push_back({{"scenario", file},
+                    {"wall_faces", faces},
                     {"sim_seconds", sim_s},
                     {"simulator_wall_seconds", alone},
                     {"loop_wall_seconds", loop},
@@ -57,7 +92,7 @@ void run(const LoopBenchArgs& args) {
                     {"localizer_share", 1.0 - alone / loop},
                     {"converged", result.converged}});
     using bimloc::cli::fixed;
-    table.add({scenario.name, fixed(sim_s, 1), fixed(sim_s / alone, 1), fixed(sim_s / loop, 1),
+    table.add({scenario.name, std::to_string(faces), fixed(sim_s, 1), fixed(sim_s / alone, 1), fixed(sim_s / loop, 1),
                fixed(100.0 * (1.0 - alone / loop), 0) + " %"});
   }
   const nlohmann::json summary = {{"sim_seconds", total_sim},
@@ -69,7 +104,7 @@ void run(const LoopBenchArgs& args) {
     return;
   }
   using bimloc::cli::fixed;
-  table.add({"all", fixed(total_sim, 1), fixed(total_sim / total_alone, 1), fixed(total_sim / total_loop, 1),
+  table.add({"all", "", fixed(total_sim, 1), fixed(total_sim / total_alone, 1), fixed(total_sim / total_loop, 1),
              fixed(100.0 * (1.0 - total_alone / total_loop), 0) + " %"});
   std::cout << "one core, best of " << args.rounds << " rounds\n\n";
   table.print(std::cout);
@@ -84,6 +119,12 @@ void addBenchLoopCommand(CLI::App& bench) {
       "Real-time factor of the whole loop on one core (simulator, plane extraction, particle filter, path "
       "evidence: `bimloc run --jobs 1`), against the simulator alone on the same scenarios.");
   cmd->add_option("scenarios", args->scenarios, "scenario files")->capture_default_str();
+  cmd->add_option("--plan", args->plans, "also start rooms of this plan's storey (repeatable): cost against building size");
+  cmd->add_option("--storey", args->storey, "storey of the --plan plans")->capture_default_str();
+  cmd->add_option("--rooms-per-plan", args->rooms_per_plan, "start rooms per --plan, spread over the storey")
+      ->check(CLI::Range(1, 1000))->capture_default_str();
+  cmd->add_option("--method", args->method, "method of the --plan runs: pf or pf-no-rooms")
+      ->check(CLI::IsMember({"pf", "pf-no-rooms"}))->capture_default_str();
   cmd->add_option("--rounds", args->rounds, "measurements of each, the best kept")->capture_default_str()->check(CLI::Range(1, 100));
   cmd->add_flag("--json", args->json, "print one JSON object");
   cmd->callback([args] { run(*args); });

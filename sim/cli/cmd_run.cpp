@@ -1,18 +1,11 @@
 // bimloc run SCENARIO... | --plan PLAN --all-rooms  [--json] [--out DIR] [--jobs N]
 #include "sim/cli/commands.hpp"
-#include "sim/cli/progress.hpp"
+#include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
-#include "sim/cli/snapshots.hpp"
-#include "sim/cli/trace_writer.hpp"
 #include "sim/runner/room_scenarios.hpp"
-#include "sim/runner/run_scenario.hpp"
 
-#include <atomic>
 #include <chrono>
 #include <iostream>
-#include <map>
-#include <mutex>
-#include <thread>
 
 namespace {
 
@@ -30,84 +23,35 @@ struct RunArgs {
   std::string out;
   std::string trace;
   int jobs = 1;
+  std::vector<std::string> rooms, prior_rooms;
+  std::string prior_pose;
 };
-
-// Worlds are loaded once and shared (read-only) by the scenarios that use them.
-class WorldCache {
- public:
-  const World& get(const std::string& path) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    auto it = worlds_.find(path);
-    if (it == worlds_.end()) it = worlds_.emplace(path, std::make_unique<World>(World::load(path))).first;
-    return *it->second;
-  }
-
- private:
-  std::mutex mutex_;
-  std::map<std::string, std::unique_ptr<World>> worlds_;
-};
-
-ScenarioResult runOne(const Scenario& s, WorldCache& worlds, const RunArgs& args, bool room_mode) {
-  const World& world = worlds.get(s.world);
-  const SnapshotHook hook = args.out.empty() ? SnapshotHook{} : bimloc::cli::snapshotWriter(world, s, args.out);
-  std::vector<TraceRow> rows;
-  std::vector<TraceRow>* trace = args.trace.empty() ? nullptr : &rows;
-  const auto traced = [&](ScenarioResult r) {
-    if (trace) bimloc::cli::writeTrace(args.trace, s.name, rows);
-    return r;
-  };
-  try {
-    checkScenarioAgainstWorld(s, world);
-    return traced(runScenario(s, world, hook, trace));
-  } catch (const ScenarioError& e) {
-    // A plan whose doors are closed in the mesh has no path out of the room: walk in it.
-    if (room_mode) {
-      rows.clear();
-      ScenarioResult r = traced(runScenario(stayInRoom(s), world, hook, trace));
-      r.warnings.insert(r.warnings.begin(), std::string("no path out of the room, walked inside it: ") + e.what());
-      return r;
-    }
-    throw;
-  }
-}
 
 void run(const RunArgs& args) {
   std::vector<Scenario> scenarios;
-  WorldCache worlds;
+  bimloc::cli::WorldCache worlds;
   for (const auto& path : args.scenarios) scenarios.push_back(loadScenario(path));
   if (args.all_rooms) {
     if (args.plan.empty()) throw std::runtime_error("--all-rooms needs --plan PLAN");
     RoomScenarioOptions o;
     o.plan = args.plan, o.storey = args.storey, o.seeds = args.seeds, o.method = args.method, o.duration_s = args.duration_s;
-    const auto generated = roomScenarios(worlds.get(args.plan), o);
+    auto generated = roomScenarios(worlds.get(args.plan), o);
+    bimloc::cli::keepStartRooms(generated, args.rooms);
     scenarios.insert(scenarios.end(), generated.begin(), generated.end());
   }
   if (scenarios.empty()) throw std::runtime_error("nothing to run: give scenario files, or --plan PLAN --all-rooms");
+  bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
 
   // Scenarios in parallel, results in input order: the same output whatever --jobs.
   const auto start = std::chrono::steady_clock::now();
-  std::vector<ScenarioResult> results(scenarios.size());
-  std::vector<std::string> errors(scenarios.size());
-  std::atomic<std::size_t> next{0}, done{0};
-  bimloc::cli::Progress progress("running");
-  std::mutex progress_mutex;
-  const auto work = [&] {
-    for (std::size_t i = next++; i < scenarios.size(); i = next++) {
-      try {
-        results[i] = runOne(scenarios[i], worlds, args, args.all_rooms && i >= args.scenarios.size());
-      } catch (const std::exception& e) {
-        errors[i] = e.what();
-        results[i].name = scenarios[i].name;
-        results[i].failures.push_back(e.what());
-      }
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      progress.update(++done, scenarios.size());
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int j = 1; j < std::min<int>(args.jobs, static_cast<int>(scenarios.size())); ++j) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
+  std::vector<bool> generated(scenarios.size());
+  for (std::size_t i = args.scenarios.size(); i < scenarios.size(); ++i) generated[i] = args.all_rooms;
+  bimloc::cli::RunPoolOptions pool;
+  pool.jobs = args.jobs, pool.snapshots = args.out, pool.trace = args.trace;
+  const auto runs = bimloc::cli::runPool(scenarios, generated, worlds, pool);
+  std::vector<ScenarioResult> results;
+  std::vector<std::string> errors;
+  for (const auto& run : runs) results.push_back(run.result), errors.push_back(run.error);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const auto report = bimloc::cli::runReport(results, wall);
@@ -146,6 +90,12 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--trace", args->trace,
                   "folder for one CSV per scenario: a row per weighing (truth, estimate, the path evidence's best "
                   "place and margin)");
+  cmd->add_option("--rooms", args->rooms, "with --all-rooms: only these start rooms (comma-separated)")->delimiter(',');
+  cmd->add_option("--prior-room", args->prior_rooms,
+                  "what you know of the start: it was in one of these rooms (comma-separated); places elsewhere are not "
+                  "considered")
+      ->delimiter(',');
+  cmd->add_option("--prior-pose", args->prior_pose, "what you know of the start: x,y,yaw_deg,sigma_m (map frame)");
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->callback([args] { run(*args); });
 }

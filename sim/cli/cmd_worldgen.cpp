@@ -1,10 +1,14 @@
 // bimloc worldgen NAME [--out PATH] | --all [--out DIR] | --list
+//                 | --random SEED [--style S] [--rooms N] [--random-count K] [--out PATH]
 #include "sim/cli/commands.hpp"
 #include "sim/world/atomic_file.hpp"
 #include "sim/worldgen/ifc4_writer.hpp"
+#include "sim/worldgen/random_world.hpp"
 #include "sim/worldgen/worlds.hpp"
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <iostream>
 #include <stdexcept>
 
@@ -18,6 +22,16 @@ struct WorldgenArgs {
   std::string out = ".";
   bool all = false;
   bool list = false;
+  std::optional<std::uint64_t> random_seed;
+  std::string style;  // empty: office, or cycling through the styles with --random-count
+  int rooms = 0;
+  int random_count = 0;
+};
+
+struct Generated {
+  std::string path;
+  WorldSpec spec;
+  std::string note;  // appended to the summary line
 };
 
 std::string joinedNames() {
@@ -38,7 +52,56 @@ std::string summary(const WorldSpec& spec) {
          (spec.space_boundaries ? ", space boundaries" : ", no space boundaries");
 }
 
+// Every file is generated before the first is written: a bad spec writes nothing.
+void writeAll(const std::vector<Generated>& worlds, const fs::path& directory) {
+  std::vector<std::string> texts;
+  for (const Generated& g : worlds) texts.push_back(writeIfc4(g.spec));
+  if (!directory.empty()) {
+    std::error_code ec;
+    fs::create_directories(directory, ec);
+    if (ec) throw std::runtime_error(directory.string() + ": cannot create directory: " + ec.message());
+  }
+  for (std::size_t i = 0; i < worlds.size(); ++i) {
+    bimloc::sim::writeFileAtomically(worlds[i].path, texts[i]);
+    std::cout << "wrote " << worlds[i].path << " (" << texts[i].size() << " bytes): " << summary(worlds[i].spec)
+              << worlds[i].note << "\n";
+  }
+}
+
+// --random SEED [--random-count K]: seeds SEED..SEED+K-1, with --style or cycling through the styles.
+void runRandom(const WorldgenArgs& args) {
+  if (args.all || !args.name.empty() || args.list) throw std::invalid_argument("--random takes no NAME, --all or --list");
+  if (args.out.empty()) throw std::invalid_argument("--out is empty");
+  const int count = std::max(1, args.random_count);
+  const bool into_directory = args.random_count > 0 || fs::is_directory(args.out) || args.out.back() == '/';
+  if (args.random_count > 0 && fs::exists(args.out) && !fs::is_directory(args.out)) {
+    throw std::invalid_argument(args.out + ": not a directory");
+  }
+  const std::uint64_t first = *args.random_seed;
+  const std::size_t first_style = args.style.empty() ? 0 : static_cast<std::size_t>(randomStyle(args.style));
+  std::vector<Generated> worlds;
+  for (int k = 0; k < count; ++k) {
+    RandomWorldOptions options;
+    options.style = static_cast<RandomStyle>(args.style.empty() ? static_cast<std::size_t>(k) % randomStyleNames().size()
+                                                                : first_style);
+    options.rooms = args.rooms;
+    RandomWorldInfo info;
+    WorldSpec spec = randomWorld(first + static_cast<std::uint64_t>(k), options, &info);
+    const std::string path = into_directory ? (fs::path(args.out) / (spec.name + ".ifc")).string() : args.out;
+    std::string note;
+    for (const std::string& f : info.features) note += "; " + f;
+    note += "; closest symmetry: " + info.closest_symmetry + " (" + std::to_string(info.symmetry_mismatches) +
+            " walls/doorways without a twin)";
+    worlds.push_back({path, std::move(spec), note});
+  }
+  writeAll(worlds, into_directory ? fs::path(args.out) : fs::path(args.out).parent_path());
+}
+
 void run(const WorldgenArgs& args) {
+  if (args.random_seed) return runRandom(args);
+  if (!args.style.empty() || args.rooms > 0 || args.random_count > 0) {
+    throw std::invalid_argument("--style, --rooms and --random-count go with --random SEED");
+  }
   if (args.list) {
     for (const std::string& n : worldNames()) {
       const WorldSpec spec = makeWorld(n);
@@ -55,24 +118,11 @@ void run(const WorldgenArgs& args) {
   if (args.all && fs::exists(args.out) && !fs::is_directory(args.out)) {
     throw std::invalid_argument(args.out + ": not a directory");
   }
-  // Every file is generated before the first is written: a bad spec writes nothing.
-  std::vector<std::pair<std::string, WorldSpec>> worlds;
+  std::vector<Generated> worlds;
   for (const std::string& n : args.all ? worldNames() : std::vector<std::string>{args.name}) {
-    worlds.emplace_back(into_directory ? (fs::path(args.out) / (n + ".ifc")).string() : args.out, makeWorld(n));
+    worlds.push_back({into_directory ? (fs::path(args.out) / (n + ".ifc")).string() : args.out, makeWorld(n), ""});
   }
-  std::vector<std::string> texts;
-  for (const auto& [path, spec] : worlds) texts.push_back(writeIfc4(spec));
-  const fs::path directory = into_directory ? fs::path(args.out) : fs::path(args.out).parent_path();
-  if (!directory.empty()) {
-    std::error_code ec;
-    fs::create_directories(directory, ec);
-    if (ec) throw std::runtime_error(directory.string() + ": cannot create directory: " + ec.message());
-  }
-  for (std::size_t i = 0; i < worlds.size(); ++i) {
-    bimloc::sim::writeFileAtomically(worlds[i].first, texts[i]);
-    std::cout << "wrote " << worlds[i].first << " (" << texts[i].size() << " bytes): " << summary(worlds[i].second)
-              << "\n";
-  }
+  writeAll(worlds, into_directory ? fs::path(args.out) : fs::path(args.out).parent_path());
 }
 
 }  // namespace
@@ -91,12 +141,33 @@ void addWorldgenCommand(CLI::App& app) {
       "Worlds: " +
           joinedNames() + "; the default world is " + kDefaultWorld +
           ".\n"
-          "The committed plans in worlds/ are regenerated with: bimloc worldgen --all --out worlds");
+          "The committed plans in worlds/ are regenerated with: bimloc worldgen --all --out worlds\n"
+          "Random floors, for sweeps of the localizer (sim/worldgen/random_world.hpp):\n"
+          "  bimloc worldgen --random SEED [--style S] [--rooms N] [--out FILE|DIR]\n"
+          "      one floor, DIR/random_STYLE_SEED.ifc in a directory (default: ./)\n"
+          "  bimloc worldgen --random SEED --random-count K [--style S] [--rooms N] --out DIR\n"
+          "      K floors, seeds SEED..SEED+K-1, cycling office, residential, school, hall unless --style\n"
+          "  Styles: office (rows of identical offices on a straight, L or T corridor), residential\n"
+          "  (identical apartments, every other mirrored), school (classrooms, assembly hall), hall (open\n"
+          "  hall with free-standing walls, rooms opening into it). About half the floors are drawn\n"
+          "  symmetric (rows turned 180 deg or mirrored, mirrored wings) and then changed in one small\n"
+          "  place (a door moved or missing, a wall moved, a short free-standing wall): the case where a\n"
+          "  filter converges in the twin room. Some rooms have no door (shafts, stores). Each line\n"
+          "  printed names the floor's rooms, walls, doors and hard features. Same SEED, same bytes.");
   cmd->add_option("name", args->name, "world to generate: " + joinedNames());
   cmd->add_flag("--all", args->all, "generate every world, as NAME.ifc in the --out directory");
   cmd->add_option("--out", args->out,
                   "output: with NAME, the .ifc file to write, or a directory (existing, or ending in '/') to\n"
-                  "write NAME.ifc into; with --all, the directory (created if missing). Default: '.'");
+                  "write NAME.ifc into; with --all or --random-count, the directory (created if missing).\n"
+                  "Default: '.'");
   cmd->add_flag("--list", args->list, "list the worlds with a one-line description and exit");
+  cmd->add_option("--random", args->random_seed, "generate a random floor from this seed (see above)");
+  cmd->add_option("--style", args->style, "with --random: office, residential, school or hall (default: office;\n"
+                                          "with --random-count, cycling through all four)")
+      ->check(CLI::IsMember(randomStyleNames()));
+  cmd->add_option("--rooms", args->rooms, "with --random: about this many rooms (default: the style's usual size)")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--random-count", args->random_count, "with --random: this many floors, seeds SEED, SEED+1, ...")
+      ->check(CLI::Range(1, 100000));
   cmd->callback([args] { run(*args); });
 }

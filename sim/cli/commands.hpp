@@ -24,3 +24,4 @@ void addWorldgenCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
 void addLocalizeCommand(CLI::App& app);
+void addSweepCommand(CLI::App& app);

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   addSimulateCommand(app);
   addRunCommand(app);
   addLocalizeCommand(app);
+  addSweepCommand(app);
   addBenchCommand(app);
   try {
     app.parse(argc, argv);

@@ -12,6 +12,13 @@ nlohmann::json orNull(const std::optional<T>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
 }
 
+nlohmann::json placesJson(const std::vector<sim::ScenarioResult::Place>& places) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& p : places)
+    out.push_back({{"x", p.x}, {"y", p.y}, {"yaw_deg", p.yaw_deg}, {"room", p.room}, {"relative_weight", p.relative_weight}});
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double wall_seconds) {
@@ -25,7 +32,8 @@ nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double
                          {"convergence_time_s", orNull(r.convergence_time_s)}, {"found_room", orNull(r.found_room)},
                          {"true_room", r.true_room}, {"position_error_m", r.position_error_m},
                          {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", orNull(r.ate_m)},
-                         {"false_convergence", r.false_convergence}, {"passed", r.passed}, {"failures", r.failures},
+                         {"false_convergence", r.false_convergence}, {"convergence_margin", orNull(r.convergence_margin)},
+                         {"hypotheses", placesJson(r.hypotheses)}, {"passed", r.passed}, {"failures", r.failures},
                          {"warnings", r.warnings}});
     localized += r.converged && !r.false_convergence;
     false_convergences += r.false_convergence;

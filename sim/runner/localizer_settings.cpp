@@ -32,9 +32,28 @@ LocalizerSettings localizerSettings(const Scenario& s) {
       out.filter.converged_updates = static_cast<int>(number(1, 1000));
     } else if (key == "voxel_size_m") {
       out.planes.voxel_size_m = number(0.01, 1);
+    } else if (key == "prior_rooms") {
+      // The start was in one of these rooms (what a user knows: "we start in flat B").
+      const auto list = value.is_string() ? nlohmann::json::array({value}) : value;
+      if (!list.is_array() || list.empty()) throw ScenarioError(s.file + ": localizer.prior_rooms: expected a room name or a list of them");
+      for (const auto& r : list) {
+        if (!r.is_string()) throw ScenarioError(s.file + ": localizer.prior_rooms: expected room names");
+        out.filter.prior_rooms.push_back(r.get<std::string>());
+      }
+    } else if (key == "prior_pose") {
+      // [x, y, yaw_deg] of the start in the map frame; prior_sigma_m and prior_sigma_yaw_deg widen it.
+      if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() || !value[2].is_number())
+        throw ScenarioError(s.file + ": localizer.prior_pose: expected [x, y, yaw_deg]");
+      out.filter.prior_pose = Eigen::Vector3d(value[0].get<double>(), value[1].get<double>(), value[2].get<double>() * M_PI / 180.0);
+      if (!out.filter.prior_pose->allFinite()) throw ScenarioError(s.file + ": localizer.prior_pose: not finite");
+    } else if (key == "prior_sigma_m") {
+      out.filter.prior_sigma_m = number(1e-3, 1e4);
+    } else if (key == "prior_sigma_yaw_deg") {
+      out.filter.prior_sigma_yaw_deg = number(0.01, 180);
     } else {
       throw ScenarioError(s.file + ": localizer: unknown key '" + key +
-                          "' (keys: method, particles, sigma_d_m, sigma_azimuth_deg, converged_updates, voxel_size_m)");
+                          "' (keys: method, particles, sigma_d_m, sigma_azimuth_deg, converged_updates, voxel_size_m, "
+                          "prior_rooms, prior_pose, prior_sigma_m, prior_sigma_yaw_deg)");
     }
   }
   return out;

@@ -1,6 +1,7 @@
 #include "sim/runner/run_scenario.hpp"
 
 #include "sim/runner/evaluation.hpp"
+#include "sim/base/room_lookup.hpp"
 #include "sim/simulation/simulator.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
@@ -20,6 +21,21 @@ std::vector<Eigen::Vector3f> scanPoints(const LidarScan& scan) {
   points.reserve(scan.points.size());
   for (const auto& p : scan.points) points.emplace_back(p.x, p.y, p.z);
   return points;
+}
+
+// The path evidence's distinct places, with their rooms and relative weights.
+std::vector<ScenarioResult::Place> placesOf(const pf::UpdateReport& report, const bim::Storey& storey) {
+  std::vector<std::pair<Eigen::Vector3d, double>> all{{*report.path_best, 0.0}};
+  all.insert(all.end(), report.path_rivals.begin(), report.path_rivals.end());
+  double sum = 0;
+  for (const auto& [pose, margin] : all) sum += std::exp(-std::min(margin, 700.0));
+  std::vector<ScenarioResult::Place> places;
+  for (const auto& [pose, margin] : all) {
+    const bim::Room* room = roomAt(storey, pose.head<2>());
+    places.push_back({pose.x(), pose.y(), pose.z() * 180.0 / M_PI, std::exp(-std::min(margin, 700.0)) / sum,
+                      room ? room->name : std::string("(outside)")});
+  }
+  return places;
 }
 
 void judge(const Scenario& s, ScenarioResult& r) {
@@ -61,6 +77,7 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
   if (snapshot) snapshot({"initialization", 0.0, &filter, sim.trajectory().T_map_base(0.0)});
 
   RunScore score(storey);
+  std::optional<pf::UpdateReport> last_verdict;  // the last update the path evidence spoke at
   int updates = 0;
   const double half_turn = 0.5 * sim.lidar().turnPeriod_s();
   for (std::size_t i = 0; i < sim.turnCount(); ++i) {
@@ -77,8 +94,13 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     const Eigen::Isometry3d truth = sim.trajectory().T_map_base(t);
     if (trace && report.weighed) trace->push_back({t, planarPose(truth), planarPose(filter.T_map_base()), report});
     if (snapshot && updates == kClusteringUpdate && !filter.converged()) snapshot({"clustering", t, &filter, truth});
-    if (score.add(t, filter, truth) && snapshot) snapshot({"convergence", t, &filter, truth});
+    if (report.path_best) last_verdict = report;
+    if (score.add(t, filter, truth)) {
+      r.convergence_margin = report.path_margin;
+      if (snapshot) snapshot({"convergence", t, &filter, truth});
+    }
   }
+  if (!filter.converged() && last_verdict) r.hypotheses = placesOf(*last_verdict, storey);
   // Not converged: the last picture shows where the particles were left, and why.
   if (snapshot && !filter.converged() && sim.turnCount() > 0) {
     const double t_end = sim.lidar().turnPeriod_s() * (static_cast<double>(sim.turnCount()) - 0.5);

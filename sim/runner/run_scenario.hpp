@@ -36,6 +36,15 @@ struct ScenarioResult {
   double yaw_error_deg = 0;
   std::optional<double> ate_m;            // RMSE of position after convergence, no alignment
   bool false_convergence = false;         // converged while > 0.5 m or > 10 deg off, at any time after
+  // The path evidence's margin at the update that declared convergence (per distinct face).
+  std::optional<double> convergence_margin;
+  // Not converged: the distinct places the path still fits (best first), each with the room
+  // it is in and its weight relative to the others (exp of minus the margin, normalised).
+  struct Place {
+    double x = 0, y = 0, yaw_deg = 0, relative_weight = 0;
+    std::string room;
+  };
+  std::vector<Place> hypotheses;
   bool passed = false;
   std::vector<std::string> failures;      // why it did not pass
   std::vector<std::string> warnings;

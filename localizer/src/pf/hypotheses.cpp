@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 namespace bimloc::pf::detail {
 namespace {
@@ -9,34 +11,80 @@ namespace {
 constexpr double kAngleTolerance = 5.0 * M_PI / 180.0;
 constexpr double kMinPairAngle = 30.0 * M_PI / 180.0;  // nearly parallel planes fix no position
 
-// Hypotheses from one landmark set, kept when inside `room` (or any room when room < 0).
-void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
-                   const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
+// The pose at which observation i lies on landmark a and observation j on landmark b (the
+// heading from a's normal, the position from the two planes' offsets), scored; kept when it
+// is inside `room` (or any room when room < 0) and explains enough of the scan.
+void tryPair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a, const Landmark& b,
+             double z, int room, const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
   // Three associations make a pose worth scoring; clutter (furniture, walls seen through doors)
   // can outnumber a room's own walls, so the bar does not grow with the number of planes.
-  const int min_associated = 3;
+  constexpr int kMinAssociated = 3;
+  const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
+  if (std::abs(wrapAngle(b.azimuth - a.azimuth - turn)) > kAngleTolerance) return;
+  const double yaw = wrapAngle(a.azimuth - obs[i].azimuth_base);
+  // With the heading fixed, each plane is one line for (x, y): n·(x, y) = d_off - d - n_z z.
+  Eigen::Matrix2d A;
+  A << a.normal.x(), a.normal.y(), b.normal.x(), b.normal.y();
+  if (std::abs(A.determinant()) < 0.3) return;
+  const Eigen::Vector2d rhs(obs[i].d_offset - a.d - a.normal.z() * z, obs[j].d_offset - b.d - b.normal.z() * z);
+  const Eigen::Vector2d xy = A.inverse() * rhs;
+  Particle p;
+  p.x = xy.x(), p.y = xy.y(), p.yaw = yaw, p.room = rooms.roomAt(xy.x(), xy.y());
+  if (p.room < 0 || (room >= 0 && p.room != room)) return;
+  const MatchResult m = matchObservations(p, z, obs, rooms, c);
+  if (m.associated >= kMinAssociated) out.push_back({p.x, p.y, p.yaw, p.room, m.log_likelihood, m.associated});
+}
+
+bool pairable(const std::vector<Observation>& obs, std::size_t i, std::size_t j) {
+  if (i == j) return false;
+  const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
+  return std::abs(turn) >= kMinPairAngle && std::abs(turn) <= M_PI - kMinPairAngle;
+}
+
+// Hypotheses from one room's landmarks: every pair of observations against every pair.
+void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
+                   const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
-      if (i == j) continue;
-      const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
-      if (std::abs(turn) < kMinPairAngle || std::abs(turn) > M_PI - kMinPairAngle) continue;
+      if (!pairable(obs, i, j)) continue;
       for (std::size_t a = 0; a < marks.size(); ++a)
-        for (std::size_t b = 0; b < marks.size(); ++b) {
-          if (a == b || std::abs(wrapAngle(marks[b].azimuth - marks[a].azimuth - turn)) > kAngleTolerance) continue;
-          const double yaw = wrapAngle(marks[a].azimuth - obs[i].azimuth_base);
-          // With the heading fixed, each plane is one line for (x, y): n·(x, y) = d_off - d - n_z z.
-          Eigen::Matrix2d A;
-          A << marks[a].normal.x(), marks[a].normal.y(), marks[b].normal.x(), marks[b].normal.y();
-          const Eigen::Vector2d rhs(obs[i].d_offset - marks[a].d - marks[a].normal.z() * z,
-                                    obs[j].d_offset - marks[b].d - marks[b].normal.z() * z);
-          if (std::abs(A.determinant()) < 0.3) continue;
-          const Eigen::Vector2d xy = A.inverse() * rhs;
-          Particle p;
-          p.x = xy.x(), p.y = xy.y(), p.yaw = yaw, p.room = rooms.roomAt(xy.x(), xy.y());
-          if (p.room < 0 || (room >= 0 && p.room != room)) continue;
-          const MatchResult m = matchObservations(p, z, obs, rooms, c);
-          if (m.associated >= min_associated) out.push_back({p.x, p.y, p.yaw, p.room, m.log_likelihood, m.associated});
-        }
+        for (std::size_t b = 0; b < marks.size(); ++b)
+          if (a != b) tryPair(obs, i, j, marks[a], marks[b], z, room, rooms, c, out);
+    }
+}
+
+// Hypotheses over every face of the storey, through the face index: with observation i along
+// face a (which fixes the heading), observation j's points lie where they are relative to i's,
+// so face b can only be one that passes near there. Pairs of faces the robot could not see
+// together are never tried: the cost is the faces times the faces near each, not its square.
+void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& index, const RoomIndex& rooms,
+               const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
+  const auto& faces = index.faces();
+  const double angle = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
+  std::vector<double> reach(obs.size());
+  for (std::size_t k = 0; k < obs.size(); ++k)
+    reach[k] = matchRadius(obs[k].range_m, c.sigma_d_m, angle, c.gate_mahalanobis2, c.segment_margin_m);
+  std::vector<std::size_t> near;
+  for (std::size_t i = 0; i < obs.size(); ++i)
+    for (std::size_t j = 0; j < obs.size(); ++j) {
+      if (!pairable(obs, i, j)) continue;
+      for (std::size_t a = 0; a < faces.size(); ++a) {
+        const Landmark& fa = faces[a];
+        const double yaw = wrapAngle(fa.azimuth - obs[i].azimuth_base);
+        const double cy = std::cos(yaw), sy = std::sin(yaw);
+        const Eigen::Vector2d step = obs[j].centroid_base - obs[i].centroid_base;
+        const Eigen::Vector2d centre = fa.start + 0.5 * fa.length_m * fa.direction +
+                                       Eigen::Vector2d(cy * step.x() - sy * step.y(), sy * step.x() + cy * step.y());
+        near.clear();  // collected first: scoring queries the index too
+        const double radius = 0.5 * fa.length_m + reach[i] + reach[j];
+        if (std::isfinite(radius))
+          index.forEachNear(centre, radius, [&](const Landmark& fb) { near.push_back(static_cast<std::size_t>(&fb - faces.data())); });
+        else
+          for (std::size_t b = 0; b < faces.size(); ++b) near.push_back(b);
+        std::sort(near.begin(), near.end());  // the same order whatever the cells' order
+        for (const std::size_t b : near)
+          if (b != a) tryPair(obs, i, j, fa, faces[b], z, -1, rooms, c, out);
+      }
     }
 }
 
@@ -51,18 +99,38 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observati
       fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, config, all);
   } else {
     // The ablation: every room holds every face; one pass over them is enough.
-    fromLandmarks(observations, z_base, rooms.landmarks(0), -1, rooms, config, all);
+    if (const FaceIndex* index = rooms.faceIndex())
+      fromIndex(observations, z_base, *index, rooms, config, all);
+    else
+      fromLandmarks(observations, z_base, rooms.landmarks(0), -1, rooms, config, all);
   }
   std::sort(all.begin(), all.end(), [](const Hypothesis& a, const Hypothesis& b) {
     return a.log_likelihood != b.log_likelihood ? a.log_likelihood > b.log_likelihood
                                                 : std::tie(a.x, a.y, a.yaw) < std::tie(b.x, b.y, b.yaw);
   });
-  std::vector<Hypothesis> kept;  // best first, without near-duplicates
+  // Best first, without near-duplicates (within 0.2 m and the angle tolerance of a better
+  // one): a grid of 0.2 m cells holds the kept ones, so a look-up visits the 3 x 3 cells around.
+  std::vector<Hypothesis> kept;
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> cells;
+  const auto cellKey = [](std::int64_t ix, std::int64_t iy) { return ix * 73856093 ^ iy * 19349663; };
   for (const auto& h : all) {
+    const auto ix = static_cast<std::int64_t>(std::floor(h.x / 0.2)), iy = static_cast<std::int64_t>(std::floor(h.y / 0.2));
     bool duplicate = false;
-    for (const auto& k : kept)
-      duplicate |= std::hypot(h.x - k.x, h.y - k.y) < 0.2 && std::abs(wrapAngle(h.yaw - k.yaw)) < kAngleTolerance;
-    if (!duplicate) kept.push_back(h);
+    for (std::int64_t dx = -1; dx <= 1 && !duplicate; ++dx)
+      for (std::int64_t dy = -1; dy <= 1 && !duplicate; ++dy) {
+        const auto it = cells.find(cellKey(ix + dx, iy + dy));
+        if (it == cells.end()) continue;
+        for (const std::size_t k : it->second) {
+          const Hypothesis& o = kept[k];
+          if ((h.x - o.x) * (h.x - o.x) + (h.y - o.y) * (h.y - o.y) < 0.04 && std::abs(wrapAngle(h.yaw - o.yaw)) < kAngleTolerance) {
+            duplicate = true;
+            break;
+          }
+        }
+      }
+    if (duplicate) continue;
+    cells[cellKey(ix, iy)].push_back(kept.size());
+    kept.push_back(h);
     if (kept.size() >= max_count) break;
   }
   return kept;

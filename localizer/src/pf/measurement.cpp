@@ -1,24 +1,42 @@
 #include "measurement.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace bimloc::pf::detail {
+namespace {
+
+// Wider than this (the annealed sigmas at the start), a query would visit most of a floor's
+// cells: brute force over the faces is cheaper then.
+constexpr double kIndexedRadiusM = 12.0;
+
+}  // namespace
 
 MatchResult matchObservations(const Particle& p, double z_base, const std::vector<Observation>& observations,
-                              const RoomIndex& rooms, const ParticleFilterConfig& c) {
+                              const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<ObservationMatch>* per_observation,
+                              bool out_of_rooms_penalised) {
   MatchResult result;
   const double gate = c.gate_mahalanobis2;
-  if (p.room < 0) {
-    // Outside every room: the lowest weight there is, below any particle whose observations
-    // are all clutter.
+  if (per_observation) per_observation->clear();
+  const FaceIndex* index = rooms.faceIndex();
+  const bool outside = p.room < 0;
+  if (outside && !index && !rooms.seesEveryFace()) {
+    // Outside every room, and no faces to match it with: the lowest weight there is.
     result.log_likelihood = -0.5 * gate * (static_cast<double>(observations.size()) + 1.0) - 10.0;
     return result;
   }
-  const auto& landmarks = rooms.landmarks(p.room);
+  // Outside every room (a corridor or hall the plan has no space for, a doorway, the street),
+  // there is no room to restrict the association: every face near the observations counts,
+  // and the pose pays one clutter plane for standing where the plan has no room. A room is
+  // a prior on where the robot is, not a measurement: penalised, not ruled out.
+  if (outside && out_of_rooms_penalised) result.log_likelihood -= c.outside_rooms_penalty;
+  const bool via_index = index && (rooms.seesEveryFace() || outside);
+  const std::vector<Landmark>& landmarks = via_index ? index->faces() : rooms.landmarks(outside ? 0 : p.room);
   const double cy = std::cos(p.yaw), sy = std::sin(p.yaw);
   const double inv_az = 1.0 / (c.sigma_azimuth_deg * M_PI / 180.0), inv_el = 1.0 / (c.sigma_elevation_deg * M_PI / 180.0);
   const double inv_d = 1.0 / c.sigma_d_m;
   const double margin_m = c.segment_margin_m;
+  const double max_angle_rad = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
   for (const auto& o : observations) {
     // The observed normal in the map (a plane moves with a pose: n' = R n).
     const double nx = cy * o.normal_base.x() - sy * o.normal_base.y(), ny = sy * o.normal_base.x() + cy * o.normal_base.y();
@@ -27,8 +45,9 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const Eigen::Vector2d centroid(p.x + cy * o.centroid_base.x() - sy * o.centroid_base.y(),
                                    p.y + sy * o.centroid_base.x() + cy * o.centroid_base.y());
     double best = gate;
-    for (const auto& l : landmarks) {
-      if (l.axis != axis) continue;  // the paper's semantic classes: x walls with x walls
+    int best_face = -1;
+    const auto consider = [&](const Landmark& l) {
+      if (l.axis != axis) return;  // the paper's semantic classes: x walls with x walls
       // Paper Eq. (plane error): the squared Mahalanobis distance of the minimal planes, with
       // d taken at the particle (the landmark moved to a frame centred on it, axes of the map):
       // compared at the map's origin instead, a heading error of 1 degree would cost 0.17 m of
@@ -37,16 +56,25 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       const double e_az = wrapAngle(azimuth - l.azimuth) * inv_az, e_el = (elevation - l.elevation) * inv_el;
       const double e_d = (o.d_offset - d_landmark) * inv_d;
       const double m2 = e_az * e_az + e_el * e_el + e_d * e_d;
-      if (m2 >= best) continue;
+      if (m2 >= best) return;
       // The observed wall's points must lie along the face, not beside its end.
       const double u = (centroid - l.start).dot(l.direction);
-      if (u < -margin_m || u > l.length_m + margin_m) continue;
+      if (u < -margin_m || u > l.length_m + margin_m) return;
       best = m2;
-    }
+      best_face = l.id;
+    };
+    // Without the room factor, only the faces that pass near the plane's points can match it
+    // (face_index.hpp): the same best match as over every face, at the cost of what is near.
+    const double radius = via_index ? matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, margin_m) : 0.0;
+    if (via_index && radius < kIndexedRadiusM)
+      index->forEachNear(centroid, radius, consider);
+    else
+      for (const auto& l : landmarks) consider(l);
     // An observation that matches nothing is clutter (the site does not look like the plan
     // yet): it costs what a match at the gate would, so it cannot destroy a good particle.
     if (best < gate) ++result.associated;
     result.log_likelihood += -0.5 * best;
+    if (per_observation) per_observation->push_back({best_face, static_cast<float>(best)});
   }
   return result;
 }

@@ -17,6 +17,7 @@ struct Observation {
   double azimuth_base = 0;      // atan2 of normal_base: a particle's yaw just adds to it
   double elevation = 0;         // asin(n_z): the same for every particle
   Eigen::Vector2d centroid_base = Eigen::Vector2d::Zero();  // of its points, x y in the yaw-free base frame
+  double range_m = 0;  // 3D distance of the centroid from the base's origin (bounds where a match can lie)
 };
 
 struct MatchResult {
@@ -24,7 +25,17 @@ struct MatchResult {
   int associated = 0;
 };
 
+// What each observation matched: the face's id (Landmark::id), -1 for clutter; and its
+// squared Mahalanobis distance (the gate for clutter).
+struct ObservationMatch {
+  int face = -1;
+  float m2 = 0;
+};
+
+// With `out_of_rooms_penalised` false, a pose outside every room is matched like any other
+// (against every face, which needs a RoomIndex without the room factor).
 MatchResult matchObservations(const Particle& particle, double z_base, const std::vector<Observation>& observations,
-                              const RoomIndex& rooms, const ParticleFilterConfig& config);
+                              const RoomIndex& rooms, const ParticleFilterConfig& config,
+                              std::vector<ObservationMatch>* per_observation = nullptr, bool out_of_rooms_penalised = true);
 
 }  // namespace bimloc::pf::detail

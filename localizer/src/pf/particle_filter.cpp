@@ -7,6 +7,7 @@
 #include "particle_set.hpp"
 #include "path_evidence.hpp"
 #include "room_index.hpp"
+#include "start_prior.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
 #include <bimloc/geometry/planar_pose.hpp>
@@ -38,7 +39,9 @@ struct ParticleFilter::Impl {
   Eigen::Isometry3d T_base_lidar;
   ParticleFilterConfig config;
   detail::RoomIndex rooms;
+  detail::StartPrior prior;
   detail::PathEvidence evidence;
+  std::optional<detail::Pose2> odom_start;  // the first odometry pose: where the prior applies
   std::mt19937_64 rng;
   std::vector<Particle> particles;
   std::optional<Eigen::Isometry3d> last_odom;
@@ -61,9 +64,22 @@ struct ParticleFilter::Impl {
   }
 
   Impl(const bim::Storey& s, const Eigen::Isometry3d& mount, const ParticleFilterConfig& c)
-      : storey(s), T_base_lidar(mount), config(c), rooms(s, c.use_rooms, c.neighbour_rooms), evidence(s, c), rng(c.seed), anneal(c.anneal_start) {
-    particles = detail::spreadOverRooms(rooms, static_cast<std::size_t>(std::max(1, c.particles)), rng);
+      : storey(s), T_base_lidar(mount), config(c), rooms(s, c.use_rooms, c.neighbour_rooms), prior(s, rooms, c),
+        evidence(s, c), rng(c.seed), anneal(c.anneal_start) {
+    const auto count = static_cast<std::size_t>(std::max(1, c.particles));
+    if (prior.active()) {
+      for (std::size_t i = 0; i < count; ++i) particles.push_back(prior.draw(rng));
+    } else {
+      particles = detail::spreadOverRooms(rooms, count, rng);
+    }
   }
+
+  // The start pose a pose now implies, through the odometry since the start.
+  detail::Pose2 startOf(const detail::Pose2& now) const {
+    if (!odom_start) return now;
+    return detail::compose(now, detail::compose(detail::inverse(planarPose(odom)), *odom_start));
+  }
+  bool admitted(const detail::Pose2& now) const { return !prior.active() || prior.admits(startOf(now)); }
 
   int inject(const std::vector<detail::Hypothesis>& hyps, std::size_t count, double bonus = 0.0) {
     return detail::inject(particles, hyps, count, bonus, rooms, rng);
@@ -112,6 +128,10 @@ void ParticleFilter::predict(const Eigen::Isometry3d& T_odom_base) {
   }
   m.odom = T_odom_base;
   if (!m.last_odom) m.last_odom = T_odom_base;
+  if (!m.odom_start) {
+    m.odom_start = planarPose(T_odom_base);
+    if (m.prior.active()) m.evidence.setPrior(&m.prior, *m.odom_start);
+  }
   // The particles move when they are next weighed (AMCL does the same): the motion between
   // two weighings as one increment, with its noise, instead of one per odometry reading.
 }
@@ -157,6 +177,7 @@ std::vector<detail::Observation> ParticleFilter::Impl::observe(const std::vector
     o.elevation = std::asin(std::clamp(o.normal_base.z(), -1.0, 1.0));
     const Eigen::Vector3d centroid = R_bl * w.centroid + t_bl;
     o.centroid_base = centroid.allFinite() ? centroid.head<2>() : Eigen::Vector2d(-o.d_offset * o.normal_base.head<2>());
+    o.range_m = centroid.allFinite() ? centroid.norm() : std::abs(o.d_offset);
     observations.push_back(o);
   }
   return observations;
@@ -197,6 +218,9 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   std::vector<detail::Hypothesis> hyps;
   if (m.config.use_hypotheses) {
     hyps = detail::poseHypotheses(observations, z, m.rooms, m.config, static_cast<std::size_t>(m.config.max_hypotheses));
+    if (m.prior.active())  // no pose the prior rules out, not even as a seed
+      hyps.erase(std::remove_if(hyps.begin(), hyps.end(), [&](const detail::Hypothesis& h) { return !m.admitted({h.x, h.y, h.yaw}); }),
+                 hyps.end());
     report.hypotheses = static_cast<int>(hyps.size());
     if (!m.weighed_once) report.injected = m.inject(hyps, static_cast<std::size_t>(m.config.initial_hypothesis_fraction * n));
     if (report.injected > 0) m.agreeing_updates = 0;
@@ -213,6 +237,7 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
     const auto match = detail::matchObservations(p, z, observations, m.rooms, annealed);
     if (!annealing) best_raw = std::max(best_raw, match.log_likelihood);
     p.log_weight += m.config.likelihood_power * match.log_likelihood;
+    if (m.prior.active() && !m.admitted({p.x, p.y, p.yaw})) p.log_weight -= m.config.likelihood_power * m.config.outside_rooms_penalty;
   }
   // Sensor resetting: the particles explain the scan clearly worse than the plan can.
   // After convergence the filter tracks (paper: the S-Graph takes over): no more jumps.
@@ -236,18 +261,21 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   report.path_margin = path.margin;
   if (path.has_best) report.path_best = path.best;
   report.path_candidates = path.candidates;
-  const bool decisive = path.has_best && path.margin >= m.config.evidence_margin;
+  report.path_rivals = path.rivals;
+  const bool decisive = path.has_best && path.margin >= m.config.evidenceMargin();
   const double yaw_tol = m.config.converged_yaw_deg * M_PI / 180.0;
   std::vector<double> w = m.normalisedWeights();
   Eigen::Vector3d mean = m.mean(w);
-  if (decisive && !tracking && !near(mean, path.best, m.config.converged_position_m, yaw_tol)) {
-    // The path fits another place decisively better than where the particles are: a share of
-    // them goes there, heavier than any (their evidence is the whole window, not one scan).
+  if (decisive && !tracking) {
+    // The path fits one place decisively better than any other: a share of the particles goes
+    // to its pose, heavier than any (their evidence is the whole window, not one scan). Where
+    // the particles are elsewhere, that moves them; where they are already around it, the
+    // window's fitted pose tightens the cloud (one scan's planes alone leave it wide).
     detail::Hypothesis h;
     h.x = path.best.x(), h.y = path.best.y(), h.yaw = path.best.z();
     report.injected += m.inject({h}, static_cast<std::size_t>(m.config.evidence_injection_fraction * n),
-                                m.config.likelihood_power * m.config.evidence_margin);
-    m.agreeing_updates = 0;
+                                m.config.likelihood_power * m.config.evidenceMargin());
+    if (!near(mean, path.best, m.config.converged_position_m, yaw_tol)) m.agreeing_updates = 0;
     w = m.normalisedWeights();
     mean = m.mean(w);
   }
@@ -276,7 +304,8 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
     m.evidence.proposeEveryFit(observations, z, odom);
     path = m.evidence.verdict(odom);
     report.path_margin = path.margin, report.path_best = path.best, report.path_candidates = path.candidates;
-    agrees = path.margin >= m.config.evidence_margin && near(mean, path.best, m.config.converged_position_m, yaw_tol);
+    report.path_rivals = path.rivals;
+    agrees = path.margin >= m.config.evidenceMargin() && near(mean, path.best, m.config.converged_position_m, yaw_tol);
   }
   m.agreeing_updates = agrees ? m.agreeing_updates + 1 : 0;
   if (m.agreeing_updates >= m.config.converged_updates) {

@@ -30,14 +30,46 @@ constexpr double kSamePlaceRad = 3.0 * M_PI / 180.0;
 }  // namespace
 
 bool near(const Pose2& a, const Pose2& b, double metres, double radians) {
-  return std::hypot(a.x() - b.x(), a.y() - b.y()) < metres && std::abs(wrapAngle(a.z() - b.z())) < radians;
+  const double dx = a.x() - b.x(), dy = a.y() - b.y();
+  return dx * dx + dy * dy < metres * metres && std::abs(wrapAngle(a.z() - b.z())) < radians;
 }
 
-double PathEvidence::scoreOn(const Pose2& T_map_odom, const Scan& scan) const {
+namespace {
+
+// The sigmas of the window's error model (beyond the scan's own): the scans are placed by
+// odometry, which drifts, and the transform fitted to the whole window splits that drift,
+// so each scan may be off by the drift over half the window; and a wall stands within its
+// as-built tolerance of the plan.
+ParticleFilterConfig windowModel(ParticleFilterConfig c) {
+  const double half = 0.5 * c.evidence_window_m;
+  const double drift_m = c.evidence_drift_fraction * half, yaw_rad = c.evidence_yaw_drift_rad_per_m * half;
+  c.sigma_d_m = std::sqrt(c.sigma_d_m * c.sigma_d_m + drift_m * drift_m +
+                          c.evidence_plan_tolerance_m * c.evidence_plan_tolerance_m);
+  const double az = c.sigma_azimuth_deg * M_PI / 180.0;
+  c.sigma_azimuth_deg = std::sqrt(az * az + yaw_rad * yaw_rad) * 180.0 / M_PI;
+  return c;
+}
+
+}  // namespace
+
+PathEvidence::PathEvidence(const bim::Storey& storey, const ParticleFilterConfig& config)
+    : rooms_(storey, /*use_rooms=*/false), config_(windowModel(config)) {}
+
+PathEvidence::ScanScore PathEvidence::scoreOn(const Pose2& T_map_odom, const Scan& scan, bool detailed) const {
   const Pose2 pose = compose(T_map_odom, scan.odom);
   Particle p;
   p.x = pose.x(), p.y = pose.y(), p.yaw = pose.z(), p.room = rooms_.roomAt(pose.x(), pose.y());
-  return matchObservations(p, scan.z_base, scan.observations, rooms_, config_).log_likelihood;
+  ScanScore s;
+  s.out_of_rooms = p.room < 0;
+  s.matched = matchObservations(p, scan.z_base, scan.observations, rooms_, config_, detailed ? &s.per_observation : nullptr,
+                                /*out_of_rooms_penalised=*/false)
+                  .log_likelihood;
+  return s;
+}
+
+double PathEvidence::total(double matched_sum, int out_of_rooms) const {
+  const double n = std::max<double>(1.0, static_cast<double>(scans_.size()));
+  return matched_sum - 0.5 * config_.gate_mahalanobis2 * static_cast<double>(out_of_rooms) / n;
 }
 
 bool PathEvidence::addScan(const Pose2& odom, double z_base, const std::vector<Observation>& observations) {
@@ -52,11 +84,13 @@ bool PathEvidence::addScan(const Pose2& odom, double z_base, const std::vector<O
   }
   scans_.push_back({odom, z_base, observations, travelled_m_});
   for (auto& c : candidates_) {
-    const double s = scoreOn(c.T_map_odom, scans_.back());
-    c.per_scan.push_back(s);
-    c.log_likelihood += s;
+    ScanScore s = scoreOn(c.T_map_odom, scans_.back(), true);
+    c.matched_sum += s.matched;
+    c.out_of_rooms += s.out_of_rooms ? 1 : 0;
+    c.per_scan.push_back(std::move(s));
   }
   dropOldScans();
+  for (auto& c : candidates_) c.log_likelihood = total(c.matched_sum, c.out_of_rooms);
   return true;
 }
 
@@ -67,26 +101,31 @@ void PathEvidence::dropOldScans() {
                                static_cast<int>(scans_.size()) > config_.evidence_max_scans)) {
     scans_.pop_front();
     for (auto& c : candidates_) {
-      c.log_likelihood -= c.per_scan.front();
+      c.matched_sum -= c.per_scan.front().matched;
+      c.out_of_rooms -= c.per_scan.front().out_of_rooms ? 1 : 0;
       c.per_scan.pop_front();
     }
   }
 }
 
-PathEvidence::Candidate PathEvidence::scored(const Pose2& T_map_odom) const {
+PathEvidence::Candidate PathEvidence::scored(const Pose2& T_map_odom, bool detailed) const {
   Candidate c;
   c.T_map_odom = T_map_odom;
   for (const auto& scan : scans_) {
-    const double s = scoreOn(T_map_odom, scan);
-    c.per_scan.push_back(s);
-    c.log_likelihood += s;
+    ScanScore s = scoreOn(T_map_odom, scan, detailed);
+    c.matched_sum += s.matched;
+    c.out_of_rooms += s.out_of_rooms ? 1 : 0;
+    if (detailed) c.per_scan.push_back(std::move(s));
   }
+  c.log_likelihood = total(c.matched_sum, c.out_of_rooms);
   return c;
 }
 
 void PathEvidence::propose(const Pose2& map_pose, const Pose2& odom) {
   if (!map_pose.allFinite()) return;
-  Candidate fresh = scored(compose(map_pose, inverse(odom)));
+  const Pose2 T_map_odom = compose(map_pose, inverse(odom));
+  if (prior_ && !prior_->admits(compose(T_map_odom, odom_start_))) return;
+  Candidate fresh = scored(T_map_odom);
   for (auto& c : candidates_)
     if (near(compose(c.T_map_odom, odom), map_pose, kSamePlaceM, kSamePlaceRad)) {
       if (fresh.log_likelihood > c.log_likelihood) c = std::move(fresh);
@@ -105,8 +144,11 @@ void PathEvidence::propose(const Pose2& map_pose, const Pose2& odom) {
 
 void PathEvidence::refine(Candidate& c, const Pose2& odom) const {
   // Pattern search on the pose now (x, y, yaw), halving the steps: the association is
-  // discrete, so the likelihood has no useful gradient.
+  // discrete, so the likelihood has no useful gradient. Trials are scored without detail;
+  // the pose kept is scored in full once.
   Pose2 pose = compose(c.T_map_odom, odom);
+  double best = c.log_likelihood;
+  bool moved_at_all = false;
   double step_m = 0.08, step_rad = 1.0 * M_PI / 180.0;
   for (int level = 0; level < 3; ++level, step_m *= 0.5, step_rad *= 0.5) {
     for (bool improved = true; improved;) {
@@ -114,33 +156,74 @@ void PathEvidence::refine(Candidate& c, const Pose2& odom) const {
       for (const Pose2& delta : {Pose2(step_m, 0, 0), Pose2(-step_m, 0, 0), Pose2(0, step_m, 0), Pose2(0, -step_m, 0),
                                  Pose2(0, 0, step_rad), Pose2(0, 0, -step_rad)}) {
         const Pose2 moved = pose + delta;
-        Candidate trial = scored(compose(moved, inverse(odom)));
-        if (trial.log_likelihood > c.log_likelihood + 1e-9) {
-          c = std::move(trial);
+        const Candidate trial = scored(compose(moved, inverse(odom)), false);
+        if (trial.log_likelihood > best + 1e-9) {
+          best = trial.log_likelihood;
           pose = moved;
-          improved = true;
+          improved = moved_at_all = true;
         }
       }
     }
   }
+  if (moved_at_all) c = scored(compose(pose, inverse(odom)));
 }
 
 double PathEvidence::logLikelihoodOf(const Pose2& map_pose, const Pose2& odom) const {
-  const Pose2 T_map_odom = compose(map_pose, inverse(odom));
-  double sum = 0;
-  for (const auto& scan : scans_) sum += scoreOn(T_map_odom, scan);
-  return sum;
+  return scored(compose(map_pose, inverse(odom)), false).log_likelihood;
 }
 
 void PathEvidence::proposeEveryFit(const std::vector<Observation>& observations, double z_base, const Pose2& odom) {
   ParticleFilterConfig every = config_;
   every.use_rooms = false;  // rooms_ holds every face for every room
-  const auto fits = poseHypotheses(observations, z_base, rooms_, every, std::numeric_limits<std::size_t>::max());
-  // Those that fit the scan within three clutter planes of the best fit.
-  for (const auto& h : fits) {
-    if (h.log_likelihood < fits.front().log_likelihood - 1.5 * config_.gate_mahalanobis2) break;
-    propose({h.x, h.y, h.yaw}, odom);
+  // This scan, or else the latest scans of the window, until one fixes poses.
+  std::vector<std::pair<const std::vector<Observation>*, std::pair<double, Pose2>>> sources{{&observations, {z_base, odom}}};
+  for (auto it = scans_.rbegin(); it != scans_.rend() && sources.size() < 4; ++it)
+    sources.push_back({&it->observations, {it->z_base, it->odom}});
+  for (const auto& [obs, where] : sources) {
+    const auto fits = poseHypotheses(*obs, where.first, rooms_, every, std::numeric_limits<std::size_t>::max());
+    if (fits.empty()) continue;
+    // Those that fit the scan within three clutter planes of the best fit, moved on to now.
+    const Pose2 since = compose(inverse(where.second), odom);
+    for (const auto& h : fits) {
+      if (h.log_likelihood < fits.front().log_likelihood - 1.5 * config_.gate_mahalanobis2) break;
+      propose(compose({h.x, h.y, h.yaw}, since), odom);
+    }
+    return;
   }
+}
+
+double PathEvidence::distinctMargin(const Candidate& p, const Candidate& q) const {
+  // Faces of P as keys 0 ... ; faces of Q (observations Q explains and P does not) after them.
+  const int rival_keys = static_cast<int>(rooms_.landmarks(0).size()) + 1;
+  std::vector<std::pair<int, double>> deltas;
+  double out_of_rooms = 0;
+  for (std::size_t k = 0; k < p.per_scan.size() && k < q.per_scan.size(); ++k) {
+    const ScanScore& a = p.per_scan[k];
+    const ScanScore& b = q.per_scan[k];
+    out_of_rooms += (b.out_of_rooms ? 1.0 : 0.0) - (a.out_of_rooms ? 1.0 : 0.0);
+    for (std::size_t o = 0; o < a.per_observation.size() && o < b.per_observation.size(); ++o) {
+      const ObservationMatch& ma = a.per_observation[o];
+      const ObservationMatch& mb = b.per_observation[o];
+      const double delta = 0.5 * (static_cast<double>(mb.m2) - static_cast<double>(ma.m2));
+      if (delta == 0.0) continue;
+      // By P's face where P matched one (the signed differences of one face average out when
+      // both places explain it alike), else by the face Q matched.
+      const int key = ma.face >= 0 ? ma.face : (mb.face >= 0 ? rival_keys + mb.face : -1);
+      if (key >= 0) deltas.emplace_back(key, delta);
+    }
+  }
+  std::sort(deltas.begin(), deltas.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  double margin = 0;
+  for (std::size_t i = 0; i < deltas.size();) {
+    std::size_t j = i;
+    double sum = 0;
+    for (; j < deltas.size() && deltas[j].first == deltas[i].first; ++j) sum += deltas[j].second;
+    margin += sum / static_cast<double>(j - i);
+    i = j;
+  }
+  // The room prior, as in total(): at most one clutter plane's worth.
+  const double n = std::max<double>(1.0, static_cast<double>(scans_.size()));
+  return margin + 0.5 * config_.gate_mahalanobis2 * out_of_rooms / n;
 }
 
 PathVerdict PathEvidence::verdict(const Pose2& odom) {
@@ -150,28 +233,47 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
   v.window_m = scans_.empty() ? 0.0 : travelled_m_ - scans_.front().travelled_m;
   if (candidates_.empty() || scans_.empty()) return v;
   const auto by_score = [](const Candidate& a, const Candidate& b) { return a.log_likelihood < b.log_likelihood; };
-  auto best = std::max_element(candidates_.begin(), candidates_.end(), by_score);
-  refine(*best, odom);
-  // The strongest rival elsewhere, fitted too; should it now beat the best, the roles swap.
+  std::size_t best = static_cast<std::size_t>(std::max_element(candidates_.begin(), candidates_.end(), by_score) - candidates_.begin());
+  refine(candidates_[best], odom);
+  // The margin over every place elsewhere; the closest rivals are fitted too (an unfitted
+  // rival scores worse than it should), and should one of them now fit the path better than
+  // the best, the roles swap.
+  std::vector<std::pair<double, std::size_t>> rivals;
   for (int round = 0; round < 3; ++round) {
-    const Pose2 here = compose(best->T_map_odom, odom);
-    auto rival = candidates_.end();
-    for (auto it = candidates_.begin(); it != candidates_.end(); ++it)
-      if (!near(compose(it->T_map_odom, odom), here, kOtherPlaceM, kOtherPlaceRad) &&
-          (rival == candidates_.end() || it->log_likelihood > rival->log_likelihood))
-        rival = it;
-    if (rival == candidates_.end()) break;
-    refine(*rival, odom);
-    if (rival->log_likelihood <= best->log_likelihood) break;
-    best = rival;
+    const Pose2 here = compose(candidates_[best].T_map_odom, odom);
+    rivals.clear();
+    for (std::size_t i = 0; i < candidates_.size(); ++i)
+      if (!near(compose(candidates_[i].T_map_odom, odom), here, kOtherPlaceM, kOtherPlaceRad))
+        rivals.emplace_back(distinctMargin(candidates_[best], candidates_[i]), i);
+    std::sort(rivals.begin(), rivals.end());
+    // Fitting a rival only lowers the margin: below the bar already, there is nothing to check.
+    if (rivals.empty() || rivals.front().first < config_.evidenceMargin()) break;
+    bool swapped = false;
+    for (std::size_t r = 0; r < rivals.size() && r < 3; ++r) {
+      Candidate& rival = candidates_[rivals[r].second];
+      refine(rival, odom);
+      if (rival.log_likelihood > candidates_[best].log_likelihood) {
+        best = rivals[r].second;
+        swapped = true;
+        break;
+      }
+      rivals[r].first = distinctMargin(candidates_[best], rival);
+    }
+    if (!swapped) break;
   }
+  std::sort(rivals.begin(), rivals.end());
   v.has_best = true;
-  v.best = compose(best->T_map_odom, odom);
-  v.best_log_likelihood = best->log_likelihood;
-  double other = -std::numeric_limits<double>::infinity();
-  for (const auto& c : candidates_)
-    if (!near(compose(c.T_map_odom, odom), v.best, kOtherPlaceM, kOtherPlaceRad)) other = std::max(other, c.log_likelihood);
-  v.margin = best->log_likelihood - other;
+  v.best = compose(candidates_[best].T_map_odom, odom);
+  v.best_log_likelihood = candidates_[best].log_likelihood;
+  v.margin = rivals.empty() ? std::numeric_limits<double>::infinity() : rivals.front().first;
+  // The distinct places within the margin: what the plan cannot tell apart (yet).
+  for (const auto& [margin, i] : rivals) {
+    if (margin >= config_.evidenceMargin() || v.rivals.size() >= 8) break;
+    const Pose2 there = compose(candidates_[i].T_map_odom, odom);
+    bool duplicate = false;
+    for (const auto& [pose, m] : v.rivals) duplicate |= near(pose, there, kOtherPlaceM, kOtherPlaceRad);
+    if (!duplicate) v.rivals.emplace_back(there, margin);
+  }
   return v;
 }
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "measurement.hpp"
+#include "start_prior.hpp"
 
 #include <deque>
 #include <vector>
@@ -29,12 +30,17 @@ struct PathVerdict {
   bool has_best = false;
   Pose2 best = Pose2::Zero();  // map <- base now, of the best candidate
   double best_log_likelihood = 0;
-  // Best minus the best candidate more than 1 m or 20 deg away from it now: how much better
-  // the path fits one place than any other. +inf when no other place fits at all.
+  // How much better the path fits the best place than any other (more than 0.5 m or 10 deg
+  // away), counted once per wall face (see PathEvidence::distinctMargin): +inf when no other
+  // place fits at all.
   double margin = 0;
   int candidates = 0;
   int scans = 0;
   double window_m = 0;  // path length covered by the window
+  // The distinct places the path fits within the evidence margin of the best, best first (map
+  // <- base now, and the margin of the best over each): what a user is told when the plan
+  // cannot decide.
+  std::vector<std::pair<Pose2, double>> rivals;
 };
 
 class PathEvidence {
@@ -43,10 +49,13 @@ class PathEvidence {
   // plane matches a face only along it): the true pose sees walls of other rooms through
   // doors and open plans, and the room graph does not say which. Room association would make
   // it pay for each of them, while a wrong pose may find such planes among its own room's
-  // faces by coincidence: over a path, that bias adds up to a wrong verdict. The rooms still
-  // count: a path through no room's footprint (through walls, outside) scores lowest.
-  PathEvidence(const bim::Storey& storey, const ParticleFilterConfig& config)
-      : rooms_(storey, /*use_rooms=*/false), config_(config) {}
+  // faces by coincidence: over a path, that bias adds up to a wrong verdict.
+  //
+  // Rooms are a prior, not a measurement: footprints are drawn by architects (corridors and
+  // halls are often not spaces at all), and a lidar sees walls, not footprints. A candidate
+  // whose path leaves every room pays at most one clutter plane's cost for it, whatever the
+  // number of scans, so room coverage alone can never decide between two places.
+  PathEvidence(const bim::Storey& storey, const ParticleFilterConfig& config);
 
   // A weighed scan at odometry pose `odom` (x, y, yaw of odom <- base): joins the window when
   // the robot moved enough since the last one that did. Returns whether it joined.
@@ -54,14 +63,19 @@ class PathEvidence {
   // The map pose `map_pose` of the base, at odometry pose `odom`, as a candidate. Near an
   // existing candidate, the better of the two stays.
   void propose(const Pose2& map_pose, const Pose2& odom);
-  // The best candidate and its strongest rival, each first moved to the best fit of the path
+  // The best candidate and its closest rivals, each first moved to the best fit of the path
   // near it: a candidate fitted to one scan is a little off on the others (noise, drift), and
   // comparing a fitted look-alike with an unfitted truth would favour the look-alike.
   PathVerdict verdict(const Pose2& odom);
   // Before a verdict is trusted: every pose the scan `observations` fits, over every face of
   // the storey, joins the candidates, so that the best's strongest rival cannot be missing
-  // (a look-alike the per-scan proposals left out would make any margin meaningless).
+  // (a look-alike the per-scan proposals left out would make any margin meaningless). A scan
+  // that fixes no pose (fewer than two walls at an angle) hands over to the latest one of the
+  // window that does.
   void proposeEveryFit(const std::vector<Observation>& observations, double z_base, const Pose2& odom);
+  // Candidates whose start pose (at odometry pose `odom_start`) the prior rules out are not
+  // places at all: never proposed, never rivals.
+  void setPrior(const StartPrior* prior, const Pose2& odom_start) { prior_ = prior, odom_start_ = odom_start; }
   // The window's log-likelihood of the base at `map_pose` now (any pose, candidate or not).
   double logLikelihoodOf(const Pose2& map_pose, const Pose2& odom) const;
 
@@ -72,18 +86,35 @@ class PathEvidence {
     std::vector<Observation> observations;
     double travelled_m = 0;  // path length from the start to this scan
   };
+  struct ScanScore {
+    double matched = 0;  // sum of -m2 / 2 over the observations (clutter at the gate)
+    bool out_of_rooms = false;
+    std::vector<ObservationMatch> per_observation;
+  };
   struct Candidate {
     Pose2 T_map_odom;
-    double log_likelihood = 0;
-    std::deque<double> per_scan;  // aligned with scans_
+    double log_likelihood = 0;  // matched_sum, less the out-of-rooms prior
+    double matched_sum = 0;
+    int out_of_rooms = 0;
+    std::deque<ScanScore> per_scan;  // aligned with scans_
   };
-  double scoreOn(const Pose2& T_map_odom, const Scan& scan) const;
-  Candidate scored(const Pose2& T_map_odom) const;
+  ScanScore scoreOn(const Pose2& T_map_odom, const Scan& scan, bool detailed) const;
+  Candidate scored(const Pose2& T_map_odom, bool detailed = true) const;
+  double total(double matched_sum, int out_of_rooms) const;
   void refine(Candidate& c, const Pose2& odom) const;
   void dropOldScans();
+  // The margin of P over Q, counted once per distinct wall face: the observations P explains
+  // better than Q are grouped by the face they match at P (those Q explains better, by the face
+  // at Q), each face contributes the mean difference of its observations, and the faces add
+  // up. A wall seen in thirty scans is one piece of evidence, not thirty: errors shared by the
+  // scans (odometry drift, a wall a few centimetres off its plan, a near-symmetric twin that
+  // differs by less than the sigmas) cannot add up to a verdict.
+  double distinctMargin(const Candidate& p, const Candidate& q) const;
 
   RoomIndex rooms_;
-  ParticleFilterConfig config_;
+  const StartPrior* prior_ = nullptr;
+  Pose2 odom_start_ = Pose2::Zero();
+  ParticleFilterConfig config_;  // with the sigmas of the window's error model
   std::deque<Scan> scans_;
   std::vector<Candidate> candidates_;
   double travelled_m_ = 0;

@@ -7,8 +7,9 @@
 
 namespace bimloc::pf::detail {
 
-Landmark makeLandmark(const bim::WallFace& face) {
+Landmark makeLandmark(const bim::WallFace& face, int id) {
   Landmark l;
+  l.id = id;
   l.normal = face.plane.n.normalized();
   l.d = face.plane.d;
   l.start = face.start.head<2>();
@@ -29,8 +30,9 @@ std::vector<Landmark> facesOf(const bim::Storey& storey, const bim::Room& room) 
   for (const auto& rw : room.walls) {
     const bim::Wall* wall = storey.findWall(rw.wall_id);
     if (!wall) continue;
+    const int w = static_cast<int>(wall - storey.walls.data());
     for (int f = 0; f < 2; ++f)
-      if (rw.face < 0 || rw.face == f) faces.push_back(makeLandmark(wall->faces[f]));
+      if (rw.face < 0 || rw.face == f) faces.push_back(makeLandmark(wall->faces[f], 2 * w + f));
   }
   return faces;
 }
@@ -44,14 +46,21 @@ bool shareAWall(const bim::Room& a, const bim::Room& b) {
 
 }  // namespace
 
-RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours, double cell_m) : cell_m_(cell_m) {
+RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours, double cell_m, bool index_faces)
+    : use_rooms_(use_rooms), cell_m_(cell_m) {
   std::vector<Landmark> every_face;
-  for (const auto& wall : storey.walls)
-    for (const auto& face : wall.faces) every_face.push_back(makeLandmark(face));
+  for (std::size_t w = 0; w < storey.walls.size(); ++w)
+    for (int f = 0; f < 2; ++f) every_face.push_back(makeLandmark(storey.walls[w].faces[f], static_cast<int>(2 * w) + f));
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  if (index_faces) all_faces_ = std::make_shared<const FaceIndex>(every_face);
+  if (!use_rooms && !index_faces) landmarks_.push_back(every_face);  // one list for every room
   for (const auto& room : storey.rooms) {
     rooms_.push_back(&room);
-    std::vector<Landmark> faces = use_rooms ? facesOf(storey, room) : every_face;
+    if (!use_rooms) {
+      for (const auto& p : room.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+      continue;
+    }
+    std::vector<Landmark> faces = facesOf(storey, room);
     if (use_rooms && neighbours)
       for (const auto& other : storey.rooms)
         if (&other != &room && shareAWall(room, other)) {

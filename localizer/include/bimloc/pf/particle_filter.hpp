@@ -58,16 +58,28 @@ struct ParticleFilterConfig {
   double injection_margin = 2.0;
   int max_hypotheses = 1000;
   // Path evidence (beyond the paper): no convergence until the recent path fits the estimate
-  // better than any other place of the storey by evidence_margin (log-likelihood, summed over
-  // the window's scans), and when it fits another place that much better, particles go there.
-  // A single scan cannot tell look-alike rooms apart; the path through the building can.
-  double evidence_margin = 10.0;
+  // better than any other place of the storey, and when it does, particles go there. A single
+  // scan cannot tell look-alike rooms apart; the path through the building can. The margin is
+  // counted once per distinct wall face (PathEvidence::distinctMargin): a plane seen in many
+  // scans is one piece of evidence, since what could fake it (an object the plan does not have,
+  // standing where the other place has a wall) fakes it in every scan alike. One face that one
+  // place explains and the other cannot is worth (gate - 3) / 2 on average (3: the mean squared
+  // Mahalanobis distance of a true match in 3 dof); convergence asks for `evidence_faces` such
+  // faces' worth, and none the other way.
+  double evidence_faces = 2.0;
+  double evidenceMargin() const { return evidence_faces * 0.5 * (gate_mahalanobis2 - 3.0); }
   double evidence_window_m = 15.0;      // path length the window covers: odometry drifts with it
   int evidence_max_scans = 120;
   double evidence_spacing_m = 0.3;      // a scan joins the window after this much motion ...
   double evidence_spacing_deg = 15.0;   // ... or this much turning
   int evidence_max_candidates = 200;    // candidate transforms map <- odom, scored on the window
   int evidence_proposals = 16;          // of each scan's pose hypotheses, the best become candidates
+  // The window's error model, added to the plane sigmas for the path evidence: odometry drift
+  // over half the window (legged odometry: up to 2 % of distance, reference.md) and the
+  // as-built tolerance of a wall.
+  double evidence_drift_fraction = 0.02;
+  double evidence_yaw_drift_rad_per_m = 0.001;
+  double evidence_plan_tolerance_m = 0.05;
   double evidence_injection_fraction = 0.3;
   // Resampling and its guards.
   double resample_ess_fraction = 0.5;  // low-variance resampling when ESS < fraction * N
@@ -78,7 +90,18 @@ struct ParticleFilterConfig {
   double converged_position_m = 0.3;
   double converged_yaw_deg = 5.0;
   int converged_updates = 4;
+  // A particle outside every room (a corridor the plan has no space for, a doorway, outside)
+  // matches the faces near it and pays this (log-likelihood, per weighing): penalised, not
+  // ruled out.
+  double outside_rooms_penalty = 50.0;
   int min_observations = 2;  // fewer wall planes than this in a scan: predict only
+  // What a user knows of the start: it was in one of these rooms (names or GlobalIds), and/or
+  // within 3 sigmas of this pose (map x, y, yaw in radians). Places the start cannot have
+  // been are not considered at all: "we start in flat B" decides the point-symmetric Duplex.
+  std::vector<std::string> prior_rooms;
+  std::optional<Eigen::Vector3d> prior_pose;
+  double prior_sigma_m = 1.0;
+  double prior_sigma_yaw_deg = 180.0;  // the heading unknown unless given
   std::uint64_t seed = 0;
 };
 
@@ -102,6 +125,9 @@ struct UpdateReport {
   std::optional<Eigen::Vector3d> path_best;
   double path_margin = 0;
   int path_candidates = 0;
+  // The other places the path fits nearly as well (map x, y, yaw now, and the margin of the
+  // best over each), best first: the ambiguity left, when the plan cannot decide (yet).
+  std::vector<std::pair<Eigen::Vector3d, double>> path_rivals;
   std::vector<std::string> warnings;
 };
 

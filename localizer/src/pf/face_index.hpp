@@ -1,0 +1,73 @@
+// A spatial index of wall faces: which faces pass near a point of the floor. Matching an
+// observed plane against every face of a storey costs what the building costs; matching it
+// against the faces that pass near where its points lie costs what the robot can see. The
+// index answers conservatively: every face within the radius is visited (once), some farther
+// ones may be, so a match made through it is the match brute force would make.
+#pragma once
+
+#include "landmark.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <cstdint>
+#include <vector>
+
+namespace bimloc::pf::detail {
+
+class FaceIndex {
+ public:
+  explicit FaceIndex(std::vector<Landmark> faces, double cell_m = 1.0);
+
+  const std::vector<Landmark>& faces() const { return faces_; }
+  bool empty() const { return faces_.empty(); }
+
+  // Calls visit(face) once for every face whose base segment comes within radius_m of
+  // `centre` (and possibly for a few a little farther). Not thread-safe: the visited marks are
+  // the index's own scratch (one index per filter, and a filter runs on one thread).
+  template <class Visit>
+  void forEachNear(const Eigen::Vector2d& centre, double radius_m, Visit&& visit) const {
+    if (faces_.empty()) return;
+    const double r = radius_m + 0.7072 * cell_m_;  // cells whose centre is this close may touch the disc
+    const int x0 = std::max(0, cellX(centre.x() - r)), x1 = std::min(nx_ - 1, cellX(centre.x() + r));
+    const int y0 = std::max(0, cellY(centre.y() - r)), y1 = std::min(ny_ - 1, cellY(centre.y() + r));
+    if (x0 > x1 || y0 > y1) return;
+    if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0u), stamp_ = 1;
+    const double r2 = r * r;
+    for (int iy = y0; iy <= y1; ++iy) {
+      const double cy = origin_.y() + (iy + 0.5) * cell_m_ - centre.y();
+      for (int ix = x0; ix <= x1; ++ix) {
+        const double cx = origin_.x() + (ix + 0.5) * cell_m_ - centre.x();
+        if (cx * cx + cy * cy > r2) continue;
+        const auto& cell = cells_[static_cast<std::size_t>(iy * nx_ + ix)];
+        for (const std::uint32_t f : cell) {
+          if (seen_[f] == stamp_) continue;
+          seen_[f] = stamp_;
+          visit(faces_[f]);
+        }
+      }
+    }
+  }
+
+ private:
+  int cellX(double x) const { return static_cast<int>(std::floor((x - origin_.x()) / cell_m_)); }
+  int cellY(double y) const { return static_cast<int>(std::floor((y - origin_.y()) / cell_m_)); }
+
+  std::vector<Landmark> faces_;
+  double cell_m_ = 1.0;
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::vector<std::uint32_t>> cells_;  // faces whose segment crosses the cell
+  mutable std::vector<std::uint32_t> seen_;
+  mutable std::uint32_t stamp_ = 0;
+};
+
+// How far from an observed plane's centroid a face can lie and still match it under the gate
+// (measurement.cpp): the face's line passes within
+//   sqrt(gate) sigma_d + 2 sin(sqrt(2 gate) max(sigma_az, sigma_el) / 2) * range + slack
+// of the centroid (the planes agree in d at the particle and in angle within the gate, and the
+// centroid is `range` from the particle), and the centroid lies along the face to within the
+// segment margin. Infinite when the angle gate is so wide that any face could match.
+double matchRadius(double range_m, double sigma_d_m, double sigma_angle_rad, double gate_mahalanobis2, double margin_m);
+
+}  // namespace bimloc::pf::detail

@@ -1,0 +1,163 @@
+#include "window_solver.hpp"
+
+#include "odometry_factor.hpp"
+#include "plane_factor.hpp"
+#include "prior_factors.hpp"
+#include "room_factor.hpp"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Cholesky>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace bimloc::sgraph::detail {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// A node's evidence as a prior: mean and square-root information of its canonical form.
+void addEvidence(ceres::Problem& problem, WallNode& node) {
+  if (node.evidence_information.trace() <= 0) return;
+  const Eigen::Matrix3d H = node.evidence_information + 1e-9 * Eigen::Matrix3d::Identity();
+  const Eigen::LLT<Eigen::Matrix3d> llt(H);
+  if (llt.info() != Eigen::Success) return;
+  const Eigen::Vector3d mean = llt.solve(node.evidence_vector);
+  problem.AddResidualBlock(GaussianPrior<3>::create(mean, llt.matrixL().transpose()), nullptr, node.params.data());
+}
+
+}  // namespace
+
+Eigen::Vector3d odometrySigma(const Keyframe& a, const Keyframe& b, const SGraphConfig& c) {
+  if (b.odometry_jump) return {c.odometry_jump_m, c.odometry_jump_m, c.odometry_jump_deg * kDeg};
+  const Eigen::Vector3d u = between(a.odom, b.odom);
+  const double distance = u.head<2>().norm(), turn = std::abs(u.z());
+  const double xy = c.odometry_sigma_xy_floor_m + c.odometry_sigma_xy_per_m * distance;
+  const double yaw = c.odometry_sigma_yaw_floor_deg * kDeg + c.odometry_sigma_yaw_per_rad * turn + c.odometry_sigma_yaw_per_m_deg * kDeg * distance;
+  return {xy, xy, yaw};
+}
+
+ceres::CostFunction* odometryCost(const Keyframe& a, const Keyframe& b, const SGraphConfig& c) {
+  return OdometryFactor::create(between(a.odom, b.odom), odometrySigma(a, b, c));
+}
+
+ceres::CostFunction* planeCost(const Graph& g, const Keyframe& kf, const PlaneMeasurement& m) {
+  const WallNode& node = g.nodes[static_cast<std::size_t>(m.node)];
+  return PlaneFactor::create(node.face[m.face], kf.A, kf.b, m.minimal, m.sqrt_information);
+}
+
+double meanPlaneResidual2(const Graph& g, const Keyframe& kf) {
+  if (kf.planes.empty()) return 0;
+  double sum = 0;
+  for (const PlaneMeasurement& m : kf.planes) {
+    const WallNode& node = g.nodes[static_cast<std::size_t>(m.node)];
+    const PlaneFactor factor(node.face[m.face], kf.A, kf.b, m.minimal, m.sqrt_information);
+    double r[3];
+    factor(kf.pose.data(), node.params.data(), r);
+    sum += r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+  }
+  return sum / static_cast<double>(kf.planes.size());
+}
+
+SolveReport optimizeWindow(Graph& g, const SGraphConfig& c) {
+  SolveReport report;
+  if (g.window.empty()) return report;
+  ceres::Problem problem;
+  // One kernel object per kind: the problem owns them and deletes each once.
+  ceres::LossFunction* huber_plane = new ceres::HuberLoss(c.huber_plane_sigmas);
+  ceres::LossFunction* huber_odometry = new ceres::HuberLoss(c.huber_odometry_sigmas);
+  ceres::LossFunction* cauchy_wall = new ceres::CauchyLoss(c.cauchy_wall_prior_sigmas);
+  ceres::LossFunction* huber_room = new ceres::HuberLoss(c.huber_room_sigmas);
+
+  // Tracking layer: the window's keyframes, the prior on the oldest, odometry between them.
+  for (Keyframe& kf : g.window) problem.AddParameterBlock(kf.pose.data(), 3);
+  problem.AddResidualBlock(PosePrior::create(g.anchor_mean, g.anchor_sqrt_information), nullptr, g.window.front().pose.data());
+  for (std::size_t i = 0; i + 1 < g.window.size(); ++i)
+    problem.AddResidualBlock(odometryCost(g.window[i], g.window[i + 1], c), huber_odometry, g.window[i].pose.data(),
+                             g.window[i + 1].pose.data());
+
+  // Keyframe-plane factors, and the wall nodes they reach.
+  std::set<int> nodes;
+  for (Keyframe& kf : g.window) {
+    for (const PlaneMeasurement& m : kf.planes) {
+      WallNode& node = g.nodes[static_cast<std::size_t>(m.node)];
+      if (!node.active) continue;
+      problem.AddResidualBlock(planeCost(g, kf, m), huber_plane, kf.pose.data(), node.params.data());
+      nodes.insert(m.node);
+    }
+  }
+  // Topological layer: the rooms of those walls, with all their walls.
+  std::set<int> rooms;
+  for (int n : nodes)
+    for (int r : g.nodes[static_cast<std::size_t>(n)].rooms) rooms.insert(r);
+  for (int r : rooms) {
+    RoomData& room = g.rooms[static_cast<std::size_t>(r)];
+    for (const FaceRef& f : room.pairs) nodes.insert(f.node);
+    problem.AddResidualBlock(GaussianPrior<2>::create(room.plan_centre, Eigen::Matrix2d::Identity() / c.room_prior_sigma_m), nullptr,
+                             room.centre.data());
+    std::vector<FaceGeometry> faces;
+    std::vector<double*> blocks{room.centre.data()};
+    for (const FaceRef& f : room.pairs) {
+      faces.push_back(g.nodes[static_cast<std::size_t>(f.node)].face[f.face]);
+      blocks.push_back(g.nodes[static_cast<std::size_t>(f.node)].params.data());
+    }
+    if (room.corridor)
+      problem.AddResidualBlock(CorridorFactor::create({faces[0], faces[1]}, c.room_factor_sigma_m), huber_room, blocks);
+    else
+      problem.AddResidualBlock(RoomFactor::create({faces[0], faces[1], faces[2], faces[3]}, c.room_factor_sigma_m), huber_room, blocks);
+  }
+  // Metric-semantic layer: plan walls at their as-built tolerance; what marginalized
+  // keyframes said of each node; a new plane has one face and no thickness.
+  for (int n : nodes) {
+    WallNode& node = g.nodes[static_cast<std::size_t>(n)];
+    if (node.kind == WallNode::Kind::Plan) {
+      problem.AddResidualBlock(WallPrior::create(c.wall_prior_sigma_m, c.wall_prior_sigma_deg * kDeg), cauchy_wall, node.params.data());
+      problem.AddResidualBlock(ThicknessPrior::create(c.wall_thickness_sigma_m), nullptr, node.params.data());
+    } else {
+      problem.SetManifold(node.params.data(), new ceres::SubsetManifold(3, {2}));
+    }
+    addEvidence(problem, node);
+  }
+
+  // Keep the state to restore it if the solver fails.
+  std::vector<std::array<double, 3>> poses, params;
+  for (const Keyframe& kf : g.window) poses.push_back(kf.pose);
+  for (int n : nodes) params.push_back(g.nodes[static_cast<std::size_t>(n)].params);
+
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE) ||
+                                       ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)
+                                   ? ceres::SPARSE_NORMAL_CHOLESKY
+                                   : ceres::DENSE_QR;
+  options.max_num_iterations = std::max(1, c.max_iterations);
+  options.num_threads = 1;  // same input, same output
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  const auto t0 = std::chrono::steady_clock::now();
+  ceres::Solve(options, &problem, &summary);
+  report.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  report.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  report.initial_cost = summary.initial_cost;
+  report.final_cost = summary.final_cost;
+  bool finite = std::isfinite(summary.final_cost);
+  for (const Keyframe& kf : g.window) finite = finite && std::isfinite(kf.pose[0] + kf.pose[1] + kf.pose[2]);
+  for (int n : nodes) {
+    const auto& p = g.nodes[static_cast<std::size_t>(n)].params;
+    finite = finite && std::isfinite(p[0] + p[1] + p[2]);
+  }
+  if (!summary.IsSolutionUsable() || !finite) {
+    report.usable = false;
+    report.message = summary.message;
+    std::size_t i = 0;
+    for (Keyframe& kf : g.window) kf.pose = poses[i++];
+    i = 0;
+    for (int n : nodes) g.nodes[static_cast<std::size_t>(n)].params = params[i++];
+    return report;
+  }
+  for (Keyframe& kf : g.window) kf.pose[2] = wrapAngle(kf.pose[2]);
+  return report;
+}
+
+}  // namespace bimloc::sgraph::detail

@@ -1,0 +1,32 @@
+// The sliding-window optimization: the Ceres problem of the window's keyframes, the wall
+// nodes they observed, the rooms of those walls, and all the factors between them, solved
+// with Levenberg-Marquardt; and the factors' construction, shared with the marginalization.
+#pragma once
+
+#include "graph.hpp"
+
+#include <ceres/cost_function.h>
+#include <string>
+
+namespace bimloc::sgraph::detail {
+
+struct SolveReport {
+  int iterations = 0;
+  double initial_cost = 0, final_cost = 0;
+  double time_s = 0;
+  bool usable = true;  // false: the solver failed or diverged; the estimate was left as it was
+  std::string message;
+};
+
+SolveReport optimizeWindow(Graph& g, const SGraphConfig& config);
+
+// Sigmas of the odometry link a -> b (config noise model; the jump sigmas across a jump).
+Eigen::Vector3d odometrySigma(const Keyframe& a, const Keyframe& b, const SGraphConfig& config);
+ceres::CostFunction* odometryCost(const Keyframe& a, const Keyframe& b, const SGraphConfig& config);
+ceres::CostFunction* planeCost(const Graph& g, const Keyframe& kf, const PlaneMeasurement& m);
+
+// Mean squared Mahalanobis residual of the keyframe's plane measurements at the current
+// estimate (no robust kernel); 0 without measurements.
+double meanPlaneResidual2(const Graph& g, const Keyframe& kf);
+
+}  // namespace bimloc::sgraph::detail

@@ -1,0 +1,51 @@
+// Scenarios run in parallel with results in input order (the same output whatever the number
+// of jobs), worlds loaded once and shared: what `bimloc run` and `bimloc sweep` both do.
+#pragma once
+
+#include "sim/runner/run_scenario.hpp"
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace bimloc::cli {
+
+// Worlds are loaded once and shared (read-only) by the scenarios that use them.
+class WorldCache {
+ public:
+  const sim::World& get(const std::string& path);
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, std::unique_ptr<sim::World>> worlds_;
+};
+
+struct RunPoolOptions {
+  int jobs = 1;
+  std::string snapshots;  // folder for snapshots, empty for none
+  std::string trace;      // folder for trace CSVs, empty for none
+  std::string progress_label = "running";
+};
+
+struct PooledRun {
+  sim::ScenarioResult result;
+  std::string error;  // the scenario could not run at all
+};
+
+// What a user knows of the start, for every scenario: --prior-room NAME[,NAME...] and
+// --prior-pose x,y,yaw_deg,sigma_m (the scenario's localizer.prior_* keys). Throws
+// std::invalid_argument for a malformed pose.
+void applyPrior(std::vector<sim::Scenario>& scenarios, const std::vector<std::string>& rooms, const std::string& pose);
+
+// Keeps the scenarios whose start room is one of `rooms` (all when empty); throws naming an
+// unknown room.
+void keepStartRooms(std::vector<sim::Scenario>& scenarios, const std::vector<std::string>& rooms);
+
+// `generated[i]`: scenario i was made from a plan (--all-rooms); when its tour finds no path
+// out of the start room (doors closed in the mesh), it walks inside the room instead.
+std::vector<PooledRun> runPool(const std::vector<sim::Scenario>& scenarios, const std::vector<bool>& generated,
+                               WorldCache& worlds, const RunPoolOptions& options);
+
+}  // namespace bimloc::cli
