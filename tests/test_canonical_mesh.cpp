@@ -71,7 +71,9 @@ TEST(CanonicalMesh, TheSameFaceCutTwoWaysGivesTheSameBytes) {
       const bool in_hole = x > 1 && x < 2 && z > 1 && z < 2;
       const auto hit = world.castRay(0, {x, -1.0f, z}, {0, 1, 0}, 0.0f, 5.0f);
       EXPECT_EQ(hit.hit(), !in_hole) << x << " " << z;
-      if (hit.hit()) EXPECT_NEAR(hit.range_m, 1.0f, 1e-5f);
+      if (hit.hit()) {
+        EXPECT_NEAR(hit.range_m, 1.0f, 1e-5f);
+      }
     }
 }
 
