@@ -162,7 +162,7 @@ TEST(BadInput, PointsOfTheWrongTypeAreSkippedWithAWarningNotACrash) {
   BIMLOC_REQUIRE_SHARED(plan, "revit_quantities.ifc");
   const std::string text = slurp(plan);
   const auto dir = tempDir("wrong-type");
-  for (const std::string point : {std::string("#47"), firstOf(text, "IFCRECTANGLEPROFILEDEF"), firstOf(text, "IFCSPACE")}) {
+  for (const std::string& point : {std::string("#47"), firstOf(text, "IFCRECTANGLEPROFILEDEF"), firstOf(text, "IFCSPACE")}) {
     const std::string path = write(dir, "point.ifc", mutated(text, "#47=IFCPOLYLINE((#4,#46));", "#47=IFCPOLYLINE((" + point + ",#46));"));
     const auto doc = extractJson(path);
     ASSERT_TRUE(doc.contains("storeys")) << point;

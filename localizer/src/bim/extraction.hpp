@@ -36,4 +36,11 @@ TriangleMesh prismMesh(const Extrusion& extrusion);
 
 void appendMesh(TriangleMesh& target, const TriangleMesh& source);
 
+// The same surface, cut into triangles from the outline of each of its planes (triangles of
+// one plane sharing corners), in an order of their coordinates: the bytes depend on the
+// surface alone, not on how IFC++'s CSG happened to split it (see canonical_mesh.cpp).
+// Degenerate triangles are dropped; a plane whose outline is not a set of polygons with
+// holes keeps its triangles.
+void canonicalSurface(TriangleMesh& mesh);
+
 }  // namespace bimloc::bim::detail

@@ -2,6 +2,7 @@
 // works on the RawModel it produces.
 #include "ifc_geometry.hpp"
 
+#include "extraction.hpp"
 #include "utf8.hpp"
 
 #include <bimloc/bim/ifc_reader.hpp>
@@ -28,6 +29,9 @@
 
 #include <carve/triangulator.hpp>
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <chrono>
 #include <unordered_map>
 #include <unordered_set>
@@ -90,23 +94,61 @@ Eigen::Vector3d toWorld(const carve::math::Matrix& T, const carve::geom::vector<
   return {w.x, w.y, w.z};
 }
 
-void appendMeshSet(const carve::mesh::MeshSet<3>& meshset, const carve::math::Matrix& T,
-                   TriangleMesh& out) {
+// Carve orders the vertices of a face by heap address, which changes from run to run (ASLR):
+// start every face at its smallest vertex, so that the same face is cut into the same triangles.
+std::size_t canonicalStart(const std::vector<Eigen::Vector3f>& corners) {
+  const std::size_t n = corners.size();
+  const auto less = [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < n; ++i)
+    for (std::size_t k = 0; k < n; ++k) {  // compare the rotations starting at i and at best
+      const auto& a = corners[(i + k) % n];
+      const auto& b = corners[(best + k) % n];
+      if (less(a, b)) {
+        best = i;
+        break;
+      }
+      if (less(b, a)) break;
+    }
+  return best;
+}
+
+// The polygon in the coordinate plane its normal (Newell) is closest to, counter-clockwise.
+std::vector<carve::geom2d::P2> projectOnFace(const std::vector<Eigen::Vector3f>& corners) {
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    normal += corners[i].cast<double>().cross(corners[(i + 1) % corners.size()].cast<double>());
+  int axis = 0;
+  normal.cwiseAbs().maxCoeff(&axis);
+  int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  if (normal[axis] < 0) std::swap(u, v);
+  std::vector<carve::geom2d::P2> projected;
+  for (const auto& c : corners) projected.push_back(carve::geom::VECTOR(double(c[u]), double(c[v])));
+  return projected;
+}
+
+void appendMeshSet(const carve::mesh::MeshSet<3>& meshset, const carve::math::Matrix& T, TriangleMesh& out) {
   for (const auto* mesh : meshset.meshes) {
     for (const auto* face : mesh->faces) {
-      std::vector<carve::geom::vector<3>> corners;
+      std::vector<Eigen::Vector3f> corners;
       const auto* e = face->edge;
-      for (size_t i = 0; i < face->nVertices(); ++i, e = e->next) corners.push_back(e->vert->v);
+      for (size_t i = 0; i < face->nVertices(); ++i, e = e->next)
+        corners.push_back(toWorld(T, e->vert->v).cast<float>() + Eigen::Vector3f::Zero());  // -0 -> +0
       if (corners.size() < 3) continue;
+      const std::size_t start = canonicalStart(corners);
+      std::rotate(corners.begin(), corners.begin() + static_cast<std::ptrdiff_t>(start), corners.end());
       const auto base = static_cast<std::uint32_t>(out.vertices.size());
-      for (const auto& c : corners) out.vertices.push_back(toWorld(T, c).cast<float>());
+      out.vertices.insert(out.vertices.end(), corners.begin(), corners.end());
       if (corners.size() == 3) {
         out.triangles.push_back({base, base + 1, base + 2});
         continue;
       }
-      // Faces after CSG may be non-convex polygons: ear-clip them in the face's own plane.
-      std::vector<carve::geom2d::P2> projected;
-      face->getProjectedVertices(projected);
+      // Faces after CSG may be non-convex polygons: ear-clip them in the face's own plane,
+      // projected from the float corners we write (not carve's doubles, whose last bits vary
+      // with the order of the CSG: nearly collinear corners then clip differently).
+      const std::vector<carve::geom2d::P2> projected = projectOnFace(corners);
       std::vector<carve::triangulate::tri_idx> tris;
       try {
         carve::triangulate::triangulate(projected, tris);
@@ -138,7 +180,9 @@ TriangleMesh worldMesh(ProductShapeData& shape) {
         if (ms) appendMeshSet(*ms, T, target);
     }
   }
-  return body.empty() ? other : body;
+  TriangleMesh& mesh = body.empty() ? other : body;
+  canonicalSurface(mesh);  // carve's faces, and their splits, follow heap addresses
+  return std::move(mesh);
 }
 
 std::string describe(const RawProduct& p) {

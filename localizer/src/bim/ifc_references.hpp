@@ -45,7 +45,8 @@ class ReferenceCheck {
       if (named->second > resolved) {
         const int lost = named->second - resolved;
         broken_.emplace(id, "#" + std::to_string(id) + " " + entity->className() + " names " + std::to_string(lost) +
-                                " entit" + (lost == 1 ? "y" : "ies") + " of a type its attribute does not take");
+                                " entit" + (lost == 1 ? "y" : "ies") +
+                                " it cannot use (of a type its attribute does not take, or missing)");
       }
     }
     if (broken_.empty()) return;
