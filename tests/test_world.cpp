@@ -109,6 +109,18 @@ TEST(World, SweepsStopAtWallsAndFindTheFloor) {
   EXPECT_NEAR(floor_z, 0.0, 1e-4);
 }
 
+// A body that starts cutting a surface (the Duplex start drawn on a bed) is not free; the
+// sweep alone, moving parallel to the surface it already cuts, may not say so.
+TEST(World, OverlapTestSeesASphereThatAlreadyCutsASurface) {
+  const sim::World world = sim::World::fromMesh(test::boxRoomFile({10, 8, 3}));
+  EXPECT_TRUE(world.sphereClear(0, {5, 4, 1.5}, 0.3));
+  Eigen::Vector3d contact;
+  EXPECT_FALSE(world.sphereClear(0, {9.8, 4, 1.5}, 0.3, &contact));
+  EXPECT_NEAR(contact.x(), 10.0, 1e-2);
+  EXPECT_FALSE(world.sphereClear(0, {5, 4, 2.85}, 0.3, &contact));
+  EXPECT_NEAR(contact.z(), 3.0, 1e-2);
+}
+
 TEST(World, LoadsAnExtractFolderLikeThePlan) {
   const sim::World from_dir = sim::World::load(std::string(BIMLOC_WORLDS_DIR) + "/../meshes/site_office");
   const sim::World from_plan = sim::World::load(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc");

@@ -120,7 +120,8 @@ void randomWalk(ScriptBuilder& script, const bim::Storey& storey, const MotionCo
     if (!leg.empty()) leg.erase(leg.begin());  // where the base already is
     if (leg.empty()) {
       if (legs == 0)
-        throw MotionError("random walk: no reachable spot in room " + room->name + " where the body fits",
+        throw MotionError("random walk: no spot in room " + room->name + " where the body fits is reachable from " +
+                              xy(script.timeline.position()),
                           MotionError::Where::Script);
       break;
     }

@@ -46,6 +46,9 @@ bool FreeSpace::segmentClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
 }
 
 bool FreeSpace::spotFree(const Eigen::Vector2d& p, double margin_m, Eigen::Vector3d* contact) const {
+  // The overlap test first: a sweep that starts inside a bed or a table does not see it.
+  ++sweeps_;
+  if (!world_.sphereClear(storey_, at(p, body_z_), radius_ + margin_m, contact)) return false;
   for (const Eigen::Vector2d& step : {Eigen::Vector2d(kNudge_m, 0.0), Eigen::Vector2d(-kNudge_m, 0.0),
                                       Eigen::Vector2d(0.0, kNudge_m), Eigen::Vector2d(0.0, -kNudge_m)}) {
     ++sweeps_;

@@ -263,6 +263,36 @@ bool World::sweepClear(std::size_t storey, const Eigen::Vector3d& from, const Ei
   return false;
 }
 
+namespace {
+// Records the first contact of a contactTest; ignores touching within Bullet's margin.
+struct FirstContact : btCollisionWorld::ContactResultCallback {
+  bool hit = false;
+  btVector3 point{0, 0, 0};
+  btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int,
+                           const btCollisionObjectWrapper*, int, int) override {
+    if (cp.getDistance() < 0 && !hit) hit = true, point = cp.getPositionWorldOnB();
+    return 0;
+  }
+};
+}  // namespace
+
+bool World::sphereClear(std::size_t storey, const Eigen::Vector3d& centre, double radius_m,
+                        Eigen::Vector3d* contact) const {
+  const auto& b = *impl_->bullet.at(storey);
+  if (!b.object) return true;
+  btSphereShape sphere{static_cast<btScalar>(radius_m)};
+  btCollisionObject body;
+  body.setCollisionShape(&sphere);
+  btTransform pose;
+  pose.setIdentity();
+  pose.setOrigin(btVector3(btScalar(centre.x()), btScalar(centre.y()), btScalar(centre.z())));
+  body.setWorldTransform(pose);
+  FirstContact callback;
+  b.world->contactTest(&body, callback);
+  if (callback.hit && contact) *contact = Eigen::Vector3d(callback.point.x(), callback.point.y(), callback.point.z());
+  return !callback.hit;
+}
+
 bool World::floorBelow(std::size_t storey, const Eigen::Vector3d& from, double max_drop_m, double* floor_z) const {
   const Eigen::Vector3d down(0, 0, -1);
   const RayHit hit = bulletRay(storey, from, from + max_drop_m * down);

@@ -56,6 +56,10 @@ class World {
   // On contact, `contact` (if given) receives the first point touched.
   bool sweepClear(std::size_t storey, const Eigen::Vector3d& from, const Eigen::Vector3d& to, double radius_m,
                   Eigen::Vector3d* contact = nullptr) const;
+  // Bullet: does a sphere of radius_m at `centre` stay clear of the mesh? A static overlap test:
+  // sweeps do not report a triangle the sphere already cuts at their start.
+  bool sphereClear(std::size_t storey, const Eigen::Vector3d& centre, double radius_m,
+                   Eigen::Vector3d* contact = nullptr) const;
   // Bullet: z of the first surface below `from` (the floor under the base), if any within max_drop_m.
   bool floorBelow(std::size_t storey, const Eigen::Vector3d& from, double max_drop_m, double* floor_z) const;
 
