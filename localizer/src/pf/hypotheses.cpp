@@ -13,7 +13,10 @@ constexpr double kMinPairAngle = 30.0 * M_PI / 180.0;  // nearly parallel planes
 
 // The pose at which observation i lies on landmark a and observation j on landmark b (the
 // heading from a's normal, the position from the two planes' offsets), scored; kept when it
-// is inside `room` (or any room when room < 0) and explains enough of the scan.
+// is inside `room` (or any room when room == -1, anywhere when room == kAnywhere) and explains
+// enough of the scan.
+constexpr int kAnywhere = -2;
+
 void tryPair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a, const Landmark& b,
              double z, int room, const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
   // Three associations make a pose worth scoring; clutter (furniture, walls seen through doors)
@@ -30,8 +33,8 @@ void tryPair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, 
   const Eigen::Vector2d xy = A.inverse() * rhs;
   Particle p;
   p.x = xy.x(), p.y = xy.y(), p.yaw = yaw, p.room = rooms.roomAt(xy.x(), xy.y());
-  if (p.room < 0 || (room >= 0 && p.room != room)) return;
-  const MatchResult m = matchObservations(p, z, obs, rooms, c);
+  if ((p.room < 0 && room != kAnywhere) || (room >= 0 && p.room != room)) return;
+  const MatchResult m = matchObservations(p, z, obs, rooms, c, nullptr, /*out_of_rooms_penalised=*/room != kAnywhere);
   if (m.associated >= kMinAssociated) out.push_back({p.x, p.y, p.yaw, p.room, m.log_likelihood, m.associated});
 }
 
@@ -58,7 +61,7 @@ void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vec
 // so face b can only be one that passes near there. Pairs of faces the robot could not see
 // together are never tried: the cost is the faces times the faces near each, not its square.
 void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& index, const RoomIndex& rooms,
-               const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
+               const ParticleFilterConfig& c, int room, std::vector<Hypothesis>& out) {
   const auto& faces = index.faces();
   const double angle = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
   std::vector<double> reach(obs.size());
@@ -83,7 +86,7 @@ void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& i
           for (std::size_t b = 0; b < faces.size(); ++b) near.push_back(b);
         std::sort(near.begin(), near.end());  // the same order whatever the cells' order
         for (const std::size_t b : near)
-          if (b != a) tryPair(obs, i, j, fa, faces[b], z, -1, rooms, c, out);
+          if (b != a) tryPair(obs, i, j, fa, faces[b], z, room, rooms, c, out);
       }
     }
 }
@@ -91,7 +94,8 @@ void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& i
 }  // namespace
 
 std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observations, double z_base,
-                                       const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count) {
+                                       const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count,
+                                       bool outside_rooms) {
   std::vector<Hypothesis> all;
   if (observations.size() < 2 || rooms.roomCount() == 0) return all;
   if (config.use_rooms) {
@@ -100,9 +104,9 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observati
   } else {
     // The ablation: every room holds every face; one pass over them is enough.
     if (const FaceIndex* index = rooms.faceIndex())
-      fromIndex(observations, z_base, *index, rooms, config, all);
+      fromIndex(observations, z_base, *index, rooms, config, outside_rooms ? kAnywhere : -1, all);
     else
-      fromLandmarks(observations, z_base, rooms.landmarks(0), -1, rooms, config, all);
+      fromLandmarks(observations, z_base, rooms.landmarks(0), outside_rooms ? kAnywhere : -1, rooms, config, all);
   }
   std::sort(all.begin(), all.end(), [](const Hypothesis& a, const Hypothesis& b) {
     return a.log_likelihood != b.log_likelihood ? a.log_likelihood > b.log_likelihood

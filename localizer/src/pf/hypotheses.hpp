@@ -18,8 +18,11 @@ struct Hypothesis {
   int associated = 0;
 };
 
-// Hypotheses over every room (best first, near-duplicates merged, at most max_count).
+// Hypotheses over every room (best first, near-duplicates merged, at most max_count). With
+// `outside_rooms`, also poses in no room (a search for rivals: rooms are a prior, and a
+// corridor the plan has no space for is a place too); the particles' seeds stay in rooms.
 std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observations, double z_base,
-                                       const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count);
+                                       const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count,
+                                       bool outside_rooms = false);
 
 }  // namespace bimloc::pf::detail

@@ -262,7 +262,7 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   if (path.has_best) report.path_best = path.best;
   report.path_candidates = path.candidates;
   report.path_rivals = path.rivals;
-  const bool decisive = path.has_best && path.margin >= m.config.evidenceMargin();
+  const bool decisive = path.has_best && path.pose_fixed && path.margin >= m.config.evidenceMargin();
   const double yaw_tol = m.config.converged_yaw_deg * M_PI / 180.0;
   std::vector<double> w = m.normalisedWeights();
   Eigen::Vector3d mean = m.mean(w);
@@ -301,11 +301,12 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   if (agrees && !tracking) {
     // About to count towards convergence: first make sure no look-alike is missing from the
     // candidates, then ask again.
-    m.evidence.proposeEveryFit(observations, z, odom);
+    const bool searched = m.evidence.proposeEveryFit(observations, z, odom, path.best);
     path = m.evidence.verdict(odom);
     report.path_margin = path.margin, report.path_best = path.best, report.path_candidates = path.candidates;
     report.path_rivals = path.rivals;
-    agrees = path.margin >= m.config.evidenceMargin() && near(mean, path.best, m.config.converged_position_m, yaw_tol);
+    agrees = searched && path.pose_fixed && path.margin >= m.config.evidenceMargin() &&
+             near(mean, path.best, m.config.converged_position_m, yaw_tol);
   }
   m.agreeing_updates = agrees ? m.agreeing_updates + 1 : 0;
   if (m.agreeing_updates >= m.config.converged_updates) {

@@ -2,6 +2,8 @@
 
 #include "hypotheses.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -53,7 +55,12 @@ ParticleFilterConfig windowModel(ParticleFilterConfig c) {
 }  // namespace
 
 PathEvidence::PathEvidence(const bim::Storey& storey, const ParticleFilterConfig& config)
-    : rooms_(storey, /*use_rooms=*/false), config_(windowModel(config)) {}
+    : rooms_(storey, /*use_rooms=*/false), config_(windowModel(config)) {
+  for (const auto& l : rooms_.landmarks(0)) {
+    if (l.id >= static_cast<int>(face_normals_.size())) face_normals_.resize(static_cast<std::size_t>(l.id) + 1, Eigen::Vector2d::Zero());
+    face_normals_[static_cast<std::size_t>(l.id)] = l.normal.head<2>();
+  }
+}
 
 PathEvidence::ScanScore PathEvidence::scoreOn(const Pose2& T_map_odom, const Scan& scan, bool detailed) const {
   const Pose2 pose = compose(T_map_odom, scan.odom);
@@ -172,24 +179,68 @@ double PathEvidence::logLikelihoodOf(const Pose2& map_pose, const Pose2& odom) c
   return scored(compose(map_pose, inverse(odom)), false).log_likelihood;
 }
 
-void PathEvidence::proposeEveryFit(const std::vector<Observation>& observations, double z_base, const Pose2& odom) {
+namespace {
+
+// An observation of an earlier scan, seen from the base's frame now: `rel` is that scan's base
+// in the present base frame (odometry over a few metres: centimetres off, well within sigma).
+Observation seenFrom(const Observation& o, const Pose2& rel) {
+  const double c = std::cos(rel.z()), s = std::sin(rel.z());
+  Observation m = o;
+  m.normal_base = Eigen::Vector3d(c * o.normal_base.x() - s * o.normal_base.y(), s * o.normal_base.x() + c * o.normal_base.y(),
+                                  o.normal_base.z());
+  m.azimuth_base = wrapAngle(o.azimuth_base + rel.z());
+  // The plane n.p + d = 0 in the old frame is n'.p' + d - n'.t = 0 in the new one.
+  m.d_offset = o.d_offset - m.normal_base.head<2>().dot(rel.head<2>());
+  m.centroid_base = Eigen::Vector2d(c * o.centroid_base.x() - s * o.centroid_base.y() + rel.x(),
+                                    s * o.centroid_base.x() + c * o.centroid_base.y() + rel.y());
+  const double height2 = std::max(0.0, o.range_m * o.range_m - o.centroid_base.squaredNorm());
+  m.range_m = std::sqrt(m.centroid_base.squaredNorm() + height2);
+  return m;
+}
+
+}  // namespace
+
+bool PathEvidence::proposeEveryFit(const std::vector<Observation>& observations, double z_base, const Pose2& odom,
+                                   const Pose2& best_now) {
   ParticleFilterConfig every = config_;
   every.use_rooms = false;  // rooms_ holds every face for every room
-  // This scan, or else the latest scans of the window, until one fixes poses.
-  std::vector<std::pair<const std::vector<Observation>*, std::pair<double, Pose2>>> sources{{&observations, {z_base, odom}}};
-  for (auto it = scans_.rbegin(); it != scans_.rend() && sources.size() < 4; ++it)
-    sources.push_back({&it->observations, {it->z_base, it->odom}});
-  for (const auto& [obs, where] : sources) {
-    const auto fits = poseHypotheses(*obs, where.first, rooms_, every, std::numeric_limits<std::size_t>::max());
+  // The sources, in order: this scan; the latest scans of the window, each alone; then this
+  // scan with the latest scans merged in (a robot turning in a closet sees two walls per scan,
+  // never enough to fix a pose alone). The first source whose fits include the best place is
+  // the search: every place it explains about as well is then among the candidates.
+  struct Source {
+    std::vector<Observation> observations;
+    double z = 0;
+    Pose2 odom;
+  };
+  // (The latest scan of the window is often this one: skipped.)
+  std::vector<const Scan*> latest;
+  for (auto it = scans_.rbegin(); it != scans_.rend() && latest.size() < 3; ++it)
+    if (it->odom != odom) latest.push_back(&*it);
+  std::vector<Source> sources{{observations, z_base, odom}};
+  for (const Scan* scan : latest) sources.push_back({scan->observations, scan->z_base, scan->odom});
+  Source merged{observations, z_base, odom};
+  for (const Scan* it : latest) {
+    const Pose2 rel = compose(inverse(odom), it->odom);
+    for (const auto& o : it->observations) merged.observations.push_back(seenFrom(o, rel));
+    sources.push_back(merged);
+  }
+  for (const auto& source : sources) {
+    const auto fits = poseHypotheses(source.observations, source.z, rooms_, every, std::numeric_limits<std::size_t>::max(),
+                                     /*outside_rooms=*/true);
     if (fits.empty()) continue;
-    // Those that fit the scan within three clutter planes of the best fit, moved on to now.
-    const Pose2 since = compose(inverse(where.second), odom);
+    // Those that fit the source within three clutter planes of its best fit, moved on to now.
+    const Pose2 since = compose(inverse(source.odom), odom);
+    bool found_best = false;
     for (const auto& h : fits) {
       if (h.log_likelihood < fits.front().log_likelihood - 1.5 * config_.gate_mahalanobis2) break;
-      propose(compose({h.x, h.y, h.yaw}, since), odom);
+      const Pose2 now = compose({h.x, h.y, h.yaw}, since);
+      found_best |= near(now, best_now, kOtherPlaceM, kOtherPlaceRad);
+      propose(now, odom);
     }
-    return;
+    if (found_best) return true;
   }
+  return false;
 }
 
 double PathEvidence::distinctMargin(const Candidate& p, const Candidate& q) const {
@@ -224,6 +275,23 @@ double PathEvidence::distinctMargin(const Candidate& p, const Candidate& q) cons
   // The room prior, as in total(): at most one clutter plane's worth.
   const double n = std::max<double>(1.0, static_cast<double>(scans_.size()));
   return margin + 0.5 * config_.gate_mahalanobis2 * out_of_rooms / n;
+}
+
+bool PathEvidence::fixesPose(const Candidate& p) const {
+  std::vector<int> faces;
+  for (const auto& scan : p.per_scan)
+    for (const auto& m : scan.per_observation)
+      if (m.face >= 0) faces.push_back(m.face);
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  // The information on the position, one unit n n^T per distinct face (in units of sigma_d^-2).
+  Eigen::Matrix2d information = Eigen::Matrix2d::Zero();
+  for (int f : faces)
+    if (static_cast<std::size_t>(f) < face_normals_.size()) information += face_normals_[f] * face_normals_[f].transpose();
+  const double weakest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(information, Eigen::EigenvaluesOnly).eigenvalues()(0);
+  // sigma along the weakest direction = sigma_d / sqrt(weakest) <= converged_position_m.
+  const double ratio = config_.sigma_d_m / config_.converged_position_m;
+  return weakest >= ratio * ratio;
 }
 
 PathVerdict PathEvidence::verdict(const Pose2& odom) {
@@ -265,6 +333,7 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
   v.has_best = true;
   v.best = compose(candidates_[best].T_map_odom, odom);
   v.best_log_likelihood = candidates_[best].log_likelihood;
+  v.pose_fixed = fixesPose(candidates_[best]);
   v.margin = rivals.empty() ? std::numeric_limits<double>::infinity() : rivals.front().first;
   // The distinct places within the margin: what the plan cannot tell apart (yet).
   for (const auto& [margin, i] : rivals) {

@@ -34,6 +34,11 @@ struct PathVerdict {
   // away), counted once per wall face (see PathEvidence::distinctMargin): +inf when no other
   // place fits at all.
   double margin = 0;
+  // Whether the window's walls fix the best pose at all: matched faces at angles that pin the
+  // position in every direction (see PathEvidence::fixesPose). Walls all parallel (a corridor,
+  // an attic between two gables) leave a line of equally good poses, and the candidates, which
+  // come from pairs of walls at an angle, cannot hold its rivals: no margin means anything then.
+  bool pose_fixed = false;
   int candidates = 0;
   int scans = 0;
   double window_m = 0;  // path length covered by the window
@@ -67,12 +72,15 @@ class PathEvidence {
   // near it: a candidate fitted to one scan is a little off on the others (noise, drift), and
   // comparing a fitted look-alike with an unfitted truth would favour the look-alike.
   PathVerdict verdict(const Pose2& odom);
-  // Before a verdict is trusted: every pose the scan `observations` fits, over every face of
-  // the storey, joins the candidates, so that the best's strongest rival cannot be missing
-  // (a look-alike the per-scan proposals left out would make any margin meaningless). A scan
-  // that fixes no pose (fewer than two walls at an angle) hands over to the latest one of the
-  // window that does.
-  void proposeEveryFit(const std::vector<Observation>& observations, double z_base, const Pose2& odom);
+  // Before a verdict is trusted: every pose a scan fits, over every face of the storey and in
+  // or out of rooms, joins the candidates, so that the best's strongest rival cannot be missing
+  // (a look-alike the per-scan proposals left out would make any margin meaningless). The scan
+  // is `observations`, or else one of the latest of the window, or else them merged by the
+  // odometry between them: the first that fixes poses at all and whose fits include the best
+  // place `best_now` (map <- base now). Returns whether such a scan was found: when not, the
+  // search cannot vouch that no rival exists, and no margin may be trusted.
+  bool proposeEveryFit(const std::vector<Observation>& observations, double z_base, const Pose2& odom,
+                       const Pose2& best_now);
   // Candidates whose start pose (at odometry pose `odom_start`) the prior rules out are not
   // places at all: never proposed, never rivals.
   void setPrior(const StartPrior* prior, const Pose2& odom_start) { prior_ = prior, odom_start_ = odom_start; }
@@ -110,8 +118,13 @@ class PathEvidence {
   // scans (odometry drift, a wall a few centimetres off its plan, a near-symmetric twin that
   // differs by less than the sigmas) cannot add up to a verdict.
   double distinctMargin(const Candidate& p, const Candidate& q) const;
+  // Whether the distinct faces P matches over the window fix its position: each face, counted
+  // once as in distinctMargin, pins the position along its normal to the window's sigma_d;
+  // fixed when the weakest direction is pinned to within the convergence radius.
+  bool fixesPose(const Candidate& p) const;
 
   RoomIndex rooms_;
+  std::vector<Eigen::Vector2d> face_normals_;  // by Landmark::id: the floor-plane normal of each face
   const StartPrior* prior_ = nullptr;
   Pose2 odom_start_ = Pose2::Zero();
   ParticleFilterConfig config_;  // with the sigmas of the window's error model
