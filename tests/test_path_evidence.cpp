@@ -8,6 +8,8 @@
 #include "sim/runner/run_scenario.hpp"
 #include "sim/world/world.hpp"
 
+#include "pf/path_evidence.hpp"
+
 #include <bimloc/pf/particle_filter.hpp>
 
 #include <gtest/gtest.h>
@@ -57,6 +59,35 @@ TEST(Measurement, TheSameViewScoresTheSameWhereverThePlanIs) {
       EXPECT_EQ(a.second, b.second) << name;
     }
   }
+}
+
+TEST(PathEvidence, AnEarlierScanMovedByTheOdometrySeesThePlaneWhereTheLaterPoseSeesIt) {
+  // A vertical map plane n.p + d = 0 and two base poses: the observation from the first, moved
+  // into the second's frame, is the observation from the second (analytic).
+  const Eigen::Vector3d n_map = Eigen::Vector3d(0.6, -0.8, 0.0);
+  const double d_map = -3.7;
+  const Eigen::Vector2d on_plane = -d_map * n_map.head<2>() + 1.5 * Eigen::Vector2d(0.8, 0.6);
+  const auto observe = [&](const pf::detail::Pose2& base) {
+    const double c = std::cos(base.z()), s = std::sin(base.z());
+    Eigen::Matrix2d R;
+    R << c, -s, s, c;
+    pf::detail::Observation o;
+    const Eigen::Vector2d n = R.transpose() * n_map.head<2>();
+    o.normal_base = Eigen::Vector3d(n.x(), n.y(), 0.0);
+    o.azimuth_base = std::atan2(n.y(), n.x());
+    o.d_offset = d_map + n_map.head<2>().dot(base.head<2>());
+    o.centroid_base = R.transpose() * (on_plane - base.head<2>());
+    o.range_m = std::hypot(o.centroid_base.norm(), 1.2);
+    return o;
+  };
+  const pf::detail::Pose2 a(1.0, 2.0, 0.3), b(2.5, 1.4, -1.1);
+  const pf::detail::Observation moved = pf::detail::seenFrom(observe(a), pf::detail::compose(pf::detail::inverse(b), a));
+  const pf::detail::Observation direct = observe(b);
+  EXPECT_LT((moved.normal_base - direct.normal_base).norm(), 1e-12);
+  EXPECT_NEAR(moved.d_offset, direct.d_offset, 1e-12);
+  EXPECT_NEAR(pf::detail::wrapAngle(moved.azimuth_base - direct.azimuth_base), 0.0, 1e-12);
+  EXPECT_LT((moved.centroid_base - direct.centroid_base).norm(), 1e-12);
+  EXPECT_NEAR(moved.range_m, direct.range_m, 1e-12);
 }
 
 TEST(PathEvidence, LookAlikeOfficesStayUndecidedWhileTheRobotTurnsInOne) {
@@ -128,4 +159,47 @@ TEST(SharedPlans, DuplexIsPointSymmetricSoNoStartRoomConverges) {
     ++runs;
   }
   EXPECT_EQ(runs, 2);
+}
+
+TEST(SharedPlans, AnAtticBetweenTwoGablesNeverFixesThePoseSoNeverConverges) {
+  // ExampleHOM's attic is one room whose only walls are its two gables, parallel: every pose
+  // along them, and each turned by 180 degrees, sees the same. It converged falsely on the
+  // 180-degree turn while the rival search found nothing (no scan fixes a pose).
+  BIMLOC_REQUIRE_SHARED(plan, "ExampleHOM.ifc");
+  const sim::World world = sim::World::fromPlan(plan);
+  sim::RoomScenarioOptions options;
+  options.plan = plan;
+  options.storey = "attic";
+  options.duration_s = 25.0;
+  options.seeds = 2;
+  int runs = 0;
+  for (const auto& scenario : sim::roomScenarios(world, options)) {
+    const sim::ScenarioResult r = sim::runScenario(scenario, world);
+    EXPECT_FALSE(r.converged) << scenario.name;
+    EXPECT_FALSE(r.false_convergence) << scenario.name;
+    ++runs;
+  }
+  EXPECT_EQ(runs, 2);
+}
+
+TEST(SharedPlans, AClosetWhereNoScanFixesAPoseLocalizesOnlyOnceTheRobotIsOut) {
+  // Jesse.1's inferred room R16 on Level 1 is a 1.2 m2 closet: turning in it, each scan sees
+  // two walls, never enough to fix a pose, so the rival search found nothing and the margin
+  // was "infinite"; it converged 10 m off at 1.9 s. The search now merges the latest scans.
+  BIMLOC_REQUIRE_SHARED(plan, "Jesse.1.ifc");
+  const sim::World world = sim::World::fromPlan(plan);
+  sim::RoomScenarioOptions options;
+  options.plan = plan;
+  options.storey = "Level 1";
+  options.duration_s = 25.0;
+  int runs = 0;
+  for (const auto& scenario : sim::roomScenarios(world, options)) {
+    if (scenario.start.room != "R16") continue;
+    const sim::ScenarioResult r = sim::runScenario(scenario, world);
+    EXPECT_FALSE(r.false_convergence) << scenario.name;
+    EXPECT_TRUE(r.converged) << scenario.name;
+    if (r.convergence_time_s) EXPECT_GT(*r.convergence_time_s, 5.0) << scenario.name;
+    ++runs;
+  }
+  EXPECT_EQ(runs, 1);
 }

@@ -179,10 +179,6 @@ double PathEvidence::logLikelihoodOf(const Pose2& map_pose, const Pose2& odom) c
   return scored(compose(map_pose, inverse(odom)), false).log_likelihood;
 }
 
-namespace {
-
-// An observation of an earlier scan, seen from the base's frame now: `rel` is that scan's base
-// in the present base frame (odometry over a few metres: centimetres off, well within sigma).
 Observation seenFrom(const Observation& o, const Pose2& rel) {
   const double c = std::cos(rel.z()), s = std::sin(rel.z());
   Observation m = o;
@@ -197,8 +193,6 @@ Observation seenFrom(const Observation& o, const Pose2& rel) {
   m.range_m = std::sqrt(m.centroid_base.squaredNorm() + height2);
   return m;
 }
-
-}  // namespace
 
 bool PathEvidence::proposeEveryFit(const std::vector<Observation>& observations, double z_base, const Pose2& odom,
                                    const Pose2& best_now) {

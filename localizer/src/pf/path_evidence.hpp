@@ -25,6 +25,9 @@ Pose2 compose(const Pose2& a, const Pose2& b);  // a (+) b
 Pose2 inverse(const Pose2& a);
 // Within `metres` and `radians` of each other.
 bool near(const Pose2& a, const Pose2& b, double metres, double radians);
+// An observation of an earlier scan, seen from the base's frame now: `rel` is that scan's base
+// in the present base frame (odometry over a few metres: centimetres off, well within sigma).
+Observation seenFrom(const Observation& o, const Pose2& rel);
 
 struct PathVerdict {
   bool has_best = false;
