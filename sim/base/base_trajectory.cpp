@@ -129,6 +129,41 @@ void randomWalk(ScriptBuilder& script, const bim::Storey& storey, const MotionCo
   }
 }
 
+// After a tour: on to the nearest room not yet visited that the base can reach, until the
+// duration is used; with none left, a random walk where it stands (if that is a room).
+void explore(ScriptBuilder& script, const bim::Storey& storey, const MotionConfig& motion,
+             std::vector<const bim::Room*> visited, double duration_s, std::uint64_t seed) {
+  const auto seen = [&visited](const bim::Room& r) { return std::find(visited.begin(), visited.end(), &r) != visited.end(); };
+  while (script.timeline.end_s() < duration_s) {
+    const Eigen::Vector2d here = script.timeline.position();
+    std::vector<std::pair<double, const bim::Room*>> next;
+    for (const auto& room : storey.rooms)
+      if (!seen(room)) next.emplace_back((room.centre - here).norm(), &room);
+    std::stable_sort(next.begin(), next.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    bool moved = false;
+    for (const auto& [distance, room] : next) {
+      visited.push_back(room);
+      try {
+        script.addLeg(legTo(script.space, here, roomGoal(script.space, *room), "room " + room->name));
+        moved = true;
+        break;
+      } catch (const MotionError&) {
+        // out of reach (another flat, a closed door): the next nearest
+      }
+    }
+    if (moved) continue;
+    const Pose2 now{here.x(), here.y(), script.timeline.yaw()};
+    if (!roomAt(storey, here)) return;  // nowhere to wander: it stands
+    MotionConfig wander = motion;
+    wander.walk_room.clear();
+    try {
+      randomWalk(script, storey, wander, now, duration_s, seed);
+    } catch (const MotionError&) {
+    }
+    return;
+  }
+}
+
 }  // namespace
 
 struct BaseTrajectory::Impl {
@@ -181,8 +216,10 @@ BaseTrajectory BaseTrajectory::plan(const World& world, std::size_t storey, cons
     case MotionConfig::Kind::Tour:
     {
       bool moved = false;
+      std::vector<const bim::Room*> visited{roomAt(st, origin)};
       for (const auto& name : motion.rooms) {
         const bim::Room& room = roomOrThrow(st, name);
+        visited.push_back(&room);
         try {
           script.addLeg(legTo(space, script.timeline.position(), roomGoal(space, room), "room " + room.name));
           moved = true;
@@ -191,6 +228,7 @@ BaseTrajectory BaseTrajectory::plan(const World& world, std::size_t storey, cons
         }
       }
       if (!moved && motion.skip_unreachable_rooms) randomWalk(script, st, motion, start, duration_s, seed);
+      else if (motion.explore_after_tour) explore(script, st, motion, std::move(visited), duration_s, seed);
       break;
     }
     case MotionConfig::Kind::RandomWalk:

@@ -33,6 +33,7 @@ std::vector<Scenario> roomScenarios(const World& world, const RoomScenarioOption
       s.start.room = label(rooms[i]);
       s.motion.kind = MotionConfig::Kind::Tour;
       s.motion.skip_unreachable_rooms = true;
+      s.motion.explore_after_tour = true;
       if (largest != i) s.motion.rooms.push_back(label(rooms[largest]));
       if (farthest != i && farthest != largest) s.motion.rooms.push_back(label(rooms[farthest]));
       if (s.motion.rooms.empty()) s.motion.kind = MotionConfig::Kind::RandomWalk, s.motion.walk_room = s.start.room;
