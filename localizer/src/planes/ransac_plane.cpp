@@ -82,6 +82,16 @@ class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
     return count;
   }
 
+ protected:
+  // PCL's test, without its message on stderr for every collinear sample (a quiet library: a
+  // degenerate sample is an ordinary event of RANSAC, and the draw simply goes on).
+  bool isSampleGood(const pcl::Indices& samples) const override {
+    if (samples.size() != 3) return false;
+    const Eigen::Vector3f p0 = (*input_)[samples[0]].getVector3fMap(), p1 = (*input_)[samples[1]].getVector3fMap(),
+                          p2 = (*input_)[samples[2]].getVector3fMap();
+    return (p1 - p0).cross(p2 - p0).stableNorm() >= Eigen::NumTraits<float>::dummy_precision();
+  }
+
  private:
   std::vector<float> x_, y_, z_;
 };
