@@ -23,7 +23,10 @@ StartPrior::StartPrior(const bim::Storey& storey, const RoomIndex& rooms, const 
       throw std::invalid_argument("prior room '" + name + "' is not a room of storey '" + storey.name + "' (rooms: " + known + ")");
     }
     for (std::size_t i = 0; i < rooms.roomCount(); ++i)
-      if (&rooms.room(static_cast<int>(i)) == room) rooms_.push_back(static_cast<int>(i));
+      if (&rooms.room(static_cast<int>(i)) == room) {
+        rooms_.push_back(static_cast<int>(i));
+        areas_.push_back(std::max(1e-6, room->area_m2));
+      }
   }
   if (c.prior_pose) {
     if (!c.prior_pose->allFinite() || !(c.prior_sigma_m > 0) || !(c.prior_sigma_yaw_deg > 0))
@@ -55,9 +58,7 @@ Particle StartPrior::draw(std::mt19937_64& rng) const {
       p.x = pose_->x() + sigma_m_ * normal(rng), p.y = pose_->y() + sigma_m_ * normal(rng);
       p.yaw = wrapAngle(pose_->z() + sigma_yaw_rad_ * normal(rng));
     } else {
-      std::vector<double> areas;
-      for (const int r : rooms_) areas.push_back(std::max(1e-6, index_->room(r).area_m2));
-      const bim::Room& room = index_->room(rooms_[std::discrete_distribution<std::size_t>(areas.begin(), areas.end())(rng)]);
+      const bim::Room& room = index_->room(rooms_[std::discrete_distribution<std::size_t>(areas_.begin(), areas_.end())(rng)]);
       Eigen::Vector2d lo = room.footprint.front(), hi = lo;
       for (const auto& v : room.footprint) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
       p.x = lo.x() + unit(rng) * (hi.x() - lo.x()), p.y = lo.y() + unit(rng) * (hi.y() - lo.y()), p.yaw = yaw(rng);

@@ -32,6 +32,7 @@ class StartPrior {
  private:
   const RoomIndex* index_ = nullptr;
   std::vector<int> rooms_;
+  std::vector<double> areas_;  // of rooms_: a room of the prior is drawn by its area
   std::optional<Eigen::Vector3d> pose_;
   double sigma_m_ = 1.0, sigma_yaw_rad_ = M_PI;
 };
