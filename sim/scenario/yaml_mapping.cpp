@@ -99,18 +99,32 @@ std::string describe(const YAML::Node& node) {
   return "'" + node.Scalar() + "'";
 }
 
-nlohmann::json toJson(const std::string& file, const YAML::Node& node) {
+namespace {
+
+// YAML aliases make a document a graph: an alias inside its own anchor is a cycle, and aliases
+// of aliases expand exponentially (a "billion laughs"). A scenario's free-form section is a
+// few dozen values a few levels deep; these bounds are far beyond that and far below harm.
+constexpr int kMaxDepth = 32;
+constexpr std::size_t kMaxValues = 100000;
+
+nlohmann::json toJsonBounded(const std::string& file, const YAML::Node& node, int depth, std::size_t& values) {
+  if (++values > kMaxValues)
+    fail(file, lineOf(node), "the section expands to more than " + std::to_string(kMaxValues) +
+                                 " values (aliases of aliases?): refused");
+  if (depth > kMaxDepth)
+    fail(file, lineOf(node), "values nested more than " + std::to_string(kMaxDepth) +
+                                 " levels deep (an alias inside its own anchor?): refused");
   if (!node.IsDefined() || node.IsNull()) return nullptr;
   if (node.IsSequence()) {
     nlohmann::json out = nlohmann::json::array();
-    for (const auto& item : node) out.push_back(toJson(file, item));
+    for (const auto& item : node) out.push_back(toJsonBounded(file, item, depth + 1, values));
     return out;
   }
   if (node.IsMap()) {
     nlohmann::json out = nlohmann::json::object();
     for (const auto& kv : node) {
       if (!kv.first.IsScalar()) fail(file, lineOf(kv.first), "keys must be plain words, got " + describe(kv.first));
-      out[kv.first.Scalar()] = toJson(file, kv.second);
+      out[kv.first.Scalar()] = toJsonBounded(file, kv.second, depth + 1, values);
     }
     return out;
   }
@@ -123,6 +137,13 @@ nlohmann::json toJson(const std::string& file, const YAML::Node& node) {
     return integral ? nlohmann::json(static_cast<long long>(v)) : nlohmann::json(v);
   }
   return node.Scalar();
+}
+
+}  // namespace
+
+nlohmann::json toJson(const std::string& file, const YAML::Node& node) {
+  std::size_t values = 0;
+  return toJsonBounded(file, node, 0, values);
 }
 
 Mapping::Mapping(const std::string& file, const YAML::Node& node, const std::string& path, int line,
