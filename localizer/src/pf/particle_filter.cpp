@@ -239,15 +239,7 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
     p.log_weight += m.config.likelihood_power * match.log_likelihood;
     if (m.prior.active() && !m.admitted({p.x, p.y, p.yaw})) p.log_weight -= m.config.likelihood_power * m.config.outside_rooms_penalty;
   }
-  // Sensor resetting: the particles explain the scan clearly worse than the plan can.
-  // After convergence the filter tracks (paper: the S-Graph takes over): no more jumps.
   const bool tracking = m.T_map_odom.has_value();
-  if (m.weighed_once && !tracking && !hyps.empty() && !annealing &&
-      hyps[0].log_likelihood > best_raw + m.config.injection_margin) {
-    report.injected = m.inject(hyps, static_cast<std::size_t>(m.config.injection_fraction * n));
-    m.agreeing_updates = 0;
-  }
-  m.weighed_once = true;
 
   // The path's evidence: this scan joins the window, the scan's best poses and the filter's
   // best particle become candidates.
@@ -264,6 +256,20 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   report.path_rivals = path.rivals;
   const bool decisive = path.has_best && path.pose_fixed && path.margin >= m.config.evidenceMargin();
   const double yaw_tol = m.config.converged_yaw_deg * M_PI / 180.0;
+  // Sensor resetting: the particles explain the scan clearly worse than the plan can.
+  // After convergence the filter tracks (paper: the S-Graph takes over): no more jumps. While
+  // the path evidence is decisive, the scan's poses elsewhere are places it has refuted (each
+  // was a candidate): only those at its best place may be drawn. A few particles 15 m away,
+  // drawn at the heaviest weight, kept the cloud's spread above the convergence radius.
+  if (m.weighed_once && !tracking && !hyps.empty() && !annealing &&
+      hyps[0].log_likelihood > best_raw + m.config.injection_margin) {
+    std::vector<detail::Hypothesis> reset;
+    for (const auto& h : hyps)
+      if (!decisive || near({h.x, h.y, h.yaw}, path.best, 2.0 * m.config.converged_position_m, 2.0 * yaw_tol)) reset.push_back(h);
+    report.injected += m.inject(reset, static_cast<std::size_t>(m.config.injection_fraction * n));
+    if (!reset.empty() && !decisive) m.agreeing_updates = 0;  // drawn at the best place: no jump
+  }
+  m.weighed_once = true;
   std::vector<double> w = m.normalisedWeights();
   Eigen::Vector3d mean = m.mean(w);
   if (decisive && !tracking) {
@@ -275,6 +281,13 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
     h.x = path.best.x(), h.y = path.best.y(), h.yaw = path.best.z();
     report.injected += m.inject({h}, static_cast<std::size_t>(m.config.evidence_injection_fraction * n),
                                 m.config.likelihood_power * m.config.evidenceMargin());
+    // The path fits every other place worse by at least the bar: particles elsewhere (a
+    // look-alike the scans alone keep alive) pay the bar, tempered as a scan is, at each
+    // decisive weighing. They fade over a few weighings instead of holding the cloud's spread,
+    // and the convergence test below, open for as long, waited on them for up to 13 s.
+    for (auto& p : m.particles)
+      if (!near({p.x, p.y, p.yaw}, path.best, 2.0 * m.config.converged_position_m, 2.0 * yaw_tol))
+        p.log_weight -= m.config.likelihood_power * m.config.evidenceMargin();
     if (!near(mean, path.best, m.config.converged_position_m, yaw_tol)) m.agreeing_updates = 0;
     w = m.normalisedWeights();
     mean = m.mean(w);
