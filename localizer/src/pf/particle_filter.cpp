@@ -311,17 +311,20 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   const bool clustered = near({best.x, best.y, best.yaw}, mean, m.config.converged_position_m, yaw_tol) &&
                          std::sqrt(var_xy) < m.config.converged_position_m && std::sqrt(var_yaw) < yaw_tol;
   bool agrees = clustered && (tracking || (decisive && near(mean, path.best, m.config.converged_position_m, yaw_tol)));
+  bool searched = true;
   if (agrees && !tracking) {
     // About to count towards convergence: first make sure no look-alike is missing from the
     // candidates, then ask again.
-    const bool searched = m.evidence.proposeEveryFit(observations, z, odom, path.best);
+    searched = m.evidence.proposeEveryFit(observations, z, odom, path.best);
     path = m.evidence.verdict(odom);
     report.path_margin = path.margin, report.path_best = path.best, report.path_candidates = path.candidates;
     report.path_rivals = path.rivals;
     agrees = searched && path.pose_fixed && path.margin >= m.config.evidenceMargin() &&
              near(mean, path.best, m.config.converged_position_m, yaw_tol);
   }
-  m.agreeing_updates = agrees ? m.agreeing_updates + 1 : 0;
+  // A scan whose search could not vouch for the rivals checked the verdict against nothing: it
+  // neither counts towards convergence nor breaks the run of agreeing ones.
+  if (searched) m.agreeing_updates = agrees ? m.agreeing_updates + 1 : 0;
   if (m.agreeing_updates >= m.config.converged_updates) {
     // Paper Eq.: map <- odom = best particle (+) inverse of the odometry pose. After that it
     // follows the filter's weighted mean (tracking, until an S-Graph takes over): smoother
