@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 
 namespace bimloc::pf::detail {
@@ -11,11 +12,20 @@ namespace {
 constexpr double kAngleTolerance = 5.0 * M_PI / 180.0;
 constexpr double kMinPairAngle = 30.0 * M_PI / 180.0;  // nearly parallel planes fix no position
 
+// The best log-likelihood of the hypotheses kept so far, and how far below it the caller
+// still wants them (infinite: all).
+struct Bound {
+  double within = std::numeric_limits<double>::infinity();
+  double best = -std::numeric_limits<double>::infinity();
+  double floor() const { return best - within; }
+};
+
 // The pose at which observation i lies on landmark a and observation j on landmark b (the
 // heading from a's normal, the position from the two planes' offsets), scored; kept when it
 // is inside `room` (or any room when room < 0) and explains enough of the scan.
 void tryPair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a, const Landmark& b,
-             double z, int room, const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
+             double z, int room, const RoomIndex& rooms, const ParticleFilterConfig& c, Bound& bound,
+             std::vector<Hypothesis>& out) {
   // Three associations make a pose worth scoring; clutter (furniture, walls seen through doors)
   // can outnumber a room's own walls, so the bar does not grow with the number of planes.
   constexpr int kMinAssociated = 3;
@@ -31,8 +41,10 @@ void tryPair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, 
   Particle p;
   p.x = xy.x(), p.y = xy.y(), p.yaw = yaw, p.room = rooms.roomAt(xy.x(), xy.y());
   if (p.room < 0 || (room >= 0 && p.room != room)) return;
-  const MatchResult m = matchObservations(p, z, obs, rooms, c);
-  if (m.associated >= kMinAssociated) out.push_back({p.x, p.y, p.yaw, p.room, m.log_likelihood, m.associated});
+  const MatchResult m = matchObservations(p, z, obs, rooms, c, nullptr, true, bound.floor());
+  if (m.below_floor || m.associated < kMinAssociated) return;
+  out.push_back({p.x, p.y, p.yaw, p.room, m.log_likelihood, m.associated});
+  bound.best = std::max(bound.best, m.log_likelihood);
 }
 
 bool pairable(const std::vector<Observation>& obs, std::size_t i, std::size_t j) {
@@ -43,13 +55,13 @@ bool pairable(const std::vector<Observation>& obs, std::size_t i, std::size_t j)
 
 // Hypotheses from one room's landmarks: every pair of observations against every pair.
 void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
-                   const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
+                   const RoomIndex& rooms, const ParticleFilterConfig& c, Bound& bound, std::vector<Hypothesis>& out) {
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (!pairable(obs, i, j)) continue;
       for (std::size_t a = 0; a < marks.size(); ++a)
         for (std::size_t b = 0; b < marks.size(); ++b)
-          if (a != b) tryPair(obs, i, j, marks[a], marks[b], z, room, rooms, c, out);
+          if (a != b) tryPair(obs, i, j, marks[a], marks[b], z, room, rooms, c, bound, out);
     }
 }
 
@@ -58,7 +70,7 @@ void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vec
 // so face b can only be one that passes near there. Pairs of faces the robot could not see
 // together are never tried: the cost is the faces times the faces near each, not its square.
 void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& index, const RoomIndex& rooms,
-               const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
+               const ParticleFilterConfig& c, Bound& bound, std::vector<Hypothesis>& out) {
   const auto& faces = index.faces();
   const double angle = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
   std::vector<double> reach(obs.size());
@@ -83,7 +95,7 @@ void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& i
           for (std::size_t b = 0; b < faces.size(); ++b) near.push_back(b);
         std::sort(near.begin(), near.end());  // the same order whatever the cells' order
         for (const std::size_t b : near)
-          if (b != a) tryPair(obs, i, j, fa, faces[b], z, -1, rooms, c, out);
+          if (b != a) tryPair(obs, i, j, fa, faces[b], z, -1, rooms, c, bound, out);
       }
     }
 }
@@ -91,19 +103,27 @@ void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& i
 }  // namespace
 
 std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observations, double z_base,
-                                       const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count) {
+                                       const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count,
+                                       double wanted_within) {
   std::vector<Hypothesis> all;
   if (observations.size() < 2 || rooms.roomCount() == 0) return all;
+  Bound bound;
+  bound.within = wanted_within;
   if (config.use_rooms) {
     for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r)
-      fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, config, all);
+      fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, config, bound, all);
   } else {
     // The ablation: every room holds every face; one pass over them is enough.
     if (const FaceIndex* index = rooms.faceIndex())
-      fromIndex(observations, z_base, *index, rooms, config, all);
+      fromIndex(observations, z_base, *index, rooms, config, bound, all);
     else
-      fromLandmarks(observations, z_base, rooms.landmarks(0), -1, rooms, config, all);
+      fromLandmarks(observations, z_base, rooms.landmarks(0), -1, rooms, config, bound, all);
   }
+  // Those below the floor are out before they are sorted: the ones the caller wants, best
+  // first, come before any of them whatever their number, so merging them changes nothing.
+  if (std::isfinite(wanted_within))
+    all.erase(std::remove_if(all.begin(), all.end(), [&](const Hypothesis& h) { return h.log_likelihood < bound.floor(); }),
+              all.end());
   std::sort(all.begin(), all.end(), [](const Hypothesis& a, const Hypothesis& b) {
     return a.log_likelihood != b.log_likelihood ? a.log_likelihood > b.log_likelihood
                                                 : std::tie(a.x, a.y, a.yaw) < std::tie(b.x, b.y, b.yaw);

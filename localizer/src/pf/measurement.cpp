@@ -14,7 +14,7 @@ constexpr double kIndexedRadiusM = 12.0;
 
 MatchResult matchObservations(const Particle& p, double z_base, const std::vector<Observation>& observations,
                               const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<ObservationMatch>* per_observation,
-                              bool out_of_rooms_penalised) {
+                              bool out_of_rooms_penalised, double floor) {
   MatchResult result;
   const double gate = c.gate_mahalanobis2;
   if (per_observation) per_observation->clear();
@@ -75,6 +75,10 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     if (best < gate) ++result.associated;
     result.log_likelihood += -0.5 * best;
     if (per_observation) per_observation->push_back({best_face, static_cast<float>(best)});
+    if (result.log_likelihood < floor) {
+      result.below_floor = true;
+      return result;
+    }
   }
   return result;
 }

@@ -180,12 +180,15 @@ void PathEvidence::proposeEveryFit(const std::vector<Observation>& observations,
   for (auto it = scans_.rbegin(); it != scans_.rend() && sources.size() < 4; ++it)
     sources.push_back({&it->observations, {it->z_base, it->odom}});
   for (const auto& [obs, where] : sources) {
-    const auto fits = poseHypotheses(*obs, where.first, rooms_, every, std::numeric_limits<std::size_t>::max());
+    // Only those within three clutter planes of the best are proposed: the rest need not be
+    // scored to the end (the same fits, the same bits, far fewer observations matched).
+    const double wanted = 1.5 * config_.gate_mahalanobis2;
+    const auto fits = poseHypotheses(*obs, where.first, rooms_, every, std::numeric_limits<std::size_t>::max(), wanted);
     if (fits.empty()) continue;
     // Those that fit the scan within three clutter planes of the best fit, moved on to now.
     const Pose2 since = compose(inverse(where.second), odom);
     for (const auto& h : fits) {
-      if (h.log_likelihood < fits.front().log_likelihood - 1.5 * config_.gate_mahalanobis2) break;
+      if (h.log_likelihood < fits.front().log_likelihood - wanted) break;
       propose(compose({h.x, h.y, h.yaw}, since), odom);
     }
     return;
