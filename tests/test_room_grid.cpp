@@ -2,8 +2,10 @@
 // room (the first in the storey's order) for every point, on footprints drawn at random
 // (overlapping, concave, shared edges, far from the origin), queried on vertices, on edges, just
 // outside bounding boxes and anywhere; then on the default world and the shared real plans.
+// And the localizer's room box (RoomIndex::mayBeIn) against its roomAt.
 #include "test_support.hpp"
 
+#include "pf/room_index.hpp"
 #include "sim/base/room_lookup.hpp"
 
 #include <bimloc/bim/ifc_reader.hpp>
@@ -103,4 +105,34 @@ TEST(RoomGrid, SameRoomAsTheScanOverEveryRoomOnTheWorldsAndSharedPlans) {
     const bim::Building b = bim::readIfc(plan);
     for (const auto& s : b.storeys) expectSameRooms(s, rng, 20000, std::string(file) + " " + s.name);
   }
+}
+
+// The localizer's RoomIndex::mayBeIn, the pose hypotheses' quick test: false only where
+// roomAt (footprints, then doorways) cannot give that room.
+TEST(RoomGrid, TheLocalizersRoomBoxRulesOutOnlyWhatRoomAtRulesOut) {
+  std::mt19937_64 rng(21);
+  std::vector<bim::Storey> storeys;
+  for (int k = 0; k < 20; ++k) storeys.push_back(randomStorey(rng, k % 2 ? Eigen::Vector2d(-3, 7) : Eigen::Vector2d(1e5, -2e5)));
+  const bim::Building office = bim::readIfc(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc");
+  storeys.push_back(office.storeys.at(0));
+  int ruled_out = 0, in_room = 0;
+  for (const auto& s : storeys) {
+    const pf::detail::RoomIndex index(s, true);
+    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    for (const auto& r : s.rooms)
+      for (const auto& p : r.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    std::uniform_real_distribution<double> u(-0.1, 1.1);
+    for (int q = 0; q < 20000; ++q) {
+      const Eigen::Vector2d p(lo.x() + u(rng) * (hi.x() - lo.x()), lo.y() + u(rng) * (hi.y() - lo.y()));
+      const int room = index.roomAt(p.x(), p.y());
+      for (int r = 0; r < static_cast<int>(index.roomCount()); ++r)
+        if (!index.mayBeIn(r, p.x(), p.y())) {
+          ASSERT_NE(room, r) << "(" << p.x() << ", " << p.y() << ")";
+          ++ruled_out;
+        }
+      in_room += room >= 0;
+    }
+  }
+  EXPECT_GT(ruled_out, 100000);
+  EXPECT_GT(in_room, 10000);
 }
