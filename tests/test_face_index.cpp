@@ -1,5 +1,6 @@
 // The face index against brute force: every face within the radius is visited once, and a
 // match through the index is the match over every face (the same double, the same count).
+#include "face_index_fixtures.hpp"
 #include "sim_fixtures.hpp"
 
 #include "pf/face_index.hpp"
@@ -12,58 +13,21 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 #include <set>
 
 using namespace bimloc;
 using namespace bimloc::pf::detail;
 using bimloc::pf::Particle;
+using bimloc::test::observations;
+using bimloc::test::tiled;
 
 namespace {
 
 double segmentDistance(const Landmark& f, const Eigen::Vector2d& p) {
   const double u = std::clamp((p - f.start).dot(f.direction), 0.0, f.length_m);
   return (f.start + u * f.direction - p).norm();
-}
-
-// The default world tiled k x k (a larger building of the same kind), ids made unique.
-bim::Storey tiled(const bim::Storey& s, int k) {
-  bim::Storey out = s;
-  out.walls.clear(), out.rooms.clear();
-  for (int i = 0; i < k; ++i)
-    for (int j = 0; j < k; ++j) {
-      const Eigen::Vector3d t(30.0 * i, 20.0 * j, 0.0);
-      const std::string tag = "@" + std::to_string(i) + "," + std::to_string(j);
-      for (auto w : s.walls) {
-        w.id += tag, w.start += t, w.end += t;
-        for (auto& f : w.faces) f.plane.d -= f.plane.n.dot(t), f.start += t, f.end += t;
-        out.walls.push_back(w);
-      }
-      for (auto r : s.rooms) {
-        r.id += tag, r.name += tag, r.centre += t.head<2>();
-        for (auto& q : r.footprint) q += t.head<2>();
-        for (auto& rw : r.walls) rw.wall_id += tag;
-        out.rooms.push_back(r);
-      }
-    }
-  return out;
-}
-
-// What ParticleFilter::observe does for a level base.
-std::vector<Observation> observations(const std::vector<planes::ObservedPlane>& walls, const Eigen::Isometry3d& mount) {
-  std::vector<Observation> out;
-  for (const auto& w : walls) {
-    Observation o;
-    o.normal_base = mount.linear() * w.normal.normalized();
-    o.d_offset = w.d - o.normal_base.dot(mount.translation());
-    o.azimuth_base = std::atan2(o.normal_base.y(), o.normal_base.x());
-    o.elevation = std::asin(std::clamp(o.normal_base.z(), -1.0, 1.0));
-    const Eigen::Vector3d c = mount.linear() * w.centroid + mount.translation();
-    o.centroid_base = c.head<2>();
-    o.range_m = c.norm();
-    out.push_back(o);
-  }
-  return out;
 }
 
 }  // namespace
@@ -80,16 +44,18 @@ TEST(FaceIndex, VisitsEveryFaceWithinTheRadiusExactlyOnce) {
     l.length_m = len(rng);
     faces.push_back(l);
   }
-  const FaceIndex index(faces, 1.0);
-  for (int q = 0; q < 2000; ++q) {
-    const Eigen::Vector2d c(pos(rng) * 1.2 - 6.0, pos(rng) * 1.2 - 6.0);
-    const double r = rad(rng);
-    std::multiset<const Landmark*> visited;
-    index.forEachNear(c, r, [&](const Landmark& l) { visited.insert(&l); });
-    for (const auto& l : index.faces()) {
-      EXPECT_LE(visited.count(&l), 1u);
-      if (segmentDistance(l, c) <= r) {
-        EXPECT_EQ(visited.count(&l), 1u) << "query " << q;
+  for (const double cell : {0.5, 1.0, 2.0, 3.7}) {
+    const FaceIndex index(faces, cell);
+    for (int q = 0; q < 2000; ++q) {
+      const Eigen::Vector2d c(pos(rng) * 1.2 - 6.0, pos(rng) * 1.2 - 6.0);
+      const double r = rad(rng);
+      std::multiset<const Landmark*> visited;
+      index.forEachNear(c, r, [&](const Landmark& l) { visited.insert(&l); });
+      for (const auto& l : index.faces()) {
+        EXPECT_LE(visited.count(&l), 1u);
+        if (segmentDistance(l, c) <= r) {
+          EXPECT_EQ(visited.count(&l), 1u) << "cell " << cell << " query " << q;
+        }
       }
     }
   }

@@ -36,7 +36,7 @@ double bodyCentreZ(const World& world, std::size_t storey, const Eigen::Vector2d
 }
 
 FreeSpace::FreeSpace(const World& world, std::size_t storey, double radius_m, double body_z_m)
-    : world_(world), storey_(storey), radius_(radius_m), body_z_(body_z_m) {}
+    : world_(world), storey_(storey), rooms_(world.building().storeys.at(storey)), radius_(radius_m), body_z_(body_z_m) {}
 
 bool FreeSpace::segmentClear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin_m,
                              Eigen::Vector3d* contact) const {
@@ -214,10 +214,9 @@ std::vector<Eigen::Vector2d> FreeSpace::straighten(std::vector<Eigen::Vector2d> 
 
 bool FreeSpace::indoors(const Eigen::Vector2d& p) const {
   // In a room, or in a doorway: within a wall's thickness of one.
-  const bim::Storey& storey = world_.building().storeys.at(storey_);
-  if (roomAt(storey, p)) return true;
+  if (rooms_.at(p)) return true;
   for (const auto& [dx, dy] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}})
-    if (roomAt(storey, p + kDoorway_m * Eigen::Vector2d(dx, dy))) return true;
+    if (rooms_.at(p + kDoorway_m * Eigen::Vector2d(dx, dy))) return true;
   return false;
 }
 

@@ -4,6 +4,8 @@
 // few straight segments, again checked by sweeps.
 #pragma once
 
+#include "sim/base/room_lookup.hpp"
+
 #include <bimloc/bim/geometry2d.hpp>
 
 #include <Eigen/Core>
@@ -67,6 +69,7 @@ class FreeSpace {
 
   const World& world_;
   std::size_t storey_;
+  RoomGrid rooms_;  // indoors() asks it for every step of every edge A* tries
   double radius_, body_z_;
   Grid grid_;
   mutable std::size_t sweeps_ = 0;

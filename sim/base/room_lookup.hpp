@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 namespace bimloc::sim {
 
@@ -17,5 +18,24 @@ std::string roomList(const bim::Storey& storey);
 
 // The room whose footprint contains p, or nullptr.
 const bim::Room* roomAt(const bim::Storey& storey, const Eigen::Vector2d& p);
+
+// roomAt through a grid of candidate rooms per cell: the planner asks it for every step of
+// every edge it tries, and a scan over every room made path planning grow with the building.
+// The same answer as roomAt (the first room in the storey's order whose footprint holds p):
+// each cell lists, in that order, every room whose padded bounding box touches it.
+class RoomGrid {
+ public:
+  explicit RoomGrid(const bim::Storey& storey);
+  const bim::Room* at(const Eigen::Vector2d& p) const;
+
+ private:
+  const bim::Storey* storey_;
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  double cell_m_ = 1.0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::vector<int>> cells_;
+  int cellX(double x) const;
+  int cellY(double y) const;
+};
 
 }  // namespace bimloc::sim

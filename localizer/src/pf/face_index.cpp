@@ -16,7 +16,7 @@ FaceIndex::FaceIndex(std::vector<Landmark> faces, double cell_m) : faces_(std::m
   origin_ = lo - Eigen::Vector2d(cell_m_, cell_m_);
   nx_ = static_cast<int>(std::ceil((hi.x() - origin_.x()) / cell_m_)) + 2;
   ny_ = static_cast<int>(std::ceil((hi.y() - origin_.y()) / cell_m_)) + 2;
-  cells_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), {});
+  std::vector<std::vector<std::uint32_t>> cells(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
   seen_.assign(faces_.size(), 0u);
   // A face goes into every cell its segment comes within half a cell diagonal of (a superset
   // of the cells it crosses): then "cell centre within r + half diagonal" never misses it.
@@ -31,9 +31,15 @@ FaceIndex::FaceIndex(std::vector<Landmark> faces, double cell_m) : faces_(std::m
       for (int ix = x0; ix <= x1; ++ix) {
         const Eigen::Vector2d c(origin_.x() + (ix + 0.5) * cell_m_, origin_.y() + (iy + 0.5) * cell_m_);
         const double u = std::clamp((c - f.start).dot(f.direction), 0.0, f.length_m);
-        if ((f.start + u * f.direction - c).norm() <= reach) cells_[static_cast<std::size_t>(iy * nx_ + ix)].push_back(i);
+        if ((f.start + u * f.direction - c).norm() <= reach) cells[static_cast<std::size_t>(iy * nx_ + ix)].push_back(i);
       }
   }
+  starts_.reserve(cells.size() + 1);
+  for (const auto& cell : cells) {
+    starts_.push_back(static_cast<std::uint32_t>(members_.size()));
+    members_.insert(members_.end(), cell.begin(), cell.end());
+  }
+  starts_.push_back(static_cast<std::uint32_t>(members_.size()));
 }
 
 double matchRadius(double range_m, double sigma_d_m, double sigma_angle_rad, double gate_mahalanobis2, double margin_m) {

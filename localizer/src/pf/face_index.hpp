@@ -23,33 +23,67 @@ class FaceIndex {
   bool empty() const { return faces_.empty(); }
 
   // Calls visit(face) once for every face whose base segment comes within radius_m of
-  // `centre` (and possibly for a few a little farther). Not thread-safe: the visited marks are
-  // the index's own scratch (one index per filter, and a filter runs on one thread).
+  // `centre` (and possibly for a few a little farther), in an order that depends on the cells
+  // (see visitsBefore). Not thread-safe: the visited marks are the index's own scratch (one
+  // index per filter, and a filter runs on one thread).
   template <class Visit>
   void forEachNear(const Eigen::Vector2d& centre, double radius_m, Visit&& visit) const {
     if (faces_.empty()) return;
+    if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0u), stamp_ = 1;
+    forEachCellRun(centre, radius_m, [&](const std::uint32_t* f, const std::uint32_t* end) {
+      for (; f != end; ++f) {
+        if (seen_[*f] == stamp_) continue;
+        seen_[*f] = stamp_;
+        visit(faces_[*f]);
+      }
+      return true;
+    });
+  }
+
+  // Whether forEachNear(centre, radius_m) would visit faces()[a] before faces()[b] (either may
+  // be missing). Leaves the visited marks alone: callable from inside forEachNear.
+  bool visitsBefore(const Eigen::Vector2d& centre, double radius_m, std::uint32_t a, std::uint32_t b) const {
+    bool first_a = false;
+    forEachCellRun(centre, radius_m, [&](const std::uint32_t* f, const std::uint32_t* end) {
+      for (; f != end; ++f)
+        if (*f == a || *f == b) return first_a = *f == a, false;
+      return true;
+    });
+    return first_a;
+  }
+
+ private:
+  // Calls run(first, end) with the face ids of each run of cells whose centre is within the
+  // radius plus half a cell diagonal, rows upwards, cells left to right, until run says stop.
+  template <class Run>
+  void forEachCellRun(const Eigen::Vector2d& centre, double radius_m, Run&& run) const {
     const double r = radius_m + 0.7072 * cell_m_;  // cells whose centre is this close may touch the disc
     const int x0 = std::max(0, cellX(centre.x() - r)), x1 = std::min(nx_ - 1, cellX(centre.x() + r));
     const int y0 = std::max(0, cellY(centre.y() - r)), y1 = std::min(ny_ - 1, cellY(centre.y() + r));
     if (x0 > x1 || y0 > y1) return;
-    if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0u), stamp_ = 1;
     const double r2 = r * r;
     for (int iy = y0; iy <= y1; ++iy) {
       const double cy = origin_.y() + (iy + 0.5) * cell_m_ - centre.y();
-      for (int ix = x0; ix <= x1; ++ix) {
+      const double rest = r2 - cy * cy;
+      if (rest < 0.0) continue;
+      // The row's cells whose centre is within r: one run of cells, found from the chord and
+      // nudged until the test holds exactly at its ends (it is monotone in |cx|).
+      const double half = std::sqrt(rest);
+      const auto inside = [&](int ix) {
         const double cx = origin_.x() + (ix + 0.5) * cell_m_ - centre.x();
-        if (cx * cx + cy * cy > r2) continue;
-        const auto& cell = cells_[static_cast<std::size_t>(iy * nx_ + ix)];
-        for (const std::uint32_t f : cell) {
-          if (seen_[f] == stamp_) continue;
-          seen_[f] = stamp_;
-          visit(faces_[f]);
-        }
-      }
+        return cx * cx + cy * cy <= r2;
+      };
+      int a = std::clamp(cellX(centre.x() - half), x0, x1), b = std::clamp(cellX(centre.x() + half), x0, x1);
+      while (a > x0 && inside(a - 1)) --a;
+      while (a <= b && !inside(a)) ++a;
+      while (b < x1 && inside(b + 1)) ++b;
+      while (b >= a && !inside(b)) --b;
+      if (a > b) continue;
+      const std::size_t row = static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_);
+      if (!run(members_.data() + starts_[row + a], members_.data() + starts_[row + b + 1])) return;
     }
   }
 
- private:
   int cellX(double x) const { return static_cast<int>(std::floor((x - origin_.x()) / cell_m_)); }
   int cellY(double y) const { return static_cast<int>(std::floor((y - origin_.y()) / cell_m_)); }
 
@@ -57,7 +91,10 @@ class FaceIndex {
   double cell_m_ = 1.0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   int nx_ = 0, ny_ = 0;
-  std::vector<std::vector<std::uint32_t>> cells_;  // faces whose segment crosses the cell
+  // The faces of each cell (whose segment passes near it), cell after cell in row-major order:
+  // cell k holds members_[starts_[k] .. starts_[k + 1]), so a run of cells is one run of ids.
+  std::vector<std::uint32_t> starts_;
+  std::vector<std::uint32_t> members_;
   mutable std::vector<std::uint32_t> seen_;
   mutable std::uint32_t stamp_ = 0;
 };

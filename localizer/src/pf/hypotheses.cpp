@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <unordered_map>
 
 namespace bimloc::pf::detail {
@@ -11,31 +13,78 @@ namespace {
 constexpr double kAngleTolerance = 5.0 * M_PI / 180.0;
 constexpr double kMinPairAngle = 30.0 * M_PI / 180.0;  // nearly parallel planes fix no position
 
+// The best log-likelihood of the hypotheses kept so far, and how far below it the caller
+// still wants them (infinite: all).
+struct Bound {
+  double within = std::numeric_limits<double>::infinity();
+  double best = -std::numeric_limits<double>::infinity();
+  double floor() const { return best - within; }
+};
+
+// Three associations make a pose worth scoring; clutter (furniture, walls seen through doors)
+// can outnumber a room's own walls, so the bar does not grow with the number of planes.
+constexpr int kMinAssociated = 3;
+
 // The pose at which observation i lies on landmark a and observation j on landmark b (the
-// heading from a's normal, the position from the two planes' offsets), scored; kept when it
-// is inside `room` (or any room when room == -1, anywhere when room == kAnywhere) and explains
-// enough of the scan.
+// heading from a's normal, the position from the two planes' offsets), when it is inside
+// `room` (or any room when room == -1, anywhere when room == kAnywhere).
 constexpr int kAnywhere = -2;
 
-void tryPair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a, const Landmark& b,
-             double z, int room, const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
-  // Three associations make a pose worth scoring; clutter (furniture, walls seen through doors)
-  // can outnumber a room's own walls, so the bar does not grow with the number of planes.
-  constexpr int kMinAssociated = 3;
+std::optional<Particle> solvePair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a,
+                                  const Landmark& b, double z, int room, const RoomIndex& rooms) {
   const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
-  if (std::abs(wrapAngle(b.azimuth - a.azimuth - turn)) > kAngleTolerance) return;
+  if (std::abs(wrapAngle(b.azimuth - a.azimuth - turn)) > kAngleTolerance) return std::nullopt;
   const double yaw = wrapAngle(a.azimuth - obs[i].azimuth_base);
   // With the heading fixed, each plane is one line for (x, y): n·(x, y) = d_off - d - n_z z.
   Eigen::Matrix2d A;
   A << a.normal.x(), a.normal.y(), b.normal.x(), b.normal.y();
-  if (std::abs(A.determinant()) < 0.3) return;
+  if (std::abs(A.determinant()) < 0.3) return std::nullopt;
   const Eigen::Vector2d rhs(obs[i].d_offset - a.d - a.normal.z() * z, obs[j].d_offset - b.d - b.normal.z() * z);
   const Eigen::Vector2d xy = A.inverse() * rhs;
+  if (room >= 0 && !rooms.mayBeIn(room, xy.x(), xy.y())) return std::nullopt;  // roomAt would say so, slower
   Particle p;
   p.x = xy.x(), p.y = xy.y(), p.yaw = yaw, p.room = rooms.roomAt(xy.x(), xy.y());
-  if ((p.room < 0 && room != kAnywhere) || (room >= 0 && p.room != room)) return;
-  const MatchResult m = matchObservations(p, z, obs, rooms, c, nullptr, /*out_of_rooms_penalised=*/room != kAnywhere);
-  if (m.associated >= kMinAssociated) out.push_back({p.x, p.y, p.yaw, p.room, m.log_likelihood, m.associated});
+  if ((p.room < 0 && room != kAnywhere) || (room >= 0 && p.room != room)) return std::nullopt;
+  return p;
+}
+
+// The pose scored; kept when it explains enough of the scan (and is not below the floor).
+// A pose in no room, searched for as a rival (room == kAnywhere), is scored as the path
+// evidence scores it: without the out-of-rooms penalty.
+void scorePose(const Particle& p, const std::vector<Observation>& obs, double z, const RoomIndex& rooms,
+               const ParticleFilterConfig& c, bool penalise_outside, Bound& bound, std::vector<Hypothesis>& out) {
+  const MatchResult m = matchObservations(p, z, obs, rooms, c, nullptr, penalise_outside, bound.floor());
+  if (m.below_floor || m.associated < kMinAssociated) return;
+  out.push_back({p.x, p.y, p.yaw, p.room, m.log_likelihood, m.associated});
+  bound.best = std::max(bound.best, m.log_likelihood);
+}
+
+void tryPair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a, const Landmark& b,
+             double z, int room, const RoomIndex& rooms, const ParticleFilterConfig& c, Bound& bound,
+             std::vector<Hypothesis>& out) {
+  if (const auto p = solvePair(obs, i, j, a, b, z, room, rooms)) scorePose(*p, obs, z, rooms, c, room != kAnywhere, bound, out);
+}
+
+// With a floor, the order poses are scored in decides how early the best is known, and so how
+// much of every other pose's scan is matched before it falls below the floor; the result does
+// not depend on it. The true pose and its look-alikes are what many pairs of faces agree on:
+// poses in the most crowded cells of (x, y, yaw) first.
+void mostAgreedFirst(std::vector<Particle>& poses) {
+  const auto key = [](const Particle& p) {
+    const auto ix = static_cast<std::int64_t>(std::floor(p.x / 0.25)), iy = static_cast<std::int64_t>(std::floor(p.y / 0.25));
+    const auto ia = static_cast<std::int64_t>(std::floor(p.yaw / (5.0 * M_PI / 180.0)));
+    return (ix * 73856093) ^ (iy * 19349663) ^ (ia * 83492791);
+  };
+  std::unordered_map<std::int64_t, int> votes;
+  for (const auto& p : poses) ++votes[key(p)];
+  std::vector<std::pair<int, std::size_t>> order;
+  order.reserve(poses.size());
+  for (std::size_t k = 0; k < poses.size(); ++k) order.emplace_back(-votes[key(poses[k])], k);
+  std::sort(order.begin(), order.end());
+  std::vector<Particle> sorted;
+  sorted.reserve(poses.size());
+  for (const auto& [v, k] : order) sorted.push_back(poses[k]);
+  poses.swap(sorted);
 }
 
 bool pairable(const std::vector<Observation>& obs, std::size_t i, std::size_t j) {
@@ -46,13 +95,13 @@ bool pairable(const std::vector<Observation>& obs, std::size_t i, std::size_t j)
 
 // Hypotheses from one room's landmarks: every pair of observations against every pair.
 void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
-                   const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<Hypothesis>& out) {
+                   const RoomIndex& rooms, const ParticleFilterConfig& c, Bound& bound, std::vector<Hypothesis>& out) {
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (!pairable(obs, i, j)) continue;
       for (std::size_t a = 0; a < marks.size(); ++a)
         for (std::size_t b = 0; b < marks.size(); ++b)
-          if (a != b) tryPair(obs, i, j, marks[a], marks[b], z, room, rooms, c, out);
+          if (a != b) tryPair(obs, i, j, marks[a], marks[b], z, room, rooms, c, bound, out);
     }
 }
 
@@ -61,13 +110,14 @@ void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vec
 // so face b can only be one that passes near there. Pairs of faces the robot could not see
 // together are never tried: the cost is the faces times the faces near each, not its square.
 void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& index, const RoomIndex& rooms,
-               const ParticleFilterConfig& c, int room, std::vector<Hypothesis>& out) {
+               const ParticleFilterConfig& c, int room, Bound& bound, std::vector<Hypothesis>& out) {
   const auto& faces = index.faces();
   const double angle = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
   std::vector<double> reach(obs.size());
   for (std::size_t k = 0; k < obs.size(); ++k)
     reach[k] = matchRadius(obs[k].range_m, c.sigma_d_m, angle, c.gate_mahalanobis2, c.segment_margin_m);
   std::vector<std::size_t> near;
+  std::vector<Particle> poses;  // solved first, scored after: see mostAgreedFirst
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (!pairable(obs, i, j)) continue;
@@ -86,28 +136,38 @@ void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& i
           for (std::size_t b = 0; b < faces.size(); ++b) near.push_back(b);
         std::sort(near.begin(), near.end());  // the same order whatever the cells' order
         for (const std::size_t b : near)
-          if (b != a) tryPair(obs, i, j, fa, faces[b], z, room, rooms, c, out);
+          if (b != a)
+            if (const auto p = solvePair(obs, i, j, fa, faces[b], z, room, rooms)) poses.push_back(*p);
       }
     }
+  if (std::isfinite(bound.within)) mostAgreedFirst(poses);
+  for (const auto& p : poses) scorePose(p, obs, z, rooms, c, room != kAnywhere, bound, out);
 }
 
 }  // namespace
 
 std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observations, double z_base,
                                        const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count,
-                                       bool outside_rooms) {
+                                       double wanted_within, bool outside_rooms) {
   std::vector<Hypothesis> all;
   if (observations.size() < 2 || rooms.roomCount() == 0) return all;
+  Bound bound;
+  bound.within = wanted_within;
   if (config.use_rooms) {
     for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r)
-      fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, config, all);
+      fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, config, bound, all);
   } else {
     // The ablation: every room holds every face; one pass over them is enough.
-    if (const FaceIndex* index = rooms.faceIndex())
-      fromIndex(observations, z_base, *index, rooms, config, outside_rooms ? kAnywhere : -1, all);
+    if (const FaceIndex* index = rooms.fineIndex())
+      fromIndex(observations, z_base, *index, rooms, config, outside_rooms ? kAnywhere : -1, bound, all);
     else
-      fromLandmarks(observations, z_base, rooms.landmarks(0), outside_rooms ? kAnywhere : -1, rooms, config, all);
+      fromLandmarks(observations, z_base, rooms.landmarks(0), outside_rooms ? kAnywhere : -1, rooms, config, bound, all);
   }
+  // Those below the floor are out before they are sorted: the ones the caller wants, best
+  // first, come before any of them whatever their number, so merging them changes nothing.
+  if (std::isfinite(wanted_within))
+    all.erase(std::remove_if(all.begin(), all.end(), [&](const Hypothesis& h) { return h.log_likelihood < bound.floor(); }),
+              all.end());
   std::sort(all.begin(), all.end(), [](const Hypothesis& a, const Hypothesis& b) {
     return a.log_likelihood != b.log_likelihood ? a.log_likelihood > b.log_likelihood
                                                 : std::tie(a.x, a.y, a.yaw) < std::tie(b.x, b.y, b.yaw);

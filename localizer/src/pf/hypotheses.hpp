@@ -7,6 +7,7 @@
 
 #include "measurement.hpp"
 
+#include <limits>
 #include <vector>
 
 namespace bimloc::pf::detail {
@@ -18,11 +19,16 @@ struct Hypothesis {
   int associated = 0;
 };
 
-// Hypotheses over every room (best first, near-duplicates merged, at most max_count). With
+// Hypotheses over every room (best first, near-duplicates merged, at most max_count).
+// With a finite `wanted_within`, the caller only wants those within it of the best: a pose
+// whose scan already scores below the best found so far less that is not scored to the end
+// (matchObservations' floor). Every hypothesis within it of the best is still there, with the
+// same bits, and so are the merges among them; only some below it are missing. With
 // `outside_rooms`, also poses in no room (a search for rivals: rooms are a prior, and a
 // corridor the plan has no space for is a place too); the particles' seeds stay in rooms.
 std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observations, double z_base,
                                        const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count,
+                                       double wanted_within = std::numeric_limits<double>::infinity(),
                                        bool outside_rooms = false);
 
 }  // namespace bimloc::pf::detail

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace bimloc::pf::detail {
 namespace {
@@ -14,7 +15,7 @@ constexpr double kIndexedRadiusM = 12.0;
 
 MatchResult matchObservations(const Particle& p, double z_base, const std::vector<Observation>& observations,
                               const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<ObservationMatch>* per_observation,
-                              bool out_of_rooms_penalised) {
+                              bool out_of_rooms_penalised, double floor) {
   MatchResult result;
   const double gate = c.gate_mahalanobis2;
   if (per_observation) per_observation->clear();
@@ -37,6 +38,8 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   const double inv_d = 1.0 / c.sigma_d_m;
   const double margin_m = c.segment_margin_m;
   const double max_angle_rad = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
+  const FaceIndex* fine = rooms.fineIndex();
+  const auto faceAt = [&](const Landmark& l) { return static_cast<std::uint32_t>(&l - index->faces().data()); };
   for (const auto& o : observations) {
     // The observed normal in the map (a plane moves with a pose: n' = R n).
     const double nx = cy * o.normal_base.x() - sy * o.normal_base.y(), ny = sy * o.normal_base.x() + cy * o.normal_base.y();
@@ -44,8 +47,14 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const bim::WallAxis axis = std::abs(nx) >= std::abs(ny) ? bim::WallAxis::X : bim::WallAxis::Y;
     const Eigen::Vector2d centroid(p.x + cy * o.centroid_base.x() - sy * o.centroid_base.y(),
                                    p.y + sy * o.centroid_base.x() + cy * o.centroid_base.y());
+    // Without the room factor, only the faces that pass near the plane's points can match it
+    // (face_index.hpp): the same best match as over every face, at the cost of what is near.
+    const double radius = via_index ? matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, margin_m) : 0.0;
+    const bool indexed = via_index && radius < kIndexedRadiusM;
+    const bool cell_ordered = indexed && fine;
     double best = gate;
     int best_face = -1;
+    const Landmark* best_landmark = nullptr;
     const auto consider = [&](const Landmark& l) {
       if (l.axis != axis) return;  // the paper's semantic classes: x walls with x walls
       // Paper Eq. (plane error): the squared Mahalanobis distance of the minimal planes, with
@@ -56,17 +65,20 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       const double e_az = wrapAngle(azimuth - l.azimuth) * inv_az, e_el = (elevation - l.elevation) * inv_el;
       const double e_d = (o.d_offset - d_landmark) * inv_d;
       const double m2 = e_az * e_az + e_el * e_el + e_d * e_d;
-      if (m2 >= best) return;
+      // Of faces that fit exactly alike (collinear pieces of one wall), the one the search
+      // reaches first: in the list, or in the 1 m cells' order (see RoomIndex::fineIndex).
+      if (m2 > best) return;
+      if (m2 == best && (best_face < 0 || !cell_ordered ||
+                         !fine->visitsBefore(centroid, radius, faceAt(l), faceAt(*best_landmark))))
+        return;
       // The observed wall's points must lie along the face, not beside its end.
       const double u = (centroid - l.start).dot(l.direction);
       if (u < -margin_m || u > l.length_m + margin_m) return;
       best = m2;
       best_face = l.id;
+      best_landmark = &l;
     };
-    // Without the room factor, only the faces that pass near the plane's points can match it
-    // (face_index.hpp): the same best match as over every face, at the cost of what is near.
-    const double radius = via_index ? matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, margin_m) : 0.0;
-    if (via_index && radius < kIndexedRadiusM)
+    if (indexed)
       index->forEachNear(centroid, radius, consider);
     else
       for (const auto& l : landmarks) consider(l);
@@ -75,6 +87,10 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     if (best < gate) ++result.associated;
     result.log_likelihood += -0.5 * best;
     if (per_observation) per_observation->push_back({best_face, static_cast<float>(best)});
+    if (result.log_likelihood < floor) {
+      result.below_floor = true;
+      return result;
+    }
   }
   return result;
 }

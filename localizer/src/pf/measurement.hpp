@@ -7,6 +7,8 @@
 
 #include <bimloc/pf/particle_filter.hpp>
 
+#include <limits>
+
 namespace bimloc::pf::detail {
 
 // An observation in the yaw-free base frame (gravity-aligned, at the base's origin): what
@@ -23,6 +25,7 @@ struct Observation {
 struct MatchResult {
   double log_likelihood = 0;
   int associated = 0;
+  bool below_floor = false;  // stopped early: the log-likelihood would end below the floor
 };
 
 // What each observation matched: the face's id (Landmark::id), -1 for clutter; and its
@@ -34,8 +37,12 @@ struct ObservationMatch {
 
 // With `out_of_rooms_penalised` false, a pose outside every room is matched like any other
 // (against every face, which needs a RoomIndex without the room factor).
+// With a finite `floor`, the match stops (below_floor) as soon as the log-likelihood summed so
+// far is below it: each observation adds a term <= 0, and in floating point a sum never grows
+// by adding one, so the whole would be below it too. Otherwise the result is the same bits.
 MatchResult matchObservations(const Particle& particle, double z_base, const std::vector<Observation>& observations,
                               const RoomIndex& rooms, const ParticleFilterConfig& config,
-                              std::vector<ObservationMatch>* per_observation = nullptr, bool out_of_rooms_penalised = true);
+                              std::vector<ObservationMatch>* per_observation = nullptr, bool out_of_rooms_penalised = true,
+                              double floor = -std::numeric_limits<double>::infinity());
 
 }  // namespace bimloc::pf::detail

@@ -220,14 +220,17 @@ bool PathEvidence::proposeEveryFit(const std::vector<Observation>& observations,
     sources.push_back(merged);
   }
   for (const auto& source : sources) {
+    // Only those within three clutter planes of the best are proposed: the rest need not be
+    // scored to the end (the same fits, the same bits, far fewer observations matched).
+    const double wanted = 1.5 * config_.gate_mahalanobis2;
     const auto fits = poseHypotheses(source.observations, source.z, rooms_, every, std::numeric_limits<std::size_t>::max(),
-                                     /*outside_rooms=*/true);
+                                     wanted, /*outside_rooms=*/true);
     if (fits.empty()) continue;
     // Those that fit the source within three clutter planes of its best fit, moved on to now.
     const Pose2 since = compose(inverse(source.odom), odom);
     bool found_best = false;
     for (const auto& h : fits) {
-      if (h.log_likelihood < fits.front().log_likelihood - 1.5 * config_.gate_mahalanobis2) break;
+      if (h.log_likelihood < fits.front().log_likelihood - wanted) break;
       const Pose2 now = compose({h.x, h.y, h.yaw}, since);
       found_best |= near(now, best_now, kOtherPlaceM, kOtherPlaceRad);
       propose(now, odom);

@@ -24,6 +24,10 @@ Landmark makeLandmark(const bim::WallFace& face, int id) {
 
 namespace {
 
+// A doorway belongs to no room's footprint: the robot crossing it is walking from one room
+// into the next, and either room's walls are what it sees. Walls are at most 0.6 m thick.
+constexpr double kDoorwayM = 0.3;
+
 // The faces of a room's walls that look into it (both, where the side is unknown).
 std::vector<Landmark> facesOf(const bim::Storey& storey, const bim::Room& room) {
   std::vector<Landmark> faces;
@@ -52,7 +56,12 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
   for (std::size_t w = 0; w < storey.walls.size(); ++w)
     for (int f = 0; f < 2; ++f) every_face.push_back(makeLandmark(storey.walls[w].faces[f], static_cast<int>(2 * w) + f));
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-  if (index_faces) all_faces_ = std::make_shared<const FaceIndex>(every_face);
+  // 2 m cells: a match radius is 3-7 m, and with 1 m cells walking the cells cost more than
+  // matching the faces in them.
+  if (index_faces) {
+    all_faces_ = std::make_shared<const FaceIndex>(every_face, 2.0);
+    fine_faces_ = std::make_shared<const FaceIndex>(every_face, 1.0);
+  }
   if (!use_rooms && !index_faces) landmarks_.push_back(every_face);  // one list for every room
   for (const auto& room : storey.rooms) {
     rooms_.push_back(&room);
@@ -69,6 +78,16 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
         }
     landmarks_.push_back(std::move(faces));
     for (const auto& p : room.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  // A point of a footprint lies in its bounding box (pointInPolygon counts no crossing beyond
+  // it; 1e-6 m covers the rounding of x + s); roomAt looks up to kDoorwayM beside the point.
+  for (const bim::Room* room : rooms_) {
+    Eigen::Vector2d a(1e300, 1e300), b(-1e300, -1e300);
+    bool finite = true;
+    for (const auto& p : room->footprint) finite &= p.allFinite(), a = a.cwiseMin(p), b = b.cwiseMax(p);
+    const double grow = kDoorwayM + 1e-6;
+    boxes_.push_back(finite ? std::array<double, 4>{a.x() - grow, a.y() - grow, b.x() + grow, b.y() + grow}
+                            : std::array<double, 4>{-1e300, -1e300, 1e300, 1e300});
   }
   if (rooms_.empty()) return;
   origin_ = lo;
@@ -87,9 +106,6 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
 
 int RoomIndex::roomAt(double x, double y) const {
   if (const int r = containing(x, y); r >= 0) return r;
-  // A doorway belongs to no room's footprint: the robot crossing it is walking from one room
-  // into the next, and either room's walls are what it sees. Walls are at most 0.6 m thick.
-  constexpr double kDoorwayM = 0.3;
   for (const double s : {0.5 * kDoorwayM, kDoorwayM})
     for (const auto& [dx, dy] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}})
       if (const int r = containing(x + s * dx, y + s * dy); r >= 0) return r;

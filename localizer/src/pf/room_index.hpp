@@ -8,6 +8,7 @@
 #include <bimloc/bim/building.hpp>
 
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -25,6 +26,12 @@ class RoomIndex {
   // The room whose footprint holds (x, y); in a doorway (inside a wall's thickness, in no
   // footprint) the room within doorway_m of it; -1 outside every room.
   int roomAt(double x, double y) const;
+  // False where roomAt(x, y) cannot be `room`: beyond its footprint's bounding box grown by the
+  // doorway reach. A test of four numbers, for callers that only want one room.
+  bool mayBeIn(int room, double x, double y) const {
+    const auto& box = boxes_[static_cast<std::size_t>(room)];
+    return x >= box[0] && y >= box[1] && x <= box[2] && y <= box[3];
+  }
   // The faces a particle in `room` matches against. Without the room factor: every face of
   // the storey, which a caller should reach through faceIndex() instead.
   const std::vector<Landmark>& landmarks(int room) const {
@@ -35,6 +42,12 @@ class RoomIndex {
   // observation, not the building: without the room factor, and for a pose outside every
   // room. Null only when built with index_faces = false (the tests' brute-force oracle).
   const FaceIndex* faceIndex() const { return all_faces_.get(); }
+  // The same faces in 1 m cells, the cells of the index before matching moved to 2 m ones.
+  // Which faces a little beyond the radius a query returns, and in which order, depend on the
+  // cells; they decide which pairs of faces the global pose hypotheses try, and which of two
+  // faces that fit an observation exactly alike (collinear pieces of a wall) a match keeps.
+  // Through this index both stay what they were. Null exactly when faceIndex() is.
+  const FaceIndex* fineIndex() const { return fine_faces_.get(); }
   bool seesEveryFace() const { return !use_rooms_; }
   std::size_t roomCount() const { return rooms_.size(); }
   const bim::Room& room(int index) const { return *rooms_[static_cast<std::size_t>(index)]; }
@@ -44,10 +57,12 @@ class RoomIndex {
   std::vector<const bim::Room*> rooms_;
   std::vector<std::vector<Landmark>> landmarks_;
   std::shared_ptr<const FaceIndex> all_faces_;  // shared: copies of the index share it
+  std::shared_ptr<const FaceIndex> fine_faces_;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   double cell_m_ = 0.5;
   int nx_ = 0, ny_ = 0;
   std::vector<std::vector<int>> cells_;  // candidate rooms per cell
+  std::vector<std::array<double, 4>> boxes_;  // per room: x and y least, x and y most, grown (mayBeIn)
   int containing(double x, double y) const;
 };
 
