@@ -5,6 +5,7 @@
 #include "filter_access.hpp"
 #include "hypotheses.hpp"
 #include "measurement.hpp"
+#include "outside_fits.hpp"
 #include "particle_set.hpp"
 #include "path_evidence.hpp"
 #include "room_index.hpp"
@@ -42,6 +43,7 @@ struct ParticleFilter::Impl {
   detail::RoomIndex rooms;
   detail::StartPrior prior;
   detail::PathEvidence evidence;
+  detail::OutsideFits outside;
   std::optional<detail::Pose2> odom_start;  // the first odometry pose: where the prior applies
   std::mt19937_64 rng;
   std::vector<Particle> particles;
@@ -66,7 +68,7 @@ struct ParticleFilter::Impl {
 
   Impl(const bim::Storey& s, const Eigen::Isometry3d& mount, const ParticleFilterConfig& c)
       : storey(s), T_base_lidar(mount), config(c), rooms(s, c.use_rooms, c.neighbour_rooms), prior(s, rooms, c),
-        evidence(s, c), rng(c.seed), anneal(c.anneal_start) {
+        evidence(s, c), outside(s, c), rng(c.seed), anneal(c.anneal_start) {
     const auto count = static_cast<std::size_t>(std::max(1, c.particles));
     if (prior.active()) {
       for (std::size_t i = 0; i < count; ++i) particles.push_back(prior.draw(rng));
@@ -93,6 +95,17 @@ struct ParticleFilter::Impl {
   }
 
   double baseZ() const { return storey.elevation_m + odom.translation().z(); }
+  // Before a verdict is trusted: every pose the scan fits joins the path candidates, in a room
+  // (PathEvidence::proposeEveryFit) or in none (a start in a hall without a space, or outside,
+  // is a place too: left out, it cannot object to a wrong place's margin). Returns whether the
+  // scan fixes any pose at all: one that does not (two planes of a corner, seen from outside)
+  // enumerates no place, and "no rival" then means "none proposed", not "none there".
+  bool proposeEverywhere(const std::vector<detail::Observation>& observations, const detail::Pose2& odom_now) {
+    evidence.proposeEveryFit(observations, baseZ(), odom_now);
+    const detail::OutsideFits::Fits fits = outside.fits(observations, baseZ());
+    for (const auto& h : fits.outside) evidence.propose({h.x, h.y, h.yaw}, odom_now);
+    return fits.anywhere > 0;
+  }
   void applyMotion();
 
   std::vector<detail::Observation> observe(const std::vector<planes::ObservedPlane>& walls,
@@ -299,16 +312,19 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   const bool clustered = near({best.x, best.y, best.yaw}, mean, m.config.converged_position_m, yaw_tol) &&
                          std::sqrt(var_xy) < m.config.converged_position_m && std::sqrt(var_yaw) < yaw_tol;
   bool agrees = clustered && (tracking || (decisive && near(mean, path.best, m.config.converged_position_m, yaw_tol)));
+  bool fixes_pose = true;
   if (agrees && !tracking) {
     // About to count towards convergence: first make sure no look-alike is missing from the
     // candidates, then ask again.
-    m.evidence.proposeEveryFit(observations, z, odom);
+    fixes_pose = m.proposeEverywhere(observations, odom);
     path = m.evidence.verdict(odom);
     report.path_margin = path.margin, report.path_best = path.best, report.path_candidates = path.candidates;
     report.path_rivals = path.rivals;
     agrees = path.margin >= m.config.evidenceMargin() && near(mean, path.best, m.config.converged_position_m, yaw_tol);
   }
-  m.agreeing_updates = agrees ? m.agreeing_updates + 1 : 0;
+  // A scan that fixes no pose checked the verdict against nothing: it neither counts towards
+  // convergence nor breaks the run of agreeing ones.
+  if (!agrees || fixes_pose || tracking) m.agreeing_updates = agrees ? m.agreeing_updates + 1 : 0;
   if (m.agreeing_updates >= m.config.converged_updates) {
     // Paper Eq.: map <- odom = best particle (+) inverse of the odometry pose. After that it
     // follows the filter's weighted mean (tracking, until an S-Graph takes over): smoother
@@ -365,7 +381,7 @@ PathEvidence::WindowFit FilterAccess::windowFit(const ParticleFilter& f, const P
 PathVerdict FilterAccess::everyFitVerdict(ParticleFilter& f, const std::vector<planes::ObservedPlane>& walls) {
   auto& m = *f.impl_;
   const Pose2 odom = planarPose(m.odom);
-  m.evidence.proposeEveryFit(m.observe(walls, nullptr), m.baseZ(), odom);
+  m.proposeEverywhere(m.observe(walls, nullptr), odom);
   return m.evidence.verdict(odom);
 }
 
