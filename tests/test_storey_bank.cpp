@@ -1,7 +1,8 @@
 // The storey not known: StoreyBank on its own (one storey is the filter itself; storeys that
 // are copies of each other are never told apart), then `storey: auto` in the loop on the
-// two-storey world, where it must find the storey and the pose.
+// two-storey world, where it must find the storey and the pose, and on a recorded dataset.
 #include "sim_fixtures.hpp"
+#include "test_support.hpp"
 
 #include "sim/runner/run_scenario.hpp"
 #include "sim/simulation/simulator.hpp"
@@ -11,7 +12,9 @@
 #include <bimloc/pf/storey_bank.hpp>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <fstream>
 #include <functional>
 
 using namespace bimloc;
@@ -165,4 +168,22 @@ TEST(StoreyBank, StoreyAutoOnTheTwoStoreyWorldFindsTheStoreyAndThePose) {
     ASSERT_TRUE(r.storey_margin) << room;
     EXPECT_GE(*r.storey_margin, pf::ParticleFilterConfig{}.evidenceMargin()) << room;
   }
+}
+
+TEST(StoreyBank, LocalizeWithStoreyAutoOnARecordedDatasetReportsTheStoreyFound) {
+  // `bimloc simulate` records the true storey (the start room's, with storey: auto); `bimloc
+  // localize --storey auto` is not told it and is scored against it.
+  const std::string dir = test::tempDir("storey-auto");
+  const std::string scenario = dir + "/upstairs.yaml";
+  std::ofstream(scenario) << "world: " << BIMLOC_WORLDS_DIR << "/two_storey.ifc\nstorey: auto\n"
+                          << "start: {random_in_room: U02}\nmotion: {type: tour, rooms: [U04]}\nduration_s: 25\nseed: 1\n";
+  const auto simulated = test::runBimloc("simulate '" + scenario + "' --out '" + dir + "/data'");
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
+  const auto r = test::runBimloc("localize '" + dir + "/data' --plan '" + BIMLOC_WORLDS_DIR + "/two_storey.ifc' --storey auto --json");
+  const auto j = nlohmann::json::parse(r.out)["scenarios"][0];
+  EXPECT_EQ(j["storey"], "First floor");
+  EXPECT_TRUE(j["storey_auto"]);
+  EXPECT_TRUE(j["converged"]) << r.out;
+  EXPECT_EQ(j["found_storey"], "First floor") << r.out;
+  EXPECT_FALSE(j["false_convergence"]);
 }

@@ -85,7 +85,9 @@ struct TraceRow {
   double time_s = 0;
   Eigen::Vector3d truth = Eigen::Vector3d::Zero();     // map x, y, yaw
   Eigen::Vector3d estimate = Eigen::Vector3d::Zero();  // the filter's map <- base
-  pf::UpdateReport report;
+  pf::UpdateReport report;          // of the leading storey's filter
+  std::string storey;               // the leading (or decided) storey
+  std::optional<double> storey_margin;  // StoreyBankReport::storey_margin
 };
 
 // `trace`, when given, receives a row per weighing.
