@@ -105,7 +105,7 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
                                                         ? planes::extractPlanes(scanPoints(scan), settings.planes).walls
                                                         : std::vector<planes::ObservedPlane>{});
     const pf::UpdateReport& report = bank.filter;
-    if (bank.decided && !last.decided) r.storey_margin = bank.storey_margin;
+    if (r.storey_auto && bank.decided && !last.decided) r.storey_margin = bank.storey_margin;
     last = bank;
     ++updates;
     for (const auto& w : report.warnings) r.warnings.push_back("t=" + std::to_string(t) + ": " + w);
