@@ -17,6 +17,9 @@ namespace {
 constexpr double kDoorway_m = 0.35;
 // Spots drawn before giving up: the free space outside rooms can be a thin share of the box.
 constexpr int kDraws = 4000;
+// Spots whose way into the rooms is searched before giving up on a kind of place (each is a
+// path search).
+constexpr int kReachChecks = 6;  // per kind of place
 
 double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
@@ -48,18 +51,54 @@ std::string outsideKind(const bim::Storey& storey, const Eigen::Vector2d& p) {
 std::optional<Eigen::Vector2d> outsideRoomsSpot(const World& world, std::size_t index, double radius_m, double body_height_m,
                                                 std::uint64_t seed) {
   const bim::Storey& storey = world.building().storeys.at(index);
-  if (storey.walls.empty()) return std::nullopt;
+  if (storey.walls.empty() || storey.rooms.empty()) return std::nullopt;
   Eigen::Vector2d lo = storey.walls.front().start.head<2>(), hi = lo;
   for (const auto& w : storey.walls)
     for (const Eigen::Vector3d& q : {w.start, w.end}) lo = lo.cwiseMin(q.head<2>()), hi = hi.cwiseMax(q.head<2>());
+  const Eigen::Vector2d inner_lo = lo, inner_hi = hi;
   lo.array() -= kOutsideReach_m, hi.array() += kOutsideReach_m;
-  const Eigen::Vector2d middle = 0.5 * (lo + hi);
-  const FreeSpace space(world, index, radius_m, bodyCentreZ(world, index, middle, body_height_m));
+  const bim::Room* largest = &storey.rooms.front();
+  for (const auto& r : storey.rooms)
+    if (r.area_m2 > largest->area_m2) largest = &r;
+  FreeSpace space(world, index, radius_m, bodyCentreZ(world, index, largest->centre, body_height_m));
+  // The start must be a place the robot can be: one it can walk from into the rooms (not the
+  // air outside an upper storey, nor a shaft closed on every side).
+  const auto goal = space.freeSpotNear(largest->centre, &largest->footprint, kOutsideReach_m);
+  if (!goal) return std::nullopt;
+  // Uniform draws land almost always in front of the building: a doorway or a hall inside it
+  // is a sliver of the area. So the seed picks the kind of place first: just off a room's edge
+  // (doorways), inside the building's outline, or anywhere within reach of the walls.
+  const int kind = static_cast<int>(seed % 3);
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& r : storey.rooms) points.insert(points.end(), r.footprint.begin(), r.footprint.end());
+  const bim::Polygon2 hull = bim::convexHull(points);
   SeededRandom random(seed, RandomStream::Start);
-  for (int draw = 0; draw < kDraws; ++draw) {
-    const Eigen::Vector2d q(random.uniform(lo.x(), hi.x()), random.uniform(lo.y(), hi.y()));
-    if (roomAt(storey, q) || distanceToWalls(storey, q) > kOutsideReach_m) continue;
-    if (space.spotFree(q, FreeSpace::kMargin_m)) return q;
+  const auto offEdge = [&]() {
+    const bim::Room& r = storey.rooms[std::min(storey.rooms.size() - 1, static_cast<std::size_t>(random.uniform() * storey.rooms.size()))];
+    const std::size_t n = r.footprint.size();
+    const std::size_t e = std::min(n - 1, static_cast<std::size_t>(random.uniform() * n));
+    const Eigen::Vector2d a = r.footprint[e], b = r.footprint[(e + 1) % n];
+    const Eigen::Vector2d along = b - a;
+    const Eigen::Vector2d out = along.norm() > 0 ? Eigen::Vector2d(along.y(), -along.x()).normalized() : Eigen::Vector2d::Zero();
+    const double t = random.uniform(), depth = random.uniform(0.05, kDoorway_m);
+    return Eigen::Vector2d(a + t * along + depth * out);  // footprints are counter-clockwise: out is to the right
+  };
+  // The seed's kind first, then the others: a plan may have no such place (no hall without a
+  // space; no way in from outside an upper storey).
+  for (int k = 0; k < 3; ++k) {
+    const int now = (kind + k) % 3;
+    int checked = 0;
+    for (int draw = 0; draw < kDraws && checked < kReachChecks; ++draw) {
+      Eigen::Vector2d q;
+      if (now == 1) q = offEdge();
+      else if (now == 2) q = {random.uniform(inner_lo.x(), inner_hi.x()), random.uniform(inner_lo.y(), inner_hi.y())};
+      else q = {random.uniform(lo.x(), hi.x()), random.uniform(lo.y(), hi.y())};
+      if (now == 2 && (hull.size() < 3 || !bim::pointInPolygon(hull, q))) continue;
+      if (roomAt(storey, q) || distanceToWalls(storey, q) > kOutsideReach_m) continue;
+      if (!space.spotFree(q, FreeSpace::kMargin_m)) continue;
+      ++checked;
+      if (!space.path(q, *goal).empty()) return q;
+    }
   }
   return std::nullopt;
 }

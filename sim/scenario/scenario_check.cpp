@@ -128,7 +128,9 @@ Pose2 startPose(const Scenario& s, const World& world) {
   if (s.start.kind == StartConfig::Kind::Pose) return {s.start.pose.x(), s.start.pose.y(), s.start.pose.z()};
   if (s.start.kind == StartConfig::Kind::OutsideRooms) {
     const auto spot = outsideRoomsSpot(world, index, s.motion.body_radius_m, s.motion.gait.body_height_m, s.seed);
-    if (!spot) detail::fail(s.file, s.start.line, "no spot outside the rooms of storey '" + storey.name + "' where the body fits");
+    if (!spot)
+      detail::fail(s.file, s.start.line,
+                   "no spot outside the rooms of storey '" + storey.name + "' where the body fits and from which it can walk into them");
     // The heading drawn apart from the spot: giving yaw_deg does not change which spot is drawn.
     SeededRandom random(s.seed, RandomStream::Walk);
     return {spot->x(), spot->y(), s.start.yaw_rad.value_or(random.uniform(-M_PI, M_PI))};
