@@ -111,8 +111,8 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     for (const auto& w : report.warnings) r.warnings.push_back("t=" + std::to_string(t) + ": " + w);
     const Eigen::Isometry3d truth = sim.trajectory().T_map_base(t);
     if (trace && report.weighed)
-      trace->push_back({t, planarPose(truth), planarPose(filter.T_map_base()), report, building.storeys[bank.leader].name,
-                        bank.storey_margin});
+      trace->push_back({t, planarPose(truth), planarPose(filter.T_map_base()), report,
+                        r.storey_auto ? building.storeys[bank.leader].name : std::string(), bank.storey_margin});
     if (snapshot && updates == kClusteringUpdate && !filter.converged()) moment("clustering", t, truth);
     if (report.path_best) last_verdict = report, verdict_storey = bank.leader;
     if (score.add(t, filter, truth)) {

@@ -86,7 +86,7 @@ struct TraceRow {
   Eigen::Vector3d truth = Eigen::Vector3d::Zero();     // map x, y, yaw
   Eigen::Vector3d estimate = Eigen::Vector3d::Zero();  // the filter's map <- base
   pf::UpdateReport report;          // of the leading storey's filter
-  std::string storey;               // the leading (or decided) storey
+  std::string storey;               // with storey auto: the leading (or decided) storey; else empty
   std::optional<double> storey_margin;  // StoreyBankReport::storey_margin
 };
 
