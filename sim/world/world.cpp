@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 
 namespace bimloc::sim {
@@ -30,6 +31,11 @@ struct BulletStorey {
   std::unique_ptr<btDbvtBroadphase> broadphase;
   std::unique_ptr<btCollisionWorld> world;
   std::unique_ptr<btCollisionObject> object;
+  // Queries from parallel runs (`--jobs`) share the world, and Bullet's queries are not
+  // thread-safe: contactTest allocates its collision algorithm from the dispatcher's pool, and
+  // the broadphase's ray and sweep tests share one traversal stack. Unserialized, two runs
+  // planning at once crashed in libBulletCollision.
+  mutable std::mutex mutex;
 };
 
 Eigen::Vector3f normalFacing(const Eigen::Vector3f& ng, const Eigen::Vector3f& dir) {
@@ -232,7 +238,11 @@ RayHit World::bulletRay(std::size_t storey, const Eigen::Vector3d& from, const E
   const btVector3 a(btScalar(from.x()), btScalar(from.y()), btScalar(from.z()));
   const btVector3 b(btScalar(to.x()), btScalar(to.y()), btScalar(to.z()));
   btCollisionWorld::ClosestRayResultCallback callback(a, b);
-  impl_->bullet.at(storey)->world->rayTest(a, b, callback);
+  {
+    const auto& bullet = *impl_->bullet.at(storey);
+    const std::lock_guard<std::mutex> lock(bullet.mutex);
+    bullet.world->rayTest(a, b, callback);
+  }
   RayHit hit;
   if (!callback.hasHit()) {
     hit.range_m = kInf;
@@ -254,7 +264,10 @@ bool World::sweepClear(std::size_t storey, const Eigen::Vector3d& from, const Ei
   start.setOrigin(btVector3(btScalar(from.x()), btScalar(from.y()), btScalar(from.z())));
   end.setOrigin(btVector3(btScalar(to.x()), btScalar(to.y()), btScalar(to.z())));
   btCollisionWorld::ClosestConvexResultCallback callback(start.getOrigin(), end.getOrigin());
-  b.world->convexSweepTest(&sphere, start, end, callback);
+  {
+    const std::lock_guard<std::mutex> lock(b.mutex);
+    b.world->convexSweepTest(&sphere, start, end, callback);
+  }
   if (!callback.hasHit()) return true;
   if (contact) {
     const btVector3& p = callback.m_hitPointWorld;
@@ -288,7 +301,10 @@ bool World::sphereClear(std::size_t storey, const Eigen::Vector3d& centre, doubl
   pose.setOrigin(btVector3(btScalar(centre.x()), btScalar(centre.y()), btScalar(centre.z())));
   body.setWorldTransform(pose);
   FirstContact callback;
-  b.world->contactTest(&body, callback);
+  {
+    const std::lock_guard<std::mutex> lock(b.mutex);
+    b.world->contactTest(&body, callback);
+  }
   if (callback.hit && contact) *contact = Eigen::Vector3d(callback.point.x(), callback.point.y(), callback.point.z());
   return !callback.hit;
 }
