@@ -17,9 +17,9 @@ namespace {
 constexpr double kDoorway_m = 0.35;
 // Spots drawn before giving up: the free space outside rooms can be a thin share of the box.
 constexpr int kDraws = 4000;
-// Spots whose way into the rooms is searched before giving up on a kind of place (each is a
-// path search).
-constexpr int kReachChecks = 6;  // per kind of place
+// Spots checked (the body fits, a path leads into a room) before giving up on a kind of place:
+// most draws are refused by the first, cheap test.
+constexpr int kReachChecks = 40;  // per kind of place
 
 double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
@@ -57,14 +57,18 @@ std::optional<Eigen::Vector2d> outsideRoomsSpot(const World& world, std::size_t 
     for (const Eigen::Vector3d& q : {w.start, w.end}) lo = lo.cwiseMin(q.head<2>()), hi = hi.cwiseMax(q.head<2>());
   const Eigen::Vector2d inner_lo = lo, inner_hi = hi;
   lo.array() -= kOutsideReach_m, hi.array() += kOutsideReach_m;
-  const bim::Room* largest = &storey.rooms.front();
-  for (const auto& r : storey.rooms)
-    if (r.area_m2 > largest->area_m2) largest = &r;
-  FreeSpace space(world, index, radius_m, bodyCentreZ(world, index, largest->centre, body_height_m));
-  // The start must be a place the robot can be: one it can walk from into the rooms (not the
-  // air outside an upper storey, nor a shaft closed on every side).
-  const auto goal = space.freeSpotNear(largest->centre, &largest->footprint, kOutsideReach_m);
-  if (!goal) return std::nullopt;
+  // The start must be a place the robot can be: one it can walk from into a room (not the air
+  // beside an upper storey, nor a shaft closed on every side), checked as the planner will:
+  // the body at its height above the floor under the spot, a path to the nearest room.
+  const auto reachable = [&](const Eigen::Vector2d& q) {
+    FreeSpace space(world, index, radius_m, bodyCentreZ(world, index, q, body_height_m));
+    if (!space.spotFree(q, FreeSpace::kMargin_m)) return false;
+    const bim::Room* nearest = nullptr;
+    for (const auto& r : storey.rooms)
+      if (!nearest || (r.centre - q).norm() < (nearest->centre - q).norm()) nearest = &r;
+    const auto goal = space.freeSpotNear(nearest->centre, &nearest->footprint, kOutsideReach_m);
+    return goal && !space.path(q, *goal).empty();
+  };
   // Uniform draws land almost always in front of the building: a doorway or a hall inside it
   // is a sliver of the area. So the seed picks the kind of place first: just off a room's edge
   // (doorways), inside the building's outline, or anywhere within reach of the walls.
@@ -95,9 +99,8 @@ std::optional<Eigen::Vector2d> outsideRoomsSpot(const World& world, std::size_t 
       else q = {random.uniform(lo.x(), hi.x()), random.uniform(lo.y(), hi.y())};
       if (now == 2 && (hull.size() < 3 || !bim::pointInPolygon(hull, q))) continue;
       if (roomAt(storey, q) || distanceToWalls(storey, q) > kOutsideReach_m) continue;
-      if (!space.spotFree(q, FreeSpace::kMargin_m)) continue;
       ++checked;
-      if (!space.path(q, *goal).empty()) return q;
+      if (reachable(q)) return q;
     }
   }
   return std::nullopt;

@@ -23,7 +23,7 @@ constexpr double kOutsideReach_m = 3.0;
 std::string outsideKind(const bim::Storey& storey, const Eigen::Vector2d& p);
 
 // A random spot of the storey in no room where the body (radius, at body height) fits,
-// within kOutsideReach_m of a wall, from which a path leads into the largest room, drawn from
+// within kOutsideReach_m of a wall, from which a path leads into the nearest room, drawn from
 // `seed`, which also picks the kind of place tried first (seed % 3: 0 anywhere, mostly in front
 // of the building; 1 just off a room's edge, i.e. doorways; 2 inside the building's outline);
 // nullopt when none was found.
