@@ -17,9 +17,10 @@ namespace {
 constexpr double kDoorway_m = 0.35;
 // Spots drawn before giving up: the free space outside rooms can be a thin share of the box.
 constexpr int kDraws = 4000;
-// Spots checked (the body fits, a path leads into a room) before giving up on a kind of place:
-// most draws are refused by the first, cheap test.
-constexpr int kReachChecks = 40;  // per kind of place
+// Spots where the body fits whose way into the rooms is searched before giving up on a kind
+// of place (each is a path search).
+constexpr int kReachChecks = 8;  // per kind of place
+constexpr std::size_t kNearestRooms = 3;
 
 double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
@@ -60,14 +61,18 @@ std::optional<Eigen::Vector2d> outsideRoomsSpot(const World& world, std::size_t 
   // The start must be a place the robot can be: one it can walk from into a room (not the air
   // beside an upper storey, nor a shaft closed on every side), checked as the planner will:
   // the body at its height above the floor under the spot, a path to the nearest room.
-  const auto reachable = [&](const Eigen::Vector2d& q) {
-    FreeSpace space(world, index, radius_m, bodyCentreZ(world, index, q, body_height_m));
-    if (!space.spotFree(q, FreeSpace::kMargin_m)) return false;
-    const bim::Room* nearest = nullptr;
-    for (const auto& r : storey.rooms)
-      if (!nearest || (r.centre - q).norm() < (nearest->centre - q).norm()) nearest = &r;
-    const auto goal = space.freeSpotNear(nearest->centre, &nearest->footprint, kOutsideReach_m);
-    return goal && !space.path(q, *goal).empty();
+  const auto reachable = [&](FreeSpace& space, const Eigen::Vector2d& q) {
+    // The nearest rooms by centre: the one behind a doorway may be closed, the next one not.
+    std::vector<const bim::Room*> rooms;
+    for (const auto& r : storey.rooms) rooms.push_back(&r);
+    const std::size_t tried = std::min<std::size_t>(kNearestRooms, rooms.size());
+    std::partial_sort(rooms.begin(), rooms.begin() + static_cast<std::ptrdiff_t>(tried), rooms.end(),
+                      [&](const bim::Room* a, const bim::Room* b) { return (a->centre - q).norm() < (b->centre - q).norm(); });
+    for (std::size_t k = 0; k < tried; ++k) {
+      const auto goal = space.freeSpotNear(rooms[k]->centre, &rooms[k]->footprint, kOutsideReach_m);
+      if (goal && !space.path(q, *goal).empty()) return true;
+    }
+    return false;
   };
   // Uniform draws land almost always in front of the building: a doorway or a hall inside it
   // is a sliver of the area. So the seed picks the kind of place first: just off a room's edge
@@ -99,8 +104,10 @@ std::optional<Eigen::Vector2d> outsideRoomsSpot(const World& world, std::size_t 
       else q = {random.uniform(lo.x(), hi.x()), random.uniform(lo.y(), hi.y())};
       if (now == 2 && (hull.size() < 3 || !bim::pointInPolygon(hull, q))) continue;
       if (roomAt(storey, q) || distanceToWalls(storey, q) > kOutsideReach_m) continue;
+      FreeSpace space(world, index, radius_m, bodyCentreZ(world, index, q, body_height_m));
+      if (!space.spotFree(q, FreeSpace::kMargin_m)) continue;
       ++checked;
-      if (reachable(q)) return q;
+      if (reachable(space, q)) return q;
     }
   }
   return std::nullopt;
