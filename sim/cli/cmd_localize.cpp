@@ -1,4 +1,4 @@
-// bimloc localize DATASET --plan PLAN [--storey S] [--method pf|pf-no-rooms] [--json]
+// bimloc localize DATASET --plan PLAN [--storey S|auto] [--method pf|pf-no-rooms] [--json]
 // The same localizer as `bimloc run`, offline, on a recorded dataset.
 #include "sim/cli/commands.hpp"
 #include "sim/cli/run_report.hpp"
@@ -28,32 +28,42 @@ void run(const LocalizeArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   const RecordedDataset data = readDataset(args.dataset);
   const bimloc::bim::Building building = bimloc::bim::readIfc(args.plan, {});
-  const std::string storey_name = args.storey.empty() ? (data.storey.empty() ? "0" : data.storey) : args.storey;
+  const bool storey_auto = args.storey == "auto";
+  // The true storey, for scoring: as recorded (with auto, the localizer is not told it).
+  const std::string storey_name =
+      !args.storey.empty() && !storey_auto ? args.storey : (data.storey.empty() ? "0" : data.storey);
   const bimloc::bim::Storey* storey = building.findStorey(storey_name);
   if (!storey) throw std::runtime_error(args.plan + ": no storey '" + storey_name + "'");
+  const auto truth_storey = static_cast<std::size_t>(storey - building.storeys.data());
 
   bimloc::pf::ParticleFilterConfig config;
   config.use_rooms = args.method == "pf";
   config.seed = args.seed;
-  bimloc::pf::ParticleFilter filter(*storey, data.T_base_lidar, config);
+  const std::vector<std::size_t> storeys =
+      storey_auto ? bimloc::pf::StoreyBank::candidateStoreys(building) : std::vector<std::size_t>{truth_storey};
+  if (storeys.empty()) throw std::runtime_error(args.plan + ": no storey with walls and rooms");
+  bimloc::pf::StoreyBank filter(building, storeys, data.T_base_lidar, config);
   bimloc::planes::PlaneExtractionConfig planes_config;
   planes_config.seed = args.seed;
-  RunScore score(*storey);
+  RunScore score(building, truth_storey);
   ScenarioResult r;
   r.name = args.dataset, r.plan = args.plan, r.storey = storey->name, r.method = args.method, r.seed = args.seed;
+  r.storey_auto = storey_auto;
   r.start_room = "(unknown)";
   for (const auto& scan : data.scans) {
     const double t = scan.stamp_s + 0.5 * data.turn_period_s;  // mid-turn, as the runner
     filter.predict(nearest(data.odometry, t).pose);
     // As the runner: planes only for the scans the filter weighs.
-    const auto report = filter.update(filter.wantsObservations()
-                                          ? bimloc::planes::extractPlanes(readPcdPoints(scan.file), planes_config).walls
-                                          : std::vector<bimloc::planes::ObservedPlane>{});
-    for (const auto& w : report.warnings) r.warnings.push_back(scan.file + ": " + w);
+    const auto bank = filter.update(filter.wantsObservations()
+                                        ? bimloc::planes::extractPlanes(readPcdPoints(scan.file), planes_config).walls
+                                        : std::vector<bimloc::planes::ObservedPlane>{});
+    if (bank.decided && !r.storey_margin && storey_auto) r.storey_margin = bank.storey_margin;
+    for (const auto& w : bank.filter.warnings) r.warnings.push_back(scan.file + ": " + w);
     if (!data.ground_truth.empty()) score.add(t - data.scans.front().stamp_s, filter, nearest(data.ground_truth, t).pose);
   }
   if (data.ground_truth.empty()) {
     r.converged = filter.converged();
+    if (filter.storey()) r.found_storey = building.storeys[*filter.storey()].name;
   } else {
     score.finish(filter, r);
   }
@@ -85,7 +95,9 @@ void addLocalizeCommand(CLI::App& app) {
       "global localization, then map <- odom. Scored like `bimloc run` when ground truth is present.");
   cmd->add_option("dataset", args->dataset, "dataset folder")->required();
   cmd->add_option("--plan", args->plan, "IFC plan")->required();
-  cmd->add_option("--storey", args->storey, "storey name or index (default: as recorded, else 0)");
+  cmd->add_option("--storey", args->storey,
+                  "storey name or index (default: as recorded, else 0); auto: not told, every storey with walls and rooms "
+                  "is a candidate (scored against the recorded storey)");
   cmd->add_option("--method", args->method, "pf or pf-no-rooms")->check(CLI::IsMember({"pf", "pf-no-rooms"}))->capture_default_str();
   cmd->add_option("--seed", args->seed, "seed of the filter")->capture_default_str();
   cmd->add_flag("--json", args->json, "print one JSON object");

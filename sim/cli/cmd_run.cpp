@@ -1,4 +1,4 @@
-// bimloc run SCENARIO... | --plan PLAN --all-rooms  [--json] [--out DIR] [--jobs N]
+// bimloc run SCENARIO... | --plan PLAN --all-rooms [--storey S|auto] [--starts rooms|outside] [--json] [--out DIR] [--jobs N]
 #include "sim/cli/commands.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
@@ -16,6 +16,7 @@ struct RunArgs {
   std::string plan;
   std::string storey = "0";
   bool all_rooms = false;
+  std::string starts = "rooms";
   int seeds = 1;
   std::string method = "pf";
   double duration_s = 40.0;
@@ -31,10 +32,12 @@ void run(const RunArgs& args) {
   std::vector<Scenario> scenarios;
   bimloc::cli::WorldCache worlds;
   for (const auto& path : args.scenarios) scenarios.push_back(loadScenario(path));
-  if (args.all_rooms) {
-    if (args.plan.empty()) throw std::runtime_error("--all-rooms needs --plan PLAN");
+  const bool generate = args.all_rooms || args.starts != "rooms";
+  if (generate) {
+    if (args.plan.empty()) throw std::runtime_error("--all-rooms and --starts need --plan PLAN");
     RoomScenarioOptions o;
     o.plan = args.plan, o.storey = args.storey, o.seeds = args.seeds, o.method = args.method, o.duration_s = args.duration_s;
+    o.starts = args.starts;
     auto generated = roomScenarios(worlds.get(args.plan), o);
     bimloc::cli::keepStartRooms(generated, args.rooms);
     scenarios.insert(scenarios.end(), generated.begin(), generated.end());
@@ -45,7 +48,7 @@ void run(const RunArgs& args) {
   // Scenarios in parallel, results in input order: the same output whatever --jobs.
   const auto start = std::chrono::steady_clock::now();
   std::vector<bool> generated(scenarios.size());
-  for (std::size_t i = args.scenarios.size(); i < scenarios.size(); ++i) generated[i] = args.all_rooms;
+  for (std::size_t i = args.scenarios.size(); i < scenarios.size(); ++i) generated[i] = generate;
   bimloc::cli::RunPoolOptions pool;
   pool.jobs = args.jobs, pool.snapshots = args.out, pool.trace = args.trace;
   const auto runs = bimloc::cli::runPool(scenarios, generated, worlds, pool);
@@ -75,12 +78,24 @@ void addRunCommand(CLI::App& app) {
       "Run scenarios in the loop: the simulator feeds scans and odometry at the sensor's rate into the localizer\n"
       "(the room-aware particle filter), and each run is scored against the ground truth and the scenario's\n"
       "expectations: converged, convergence time, room found, errors, ATE, false convergence. Exit status 1\n"
-      "when any scenario fails. With --plan PLAN --all-rooms: one scenario per room of the storey.");
+      "when any scenario fails. With --plan PLAN --all-rooms: one scenario per room of the storey; --starts outside:\n"
+      "starts in no room (halls without a space, doorways, just outside); --storey auto: the localizer is not told\n"
+      "the storey (every storey with walls and rooms is a candidate, the scans decide).");
   cmd->add_option("scenarios", args->scenarios, "scenario files (YAML)");
   cmd->add_option("--plan", args->plan, "IFC plan (or extract folder) for --all-rooms");
-  cmd->add_option("--storey", args->storey, "storey name or index for --all-rooms")->capture_default_str();
+  cmd->add_option("--storey", args->storey,
+                  "storey name or index for --all-rooms / --starts; auto: every storey with walls and rooms, each run on "
+                  "its true storey, the localizer not told which")
+      ->capture_default_str();
   cmd->add_flag("--all-rooms", args->all_rooms, "one scenario per room of the storey: random start in it, walk out");
-  cmd->add_option("--seeds", args->seeds, "seeds per room with --all-rooms")->check(CLI::Range(1, 1000))->capture_default_str();
+  cmd->add_option("--starts", args->starts,
+                  "with --plan: rooms (a random start in each room, as --all-rooms) or outside (--seeds random starts in "
+                  "no room per storey: halls without a space, doorways, up to 3 m outside the walls)")
+      ->check(CLI::IsMember({"rooms", "outside"}))
+      ->capture_default_str();
+  cmd->add_option("--seeds", args->seeds, "seeds per room with --all-rooms; starts per storey with --starts outside")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   cmd->add_option("--method", args->method, "pf (with the room factor) or pf-no-rooms (the ablation)")
       ->check(CLI::IsMember({"pf", "pf-no-rooms"}))
       ->capture_default_str();

@@ -1,4 +1,4 @@
-// bimloc sweep PLAN... [--seeds K] [--method M] [--duration S] [--jobs N] [--json]
+// bimloc sweep PLAN... [--seeds K] [--method M] [--duration S] [--storey auto] [--starts rooms|outside] [--jobs N] [--json]
 // The paper's experiment over many plans at once: every room of every storey with rooms, K
 // seeds each, and a row per plan and storey: how often it localized, how often falsely, how
 // fast, how accurately, and the smallest path-evidence margin a convergence was accepted at.
@@ -27,6 +27,8 @@ struct SweepArgs {
   double duration_s = 40.0;
   int jobs = 1;
   bool json = false;
+  std::string storey;            // "auto": the localizer is not told the storey
+  std::string starts = "rooms";  // or "outside"
   std::vector<std::string> prior_rooms;
   std::string prior_pose;
 };
@@ -73,7 +75,10 @@ void run(const SweepArgs& args) {
       if (storeys[s].rooms.empty() || storeys[s].walls.empty()) continue;
       RoomScenarioOptions o;
       o.plan = plan, o.storey = std::to_string(s), o.seeds = args.seeds, o.method = args.method, o.duration_s = args.duration_s;
+      o.starts = args.starts;
       for (auto& sc : roomScenarios(world, o)) {
+        // Each run on its true storey; with --storey auto the localizer is not told which.
+        if (args.storey == "auto") sc.localizer["storey"] = "auto", sc.name = storeys[s].name + "/" + sc.name;
         scenarios.push_back(std::move(sc));
         groups.emplace_back(std::filesystem::path(plan).filename().string(), storeys[s].name);
       }
@@ -140,6 +145,14 @@ void addSweepCommand(CLI::App& app) {
       ->check(CLI::IsMember({"pf", "pf-no-rooms"}))
       ->capture_default_str();
   cmd->add_option("--duration", args->duration_s, "seconds per run")->check(CLI::Range(1.0, 3600.0))->capture_default_str();
+  cmd->add_option("--storey", args->storey,
+                  "auto: the localizer is not told the storey (every storey with walls and rooms is a candidate); rows "
+                  "stay per true storey, and a run converged on another storey counts as false")
+      ->check(CLI::IsMember({"auto"}));
+  cmd->add_option("--starts", args->starts,
+                  "rooms (a random start in each room) or outside (--seeds random starts in no room per storey)")
+      ->check(CLI::IsMember({"rooms", "outside"}))
+      ->capture_default_str();
   cmd->add_option("--jobs", args->jobs, "runs in parallel")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->add_flag("--json", args->json, "one JSON object: groups, summary, every run");
   cmd->add_option("--prior-room", args->prior_rooms, "the start was in one of these rooms (comma-separated)")->delimiter(',');

@@ -15,7 +15,15 @@ nlohmann::json orNull(const std::optional<T>& v) {
 nlohmann::json placesJson(const std::vector<sim::ScenarioResult::Place>& places) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& p : places)
-    out.push_back({{"x", p.x}, {"y", p.y}, {"yaw_deg", p.yaw_deg}, {"room", p.room}, {"relative_weight", p.relative_weight}});
+    out.push_back({{"x", p.x}, {"y", p.y}, {"yaw_deg", p.yaw_deg}, {"room", p.room}, {"storey", p.storey},
+                   {"relative_weight", p.relative_weight}});
+  return out;
+}
+
+nlohmann::json storeysJson(const std::vector<sim::ScenarioResult::StoreyOption>& storeys) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& s : storeys)
+    out.push_back({{"storey", s.storey}, {"converged", s.converged}, {"path_log_likelihood", s.path_log_likelihood}});
   return out;
 }
 
@@ -33,7 +41,9 @@ nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double
                          {"true_room", r.true_room}, {"position_error_m", r.position_error_m},
                          {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", orNull(r.ate_m)},
                          {"false_convergence", r.false_convergence}, {"convergence_margin", orNull(r.convergence_margin)},
-                         {"hypotheses", placesJson(r.hypotheses)}, {"passed", r.passed}, {"failures", r.failures},
+                         {"hypotheses", placesJson(r.hypotheses)}, {"storey_auto", r.storey_auto},
+                         {"found_storey", orNull(r.found_storey)}, {"storey_margin", orNull(r.storey_margin)},
+                         {"storey_candidates", storeysJson(r.storey_candidates)}, {"passed", r.passed}, {"failures", r.failures},
                          {"warnings", r.warnings}});
     localized += r.converged && !r.false_convergence;
     false_convergences += r.false_convergence;
@@ -51,13 +61,29 @@ nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double
 }
 
 void printRunTable(const std::vector<sim::ScenarioResult>& results, const nlohmann::json& report, std::ostream& out) {
-  Table table({"scenario", "method", "converged", "time [s]", "room found / true", "pos err [m]", "yaw err [deg]",
-               "ATE [m]", "false", "result"});
+  // With storey auto the storey found is part of the answer: a column of its own.
+  bool any_auto = false;
+  for (const auto& r : results) any_auto = any_auto || r.storey_auto;
+  std::vector<std::string> header{"scenario", "method", "converged", "time [s]", "room found / true", "pos err [m]",
+                                  "yaw err [deg]", "ATE [m]", "false", "result"};
+  if (any_auto) header.insert(header.begin() + 4, "storey found / true");
+  Table table(header);
   for (const auto& r : results) {
-    table.add({r.name, r.method, r.converged ? "yes" : "no", r.convergence_time_s ? fixed(*r.convergence_time_s, 1) : "-",
+    std::vector<std::string> row{r.name, r.method, r.converged ? "yes" : "no",
+                                 r.convergence_time_s ? fixed(*r.convergence_time_s, 1) : "-",
                (r.found_room ? *r.found_room : std::string("-")) + " / " + r.true_room, fixed(r.position_error_m, 3),
                fixed(r.yaw_error_deg, 2), r.ate_m ? fixed(*r.ate_m, 3) : "-", r.false_convergence ? "FALSE" : "",
-               r.passed ? "pass" : "FAIL"});
+               r.passed ? "pass" : "FAIL"};
+    if (any_auto) {
+      std::string found = r.found_storey ? *r.found_storey : "-";
+      if (!r.found_storey && !r.storey_candidates.empty()) {
+        found = "{";  // undecided: the storeys still considered, leader first
+        for (std::size_t i = 0; i < r.storey_candidates.size(); ++i) found += (i ? ", " : "") + r.storey_candidates[i].storey;
+        found += "}";
+      }
+      row.insert(row.begin() + 4, found + " / " + r.storey);
+    }
+    table.add(row);
   }
   table.print(out);
   const auto& s = report["summary"];

@@ -17,12 +17,13 @@ std::string fileSafe(const std::string& name) {
 
 sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& scenario, const std::string& out_dir) {
   const std::string dir = (std::filesystem::path(out_dir) / fileSafe(scenario.name)).string();
-  const bim::Storey* storey = &world.building().storeys.at(world.storeyIndex(scenario.storey));
+  const bim::Building* building = &world.building();
   int index = 0;
-  return [dir, storey, name = scenario.name, index](const sim::SnapshotMoment& m) mutable {
+  return [dir, building, name = scenario.name, index](const sim::SnapshotMoment& m) mutable {
     std::filesystem::create_directories(dir);
     sim::SnapshotScene scene;
-    scene.storey = storey;
+    // The filter's storey: with storey auto, the leading one (the truth may be on another).
+    scene.storey = &building->storeys.at(m.storey);
     double max_lw = -1e300;
     for (const auto& p : m.filter->particles()) max_lw = std::max(max_lw, p.log_weight);
     for (const auto& p : m.filter->particles()) scene.particles.push_back({p.x, p.y, p.yaw, std::exp(p.log_weight - max_lw)});
@@ -32,7 +33,8 @@ sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& s
     scene.time_s = m.time_s;
     scene.phase = m.phase;
     scene.legend_extra = {{"particles", std::to_string(m.filter->particles().size())},
-                          {"converged", m.filter->converged() ? "yes" : "no"}};
+                          {"converged", m.filter->converged() ? "yes" : "no"},
+                          {"storey", scene.storey->name}};
     char file[64];
     std::snprintf(file, sizeof file, "%d_%s.png", index++, m.phase.c_str());
     sim::renderSnapshot(scene, dir + "/" + file);

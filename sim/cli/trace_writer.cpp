@@ -13,20 +13,32 @@ std::string writeTrace(const std::string& dir, const std::string& scenario_name,
   std::filesystem::create_directories(dir);
   const std::string path = (std::filesystem::path(dir) / (fileSafe(scenario_name) + ".csv")).string();
   constexpr double kDeg = 180.0 / M_PI;
+  // With storey auto, two more columns: the leading storey and its margin over the others.
+  bool storeys = false;
+  for (const auto& row : rows) storeys = storeys || !row.storey.empty();
   std::string csv =
       "time_s,truth_x_m,truth_y_m,truth_yaw_deg,estimate_x_m,estimate_y_m,estimate_yaw_deg,position_error_m,"
       "observations,associated,hypotheses,injected,ess,path_best_x_m,path_best_y_m,path_best_yaw_deg,path_margin,"
-      "path_candidates,converged\n";
+      "path_candidates,converged";
+  csv += storeys ? ",storey,storey_margin\n" : "\n";
   for (const auto& row : rows) {
     const auto& r = row.report;
     const Eigen::Vector3d best = r.path_best.value_or(Eigen::Vector3d::Constant(std::nan("")));
     char line[512];
-    std::snprintf(line, sizeof line, "%.2f,%.3f,%.3f,%.2f,%.3f,%.3f,%.2f,%.3f,%d,%d,%d,%d,%.1f,%.3f,%.3f,%.2f,%.2f,%d,%d\n",
+    std::snprintf(line, sizeof line, "%.2f,%.3f,%.3f,%.2f,%.3f,%.3f,%.2f,%.3f,%d,%d,%d,%d,%.1f,%.3f,%.3f,%.2f,%.2f,%d,%d",
                   row.time_s, row.truth.x(), row.truth.y(), row.truth.z() * kDeg, row.estimate.x(), row.estimate.y(),
                   row.estimate.z() * kDeg, (row.estimate - row.truth).head<2>().norm(), r.observations, r.associated,
                   r.hypotheses, r.injected, r.ess, best.x(), best.y(), best.z() * kDeg, r.path_margin, r.path_candidates,
                   r.converged ? 1 : 0);
     csv += line;
+    if (!storeys) {
+      csv += "\n";
+      continue;
+    }
+    std::string storey = row.storey;
+    for (char& c : storey) c = c == ',' ? ';' : c;
+    std::snprintf(line, sizeof line, ",%.2f\n", row.storey_margin.value_or(std::nan("")));
+    csv += "," + storey + line;
   }
   sim::writeFileAtomically(path, csv);
   return path;

@@ -29,34 +29,39 @@ double yawErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::abs(std::atan2(std::sin(d), std::cos(d))) * 180.0 / M_PI;
 }
 
-bool RunScore::add(double t, const pf::ParticleFilter& filter, const Eigen::Isometry3d& truth) {
+bool RunScore::add(double t, const pf::StoreyBank& localizer, const Eigen::Isometry3d& truth) {
   truth_ = truth;
-  estimate_ = filter.T_map_base();
-  if (!filter.converged()) return false;
+  estimate_ = localizer.T_map_base();
+  if (!localizer.converged()) return false;
   const bool first = !converged_;
+  const bim::Storey& found = building_.storeys.at(*localizer.storey());
   if (first) {
     converged_ = true;
     convergence_time_ = t;
-    found_room_ = roomName(storey_, filter.estimateRoom());
-    true_room_ = trueRoom(storey_, truth);
+    found_room_ = roomName(found, localizer.estimateRoom());
+    found_storey_ = found.name;
+    true_room_ = trueRoom(building_.storeys.at(storey_), truth);
   }
+  // Right place, wrong storey is a false convergence too: the plan's x, y repeat on every storey.
   const double error = (estimate_.translation() - truth.translation()).head<2>().norm();
-  if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg) false_convergence_ = true;
+  if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg || *localizer.storey() != storey_)
+    false_convergence_ = true;
   sum_sq_ += error * error;
   ++after_;
   return first;
 }
 
-void RunScore::finish(const pf::ParticleFilter& filter, ScenarioResult& r) const {
-  const Eigen::Isometry3d estimate = filter.T_map_base();
+void RunScore::finish(const pf::StoreyBank& localizer, ScenarioResult& r) const {
+  const Eigen::Isometry3d estimate = localizer.T_map_base();
   r.converged = converged_;
   r.false_convergence = false_convergence_;
   if (converged_) {
     r.convergence_time_s = convergence_time_;
     r.found_room = found_room_;
     r.true_room = true_room_;
+    r.found_storey = found_storey_;
   } else {
-    r.true_room = trueRoom(storey_, truth_);
+    r.true_room = trueRoom(building_.storeys.at(storey_), truth_);
   }
   r.position_error_m = (estimate.translation() - truth_.translation()).head<2>().norm();
   r.yaw_error_deg = yawErrorDeg(estimate, truth_);

@@ -46,6 +46,12 @@ LocalizerSettings localizerSettings(const Scenario& s) {
         throw ScenarioError(s.file + ": localizer.prior_pose: expected [x, y, yaw_deg]");
       out.filter.prior_pose = Eigen::Vector3d(value[0].get<double>(), value[1].get<double>(), value[2].get<double>() * M_PI / 180.0);
       if (!out.filter.prior_pose->allFinite()) throw ScenarioError(s.file + ": localizer.prior_pose: not finite");
+    } else if (key == "storey") {
+      // The localizer is not told the storey: it considers every storey with walls and rooms.
+      if (!value.is_string() || value.get<std::string>() != "auto")
+        throw ScenarioError(s.file + ": localizer.storey: only 'auto' (the storey found from the scans); the storey "
+                                     "itself is the scenario's `storey:`");
+      out.storey_auto = true;
     } else if (key == "prior_sigma_m") {
       out.filter.prior_sigma_m = number(1e-3, 1e4);
     } else if (key == "prior_sigma_yaw_deg") {
@@ -53,7 +59,7 @@ LocalizerSettings localizerSettings(const Scenario& s) {
     } else {
       throw ScenarioError(s.file + ": localizer: unknown key '" + key +
                           "' (keys: method, particles, sigma_d_m, sigma_azimuth_deg, converged_updates, voxel_size_m, "
-                          "prior_rooms, prior_pose, prior_sigma_m, prior_sigma_yaw_deg)");
+                          "prior_rooms, prior_pose, prior_sigma_m, prior_sigma_yaw_deg, storey)");
     }
   }
   return out;

@@ -83,6 +83,8 @@ Scenario loadScenario(const std::string& path) {
     s.localizer = detail::toJson(path, top.value("localizer"));
     if (s.localizer.is_null()) s.localizer = nlohmann::json::object();
   }
+  // `storey: auto`: the localizer is not told which storey (the simulator still needs it).
+  if (s.storey == "auto" && !s.localizer.contains("storey")) s.localizer["storey"] = "auto";
   s.seed = readSeed(top);
   s.expect = detail::readExpect(top);
   for (const auto& key : top.given()) s.lines.emplace(key, top.line(key));

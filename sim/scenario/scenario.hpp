@@ -27,8 +27,9 @@ class ScenarioError : public std::runtime_error {
 };
 
 struct StartConfig {
-  enum class Kind { Room, Pose, RandomInRoom };
-  Kind kind = Kind::Room;          // Room: the room's centre; RandomInRoom: a random free pose in it
+  enum class Kind { Room, Pose, RandomInRoom, OutsideRooms };
+  Kind kind = Kind::Room;          // Room: the room's centre; RandomInRoom: a random free pose in it;
+                                   // OutsideRooms: a random free spot in no room (sim/base/outside_rooms.hpp)
   std::string room;                // name, long name or GlobalId (Room, RandomInRoom)
   Eigen::Vector3d pose = Eigen::Vector3d::Zero();  // x, y, yaw (rad) in the map frame (Pose)
   std::optional<double> yaw_rad;   // for Room: the heading (default 0); RandomInRoom: random if unset
@@ -48,7 +49,7 @@ struct Scenario {
   std::string file;     // the YAML file, for messages
   std::string name;     // default: the file's stem
   std::string world;    // plan (.ifc), extract folder or mesh; resolved relative to the file
-  std::string storey = "0";
+  std::string storey = "0";  // "auto": the localizer is not told (scenarioStorey finds the simulator's)
   StartConfig start;
   MotionConfig motion;
   double duration_s = 30.0;
@@ -71,11 +72,17 @@ Scenario loadScenario(const std::string& path);
 void checkScenarioAgainstWorld(const Scenario& scenario, const World& world);
 
 // The scenario's storey in `world` (ScenarioError naming the file and line when it has none).
+// With `storey: auto` the simulator still needs one: the storey of the start room, which must
+// be a room of exactly one storey.
 std::size_t scenarioStorey(const Scenario& scenario, const World& world);
 
+// Whether the localizer is told the storey: false with `storey: auto` or `localizer: {storey: auto}`.
+bool storeyGiven(const Scenario& scenario);
+
 // The start as a map-frame pose on the scenario's storey: a room's centre (or, when the body
-// does not fit there, the nearest spot where it does), the given pose, or a random spot where
-// the body fits in the room, drawn from the seed (random heading unless yaw_deg is given).
+// does not fit there, the nearest spot where it does), the given pose, a random spot where
+// the body fits in the room, or one in no room (outside_rooms), drawn from the seed (random
+// heading unless yaw_deg is given).
 Pose2 startPose(const Scenario& scenario, const World& world);
 
 // The scenario's base trajectory: startPose, then BaseTrajectory::plan on its storey. A motion

@@ -2,6 +2,7 @@
 #include "sim/scenario/scenario.hpp"
 
 #include "sim/base/free_space.hpp"
+#include "sim/base/outside_rooms.hpp"
 #include "sim/base/room_lookup.hpp"
 #include "sim/base/seeded_random.hpp"
 #include "sim/scenario/yaml_mapping.hpp"
@@ -63,6 +64,20 @@ void checkInside(const Scenario& s, const bim::Storey& storey, const bim::Polygo
 }  // namespace
 
 std::size_t scenarioStorey(const Scenario& scenario, const World& world) {
+  if (scenario.storey == "auto") {
+    // The localizer is not told; the simulator needs the storey: the start room's.
+    const auto& storeys = world.building().storeys;
+    const bool named = scenario.start.kind == StartConfig::Kind::Room || scenario.start.kind == StartConfig::Kind::RandomInRoom;
+    std::vector<std::size_t> holding;
+    for (std::size_t i = 0; named && i < storeys.size(); ++i)
+      if (lookUpRoom(storeys[i], scenario.start.room, nullptr)) holding.push_back(i);
+    if (holding.size() == 1) return holding.front();
+    const std::string hint = "; give the simulator's storey (storey: NAME) and tell the localizer `localizer: {storey: auto}`";
+    if (!named) detail::fail(scenario.file, lineOf(scenario, "storey"), "storey: auto needs a start room to find the simulator's storey" + hint);
+    detail::fail(scenario.file, lineOf(scenario, "storey"),
+                 "storey: auto: start room '" + scenario.start.room + "' is a room of " + std::to_string(holding.size()) +
+                     " storeys" + hint);
+  }
   try {
     return world.storeyIndex(scenario.storey);
   } catch (const std::invalid_argument& e) {
@@ -70,12 +85,17 @@ std::size_t scenarioStorey(const Scenario& scenario, const World& world) {
   }
 }
 
+bool storeyGiven(const Scenario& s) {
+  const auto it = s.localizer.find("storey");
+  return s.storey != "auto" && (it == s.localizer.end() || *it != "auto");
+}
+
 void checkScenarioAgainstWorld(const Scenario& s, const World& world) {
   const bim::Storey& storey = world.building().storeys.at(scenarioStorey(s, world));
   const bim::Polygon2 hull = outline(storey);
   if (s.start.kind == StartConfig::Kind::Pose)
     checkInside(s, storey, hull, s.start.pose.head<2>(), "start.pose", s.start.line);
-  else
+  else if (s.start.kind != StartConfig::Kind::OutsideRooms)
     room(s, storey, s.start.room, s.start.line);
   const MotionConfig& m = s.motion;
   switch (m.kind) {
@@ -92,6 +112,8 @@ void checkScenarioAgainstWorld(const Scenario& s, const World& world) {
     case MotionConfig::Kind::RandomWalk:
       if (!m.walk_room.empty())
         room(s, storey, m.walk_room, lineOf(s, "motion.room"));
+      else if (s.start.kind == StartConfig::Kind::OutsideRooms)
+        detail::fail(s.file, lineOf(s, "motion"), "a random walk without motion.room walks in the start's room, but start.outside_rooms is in none");
       else if (s.start.kind == StartConfig::Kind::Pose && !roomAt(storey, s.start.pose.head<2>()))
         detail::fail(s.file, lineOf(s, "motion"),
                      "a random walk without motion.room walks in the start's room, but start.pose " +
@@ -104,6 +126,15 @@ Pose2 startPose(const Scenario& s, const World& world) {
   const std::size_t index = scenarioStorey(s, world);
   const bim::Storey& storey = world.building().storeys.at(index);
   if (s.start.kind == StartConfig::Kind::Pose) return {s.start.pose.x(), s.start.pose.y(), s.start.pose.z()};
+  if (s.start.kind == StartConfig::Kind::OutsideRooms) {
+    const auto spot = outsideRoomsSpot(world, index, s.motion.body_radius_m, s.motion.gait.body_height_m, s.seed);
+    if (!spot)
+      detail::fail(s.file, s.start.line,
+                   "no spot outside the rooms of storey '" + storey.name + "' where the body fits and from which it can walk into them");
+    // The heading drawn apart from the spot: giving yaw_deg does not change which spot is drawn.
+    SeededRandom random(s.seed, RandomStream::Walk);
+    return {spot->x(), spot->y(), s.start.yaw_rad.value_or(random.uniform(-M_PI, M_PI))};
+  }
   const bim::Room& r = room(s, storey, s.start.room, s.start.line);
   const double body_z = bodyCentreZ(world, index, r.centre, s.motion.gait.body_height_m);
   const FreeSpace space(world, index, s.motion.body_radius_m, body_z);

@@ -59,15 +59,29 @@ void readRooms(const Mapping& m, MotionConfig& motion, std::map<std::string, int
 
 StartConfig readStart(const Mapping& top, std::map<std::string, int>& lines) {
   top.require("start");
-  const Mapping m = top.mapping("start", {"room", "pose", "random_in_room", "yaw_deg"});
+  const Mapping m = top.mapping("start", {"room", "pose", "random_in_room", "outside_rooms", "yaw_deg"});
   StartConfig start;
   start.line = top.line("start");
   lines["start"] = start.line;
   std::vector<std::string> kinds;
-  for (const char* k : {"room", "pose", "random_in_room"})
+  for (const char* k : {"room", "pose", "random_in_room", "outside_rooms"})
     if (m.has(k)) kinds.push_back(k);
-  if (kinds.empty()) fail(m.file(), start.line, "start needs one of room, pose, random_in_room");
-  if (kinds.size() > 1) m.fail(kinds[1], "start takes one of room, pose, random_in_room, got " + kinds[0] + " and " + kinds[1]);
+  const std::string one_of = "one of room, pose, random_in_room, outside_rooms";
+  if (kinds.empty()) fail(m.file(), start.line, "start needs " + one_of);
+  if (kinds.size() > 1) m.fail(kinds[1], "start takes " + one_of + ", got " + kinds[0] + " and " + kinds[1]);
+  if (m.has("outside_rooms")) {
+    bool outside = false;
+    m.read("outside_rooms", outside);
+    if (!outside) m.fail("outside_rooms", "start.outside_rooms: only 'true' (a random spot in no room) is meaningful");
+    start.kind = StartConfig::Kind::OutsideRooms;
+    start.line = m.line("outside_rooms");
+    if (m.has("yaw_deg")) {
+      double yaw_deg = 0.0;
+      m.read("yaw_deg", yaw_deg, kAngleDeg);
+      start.yaw_rad = yaw_deg * kDegToRad;
+    }
+    return start;
+  }
   if (m.has("pose")) {
     if (m.has("yaw_deg")) m.fail("yaw_deg", "start.yaw_deg is part of start.pose ([x, y, yaw_deg])");
     const std::vector<double> v = m.numbers(m.value("pose"), "start.pose", m.line("pose"), 2, 3, kCoordinate);

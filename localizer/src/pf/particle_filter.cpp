@@ -2,6 +2,7 @@
 // -> weight -> resample -> check convergence -> initial transformation map <- odom.
 #include <bimloc/pf/particle_filter.hpp>
 
+#include "filter_access.hpp"
 #include "hypotheses.hpp"
 #include "measurement.hpp"
 #include "particle_set.hpp"
@@ -371,5 +372,21 @@ int ParticleFilter::estimateRoom() const {
   const Eigen::Vector3d t = T_map_base().translation();
   return impl_->rooms.roomAt(t.x(), t.y());
 }
+
+namespace detail {
+
+PathEvidence::WindowFit FilterAccess::windowFit(const ParticleFilter& f, const Pose2& map_pose) {
+  return f.impl_->evidence.windowFit(map_pose, planarPose(f.impl_->odom));
+}
+
+PathVerdict FilterAccess::everyFitVerdict(ParticleFilter& f, const std::vector<planes::ObservedPlane>& walls) {
+  auto& m = *f.impl_;
+  const Pose2 odom = planarPose(m.odom);
+  const PathVerdict before = m.evidence.verdict(odom);
+  if (before.has_best) m.evidence.proposeEveryFit(m.observe(walls, nullptr), m.baseZ(), odom, before.best);
+  return m.evidence.verdict(odom);
+}
+
+}  // namespace detail
 
 }  // namespace bimloc::pf

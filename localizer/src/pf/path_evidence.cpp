@@ -343,4 +343,11 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
   return v;
 }
 
+PathEvidence::WindowFit PathEvidence::windowFit(const Pose2& map_pose, const Pose2& odom) const {
+  Candidate c = scored(compose(map_pose, inverse(odom)), true);
+  WindowFit fit;
+  for (auto& s : c.per_scan) fit.out_of_rooms.push_back(s.out_of_rooms), fit.matches.push_back(std::move(s.per_observation));
+  return fit;
+}
+
 }  // namespace bimloc::pf::detail

@@ -89,6 +89,13 @@ class PathEvidence {
   void setPrior(const StartPrior* prior, const Pose2& odom_start) { prior_ = prior, odom_start_ = odom_start; }
   // The window's log-likelihood of the base at `map_pose` now (any pose, candidate or not).
   double logLikelihoodOf(const Pose2& map_pose, const Pose2& odom) const;
+  // The window's fit of the base at `map_pose` now, observation by observation, scans oldest
+  // first: to weigh a place on another storey by the same per-face rule (StoreyBank).
+  struct WindowFit {
+    std::vector<bool> out_of_rooms;
+    std::vector<std::vector<ObservationMatch>> matches;
+  };
+  WindowFit windowFit(const Pose2& map_pose, const Pose2& odom) const;
 
  private:
   struct Scan {

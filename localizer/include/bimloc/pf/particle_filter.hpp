@@ -131,6 +131,10 @@ struct UpdateReport {
   std::vector<std::string> warnings;
 };
 
+namespace detail {
+struct FilterAccess;  // the path evidence, for StoreyBank (src/pf/filter_access.hpp)
+}
+
 class ParticleFilter {
  public:
   // `T_base_lidar`: the sensor mount; the particles' z comes from the storey elevation, the
@@ -167,6 +171,7 @@ class ParticleFilter {
   double pathScore(double x, double y, double yaw) const;
 
  private:
+  friend struct detail::FilterAccess;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
