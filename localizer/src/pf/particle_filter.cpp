@@ -3,12 +3,7 @@
 #include <bimloc/pf/particle_filter.hpp>
 
 #include "filter_access.hpp"
-#include "hypotheses.hpp"
-#include "measurement.hpp"
-#include "particle_set.hpp"
-#include "path_evidence.hpp"
-#include "room_index.hpp"
-#include "start_prior.hpp"
+#include "filter_impl.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
 #include <bimloc/geometry/planar_pose.hpp>
@@ -22,90 +17,14 @@ namespace bimloc::pf {
 namespace {
 
 using detail::near;
+using detail::tiltOf;
 using detail::wrapAngle;
-
-// The rotation without its yaw: roll and pitch.
-Eigen::Matrix3d tiltOf(const Eigen::Matrix3d& R) {
-  return Eigen::AngleAxisd(-yawOf(R), Eigen::Vector3d::UnitZ()).toRotationMatrix() * R;
-}
 
 // Odometry jumps beyond these in one step are reported, and spread the particles accordingly.
 constexpr double kJumpM = 1.0;
 constexpr double kJumpRad = M_PI / 4;
 
 }  // namespace
-
-struct ParticleFilter::Impl {
-  const bim::Storey& storey;
-  Eigen::Isometry3d T_base_lidar;
-  ParticleFilterConfig config;
-  detail::RoomIndex rooms;
-  detail::StartPrior prior;
-  detail::PathEvidence evidence;
-  std::optional<detail::Pose2> odom_start;  // the first odometry pose: where the prior applies
-  std::mt19937_64 rng;
-  std::vector<Particle> particles;
-  std::optional<Eigen::Isometry3d> last_odom;
-  Eigen::Isometry3d odom = Eigen::Isometry3d::Identity();
-  std::optional<Eigen::Isometry3d> T_map_odom;
-  int agreeing_updates = 0;
-  std::size_t best = 0;
-  std::optional<Eigen::Isometry3d> odom_at_last_weighing;
-  int scans_since_weighing = 0;
-  double anneal = 1.0;
-  bool weighed_once = false;
-  std::vector<std::string> pending_warnings;  // from predict(), reported by the next update()
-
-  // AMCL-style gate: weigh after enough motion, or after enough scans standing still.
-  bool shouldWeigh() const {
-    if (!odom_at_last_weighing || scans_since_weighing + 1 >= config.max_static_scans) return true;
-    const Eigen::Isometry3d moved = odom_at_last_weighing->inverse() * odom;
-    return moved.translation().head<2>().norm() >= config.update_min_translation_m ||
-           std::abs(yawOf(moved.linear())) >= config.update_min_rotation_deg * M_PI / 180.0;
-  }
-
-  Impl(const bim::Storey& s, const Eigen::Isometry3d& mount, const ParticleFilterConfig& c)
-      : storey(s), T_base_lidar(mount), config(c), rooms(s, c.use_rooms, c.neighbour_rooms), prior(s, rooms, c),
-        evidence(s, c), rng(c.seed), anneal(c.anneal_start) {
-    const auto count = static_cast<std::size_t>(std::max(1, c.particles));
-    if (prior.active()) {
-      for (std::size_t i = 0; i < count; ++i) particles.push_back(prior.draw(rng));
-    } else {
-      particles = detail::spreadOverRooms(rooms, count, rng);
-    }
-  }
-
-  // The start pose a pose now implies, through the odometry since the start.
-  detail::Pose2 startOf(const detail::Pose2& now) const {
-    if (!odom_start) return now;
-    return detail::compose(now, detail::compose(detail::inverse(planarPose(odom)), *odom_start));
-  }
-  bool admitted(const detail::Pose2& now) const { return !prior.active() || prior.admits(startOf(now)); }
-
-  int inject(const std::vector<detail::Hypothesis>& hyps, std::size_t count, double bonus = 0.0) {
-    return detail::inject(particles, hyps, count, bonus, rooms, rng);
-  }
-  std::size_t heaviest() const { return detail::heaviest(particles); }
-  std::vector<double> normalisedWeights() const { return detail::normalisedWeights(particles); }
-  Eigen::Vector3d mean(const std::vector<double>& w) const { return detail::weightedMean(particles, w); }
-  void resample(const std::vector<double>& w, std::size_t count) {
-    best = detail::resample(particles, w, count, best, config.roughening_xy_m, config.roughening_yaw_deg * M_PI / 180.0, rooms, rng);
-  }
-
-  double baseZ() const { return storey.elevation_m + odom.translation().z(); }
-  void applyMotion();
-
-  std::vector<detail::Observation> observe(const std::vector<planes::ObservedPlane>& walls,
-                                           std::vector<std::string>* warnings) const;
-
-  Eigen::Isometry3d poseOf(const Particle& p) const {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * tiltOf(odom.linear());
-    T.translation() = Eigen::Vector3d(p.x, p.y, baseZ());
-    return T;
-  }
-
-};
 
 ParticleFilter::ParticleFilter(const bim::Storey& storey, const Eigen::Isometry3d& T_base_lidar,
                                const ParticleFilterConfig& config)
@@ -215,139 +134,24 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   m.odom_at_last_weighing = m.odom;
   m.scans_since_weighing = 0;
   const double z = m.baseZ();
-  const double n = static_cast<double>(m.particles.size());
-  std::vector<detail::Hypothesis> hyps;
-  if (m.config.use_hypotheses) {
-    hyps = detail::poseHypotheses(observations, z, m.rooms, m.config, static_cast<std::size_t>(m.config.max_hypotheses));
-    if (m.prior.active())  // no pose the prior rules out, not even as a seed
-      hyps.erase(std::remove_if(hyps.begin(), hyps.end(), [&](const detail::Hypothesis& h) { return !m.admitted({h.x, h.y, h.yaw}); }),
-                 hyps.end());
-    report.hypotheses = static_cast<int>(hyps.size());
-    if (!m.weighed_once) report.injected = m.inject(hyps, static_cast<std::size_t>(m.config.initial_hypothesis_fraction * n));
-    if (report.injected > 0) m.agreeing_updates = 0;
-  }
-
-  // Weigh (paper, "Update"): each particle's observations against its room's walls.
-  ParticleFilterConfig annealed = m.config;
-  annealed.sigma_azimuth_deg *= m.anneal, annealed.sigma_elevation_deg *= m.anneal, annealed.sigma_d_m *= m.anneal;
-  annealed.segment_margin_m *= m.anneal;
-  const bool annealing = m.anneal > 1.0;
-  m.anneal = std::max(1.0, m.anneal * m.config.anneal_rate);
-  double best_raw = -1e300;  // the best fit of any particle, at the final (unannealed) sigmas
-  for (auto& p : m.particles) {
-    const auto match = detail::matchObservations(p, z, observations, m.rooms, annealed);
-    if (!annealing) best_raw = std::max(best_raw, match.log_likelihood);
-    p.log_weight += m.config.likelihood_power * match.log_likelihood;
-    if (m.prior.active() && !m.admitted({p.x, p.y, p.yaw})) p.log_weight -= m.config.likelihood_power * m.config.outside_rooms_penalty;
-  }
-  const bool tracking = m.T_map_odom.has_value();
-
-  // The path's evidence: this scan joins the window, the scan's best poses and the filter's
-  // best particle become candidates.
-  const detail::Pose2 odom = planarPose(m.odom);
-  m.evidence.addScan(odom, z, observations);
-  for (std::size_t k = 0; k < hyps.size() && static_cast<int>(k) < m.config.evidence_proposals; ++k)
-    m.evidence.propose({hyps[k].x, hyps[k].y, hyps[k].yaw}, odom);
-  const Particle& heaviest = m.particles[m.heaviest()];
-  m.evidence.propose({heaviest.x, heaviest.y, heaviest.yaw}, odom);
-  detail::PathVerdict path = m.evidence.verdict(odom);
-  report.path_margin = path.margin;
-  if (path.has_best) report.path_best = path.best;
-  report.path_candidates = path.candidates;
-  report.path_rivals = path.rivals;
+  // Sensor resetting's poses from this scan (paper: beyond it), then the weighing (paper,
+  // "Update"), then the path evidence (beyond the paper) and what it decides.
+  const std::vector<detail::Hypothesis> hyps = m.seedHypotheses(observations, z, report);
+  bool annealing = false;
+  const double best_raw = m.weigh(observations, z, annealing);
+  detail::PathVerdict path = m.askThePath(observations, hyps, z, report);
   const bool decisive = path.has_best && path.pose_fixed && path.margin >= m.config.evidenceMargin();
-  const double yaw_tol = m.config.converged_yaw_deg * M_PI / 180.0;
-  // Sensor resetting: the particles explain the scan clearly worse than the plan can.
-  // After convergence the filter tracks (paper: the S-Graph takes over): no more jumps. While
-  // the path evidence is decisive, the scan's poses elsewhere are places it has refuted (each
-  // was a candidate): only those at its best place may be drawn. A few particles 15 m away,
-  // drawn at the heaviest weight, kept the cloud's spread above the convergence radius.
-  if (m.weighed_once && !tracking && !hyps.empty() && !annealing &&
-      hyps[0].log_likelihood > best_raw + m.config.injection_margin) {
-    std::vector<detail::Hypothesis> reset;
-    for (const auto& h : hyps)
-      if (!decisive || near({h.x, h.y, h.yaw}, path.best, 2.0 * m.config.converged_position_m, 2.0 * yaw_tol)) reset.push_back(h);
-    report.injected += m.inject(reset, static_cast<std::size_t>(m.config.injection_fraction * n));
-    if (!reset.empty() && !decisive) m.agreeing_updates = 0;  // drawn at the best place: no jump
-  }
+  m.resetFromTheScan(hyps, best_raw, annealing, path, decisive, report);
   m.weighed_once = true;
-  std::vector<double> w = m.normalisedWeights();
-  Eigen::Vector3d mean = m.mean(w);
-  if (decisive && !tracking) {
-    // The path fits one place decisively better than any other: a share of the particles goes
-    // to its pose, heavier than any (their evidence is the whole window, not one scan). Where
-    // the particles are elsewhere, that moves them; where they are already around it, the
-    // window's fitted pose tightens the cloud (one scan's planes alone leave it wide).
-    detail::Hypothesis h;
-    h.x = path.best.x(), h.y = path.best.y(), h.yaw = path.best.z();
-    report.injected += m.inject({h}, static_cast<std::size_t>(m.config.evidence_injection_fraction * n),
-                                m.config.likelihood_power * m.config.evidenceMargin());
-    // The path fits every other place worse by at least the bar: particles elsewhere (a
-    // look-alike the scans alone keep alive) pay the bar, tempered as a scan is, at each
-    // decisive weighing. They fade over a few weighings instead of holding the cloud's spread,
-    // and the convergence test below, open for as long, waited on them for up to 13 s.
-    for (auto& p : m.particles)
-      if (!near({p.x, p.y, p.yaw}, path.best, 2.0 * m.config.converged_position_m, 2.0 * yaw_tol))
-        p.log_weight -= m.config.likelihood_power * m.config.evidenceMargin();
-    if (!near(mean, path.best, m.config.converged_position_m, yaw_tol)) m.agreeing_updates = 0;
-    w = m.normalisedWeights();
-    mean = m.mean(w);
-  }
+  if (decisive && !m.T_map_odom) m.followThePath(path, report);
+  const std::vector<double> w = m.normalisedWeights();
   m.best = m.heaviest();
   double sum2 = 0;
   for (double v : w) sum2 += v * v;
   report.ess = 1.0 / sum2;
-
-  // Convergence (paper, "Initial Transformation Estimation"): the best particle close to the
-  // weighted mean, for several updates in a row; and (beyond the paper) the path decisively
-  // better explained there than anywhere else.
-  const Particle& best = m.particles[m.best];
-  report.associated = detail::matchObservations(best, z, observations, m.rooms, m.config).associated;
-  double var_xy = 0, var_yaw = 0;
-  for (std::size_t i = 0; i < w.size(); ++i) {
-    const auto& p = m.particles[i];
-    var_xy += w[i] * ((p.x - mean.x()) * (p.x - mean.x()) + (p.y - mean.y()) * (p.y - mean.y()));
-    var_yaw += w[i] * wrapAngle(p.yaw - mean.z()) * wrapAngle(p.yaw - mean.z());
-  }
-  const bool clustered = near({best.x, best.y, best.yaw}, mean, m.config.converged_position_m, yaw_tol) &&
-                         std::sqrt(var_xy) < m.config.converged_position_m && std::sqrt(var_yaw) < yaw_tol;
-  bool agrees = clustered && (tracking || (decisive && near(mean, path.best, m.config.converged_position_m, yaw_tol)));
-  bool searched = true;
-  if (agrees && !tracking) {
-    // About to count towards convergence: first make sure no look-alike is missing from the
-    // candidates, then ask again.
-    searched = m.evidence.proposeEveryFit(observations, z, odom, path.best);
-    path = m.evidence.verdict(odom);
-    report.path_margin = path.margin, report.path_best = path.best, report.path_candidates = path.candidates;
-    report.path_rivals = path.rivals;
-    agrees = searched && path.pose_fixed && path.margin >= m.config.evidenceMargin() &&
-             near(mean, path.best, m.config.converged_position_m, yaw_tol);
-  }
-  // A scan whose search could not vouch for the rivals checked the verdict against nothing: it
-  // neither counts towards convergence nor breaks the run of agreeing ones.
-  if (searched) m.agreeing_updates = agrees ? m.agreeing_updates + 1 : 0;
-  if (m.agreeing_updates >= m.config.converged_updates) {
-    // Paper Eq.: map <- odom = best particle (+) inverse of the odometry pose. After that it
-    // follows the filter's weighted mean (tracking, until an S-Graph takes over): smoother
-    // than the best particle, which the roughening keeps shaking.
-    Particle at = best;
-    if (m.T_map_odom) at.x = mean.x(), at.y = mean.y(), at.yaw = mean.z();
-    m.T_map_odom = m.poseOf(at) * m.odom.inverse();
-  }
-  report.converged = m.T_map_odom.has_value();
-
-  const auto tracking_count = static_cast<std::size_t>(std::max(1, m.config.tracking_particles));
-  if (m.T_map_odom && m.particles.size() > tracking_count) {
-    m.resample(w, tracking_count);
-    report.resampled = true;
-  } else if (report.ess < m.config.resample_ess_fraction * n) {
-    m.resample(w, m.particles.size());
-    report.resampled = true;
-  } else {
-    // Keep the weights bounded: only their differences matter.
-    const double top = m.particles[m.best].log_weight;
-    for (auto& p : m.particles) p.log_weight -= top;
-  }
+  // Convergence (paper, "Initial Transformation Estimation"), then resampling.
+  m.checkConvergence(observations, z, path, decisive, w, m.mean(w), report);
+  m.resampleAfter(w, report);
   return report;
 }
 

@@ -1,0 +1,163 @@
+// The steps of ParticleFilter::update (particle_filter.cpp), each one concept, in its order.
+#include "filter_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bimloc::pf {
+
+using detail::near;
+using detail::wrapAngle;
+
+std::vector<detail::Hypothesis> ParticleFilter::Impl::seedHypotheses(const std::vector<detail::Observation>& observations,
+                                                                     double z, UpdateReport& report) {
+  std::vector<detail::Hypothesis> hyps;
+  if (!config.use_hypotheses) return hyps;
+  hyps = detail::poseHypotheses(observations, z, rooms, config, static_cast<std::size_t>(config.max_hypotheses));
+  if (prior.active())  // no pose the prior rules out, not even as a seed
+    hyps.erase(std::remove_if(hyps.begin(), hyps.end(), [&](const detail::Hypothesis& h) { return !admitted({h.x, h.y, h.yaw}); }),
+               hyps.end());
+  report.hypotheses = static_cast<int>(hyps.size());
+  const double n = static_cast<double>(particles.size());
+  if (!weighed_once) report.injected = inject(hyps, static_cast<std::size_t>(config.initial_hypothesis_fraction * n));
+  if (report.injected > 0) agreeing_updates = 0;
+  return hyps;
+}
+
+double ParticleFilter::Impl::weigh(const std::vector<detail::Observation>& observations, double z, bool& annealing) {
+  // Each particle's observations against its room's walls (paper, "Update"), with the sigmas
+  // annealed at first.
+  ParticleFilterConfig annealed = config;
+  annealed.sigma_azimuth_deg *= anneal, annealed.sigma_elevation_deg *= anneal, annealed.sigma_d_m *= anneal;
+  annealed.segment_margin_m *= anneal;
+  annealing = anneal > 1.0;
+  anneal = std::max(1.0, anneal * config.anneal_rate);
+  double best_raw = -1e300;  // the best fit of any particle, at the final (unannealed) sigmas
+  for (auto& p : particles) {
+    const auto match = detail::matchObservations(p, z, observations, rooms, annealed);
+    if (!annealing) best_raw = std::max(best_raw, match.log_likelihood);
+    p.log_weight += config.likelihood_power * match.log_likelihood;
+    if (prior.active() && !admitted({p.x, p.y, p.yaw})) p.log_weight -= config.likelihood_power * config.outside_rooms_penalty;
+  }
+  return best_raw;
+}
+
+detail::PathVerdict ParticleFilter::Impl::askThePath(const std::vector<detail::Observation>& observations,
+                                                     const std::vector<detail::Hypothesis>& hyps, double z,
+                                                     UpdateReport& report) {
+  // This scan joins the window; the scan's best poses and the filter's best particle become
+  // candidates.
+  const detail::Pose2 now = planarPose(odom);
+  evidence.addScan(now, z, observations);
+  for (std::size_t k = 0; k < hyps.size() && static_cast<int>(k) < config.evidence_proposals; ++k)
+    evidence.propose({hyps[k].x, hyps[k].y, hyps[k].yaw}, now);
+  const Particle& top = particles[heaviest()];
+  evidence.propose({top.x, top.y, top.yaw}, now);
+  detail::PathVerdict path = evidence.verdict(now);
+  report.path_margin = path.margin;
+  if (path.has_best) report.path_best = path.best;
+  report.path_candidates = path.candidates;
+  report.path_rivals = path.rivals;
+  return path;
+}
+
+void ParticleFilter::Impl::resetFromTheScan(const std::vector<detail::Hypothesis>& hyps, double best_raw, bool annealing,
+                                            const detail::PathVerdict& path, bool decisive, UpdateReport& report) {
+  // Sensor resetting: the particles explain the scan clearly worse than the plan can.
+  // After convergence the filter tracks (paper: the S-Graph takes over): no more jumps. While
+  // the path evidence is decisive, the scan's poses elsewhere are places it has refuted (each
+  // was a candidate): only those at its best place may be drawn. A few particles 15 m away,
+  // drawn at the heaviest weight, kept the cloud's spread above the convergence radius.
+  if (!weighed_once || T_map_odom || hyps.empty() || annealing || hyps[0].log_likelihood <= best_raw + config.injection_margin)
+    return;
+  std::vector<detail::Hypothesis> reset;
+  for (const auto& h : hyps)
+    if (!decisive || near({h.x, h.y, h.yaw}, path.best, 2.0 * config.converged_position_m, 2.0 * yawTolerance()))
+      reset.push_back(h);
+  const double n = static_cast<double>(particles.size());
+  report.injected += inject(reset, static_cast<std::size_t>(config.injection_fraction * n));
+  if (!reset.empty() && !decisive) agreeing_updates = 0;  // drawn at the best place: no jump
+}
+
+void ParticleFilter::Impl::followThePath(const detail::PathVerdict& path, UpdateReport& report) {
+  // The path fits one place decisively better than any other: a share of the particles goes
+  // to its pose, heavier than any (their evidence is the whole window, not one scan). Where
+  // the particles are elsewhere, that moves them; where they are already around it, the
+  // window's fitted pose tightens the cloud (one scan's planes alone leave it wide).
+  const Eigen::Vector3d before = mean(normalisedWeights());
+  detail::Hypothesis h;
+  h.x = path.best.x(), h.y = path.best.y(), h.yaw = path.best.z();
+  const double n = static_cast<double>(particles.size());
+  report.injected += inject({h}, static_cast<std::size_t>(config.evidence_injection_fraction * n),
+                            config.likelihood_power * config.evidenceMargin());
+  // The path fits every other place worse by at least the bar: particles elsewhere (a
+  // look-alike the scans alone keep alive) pay the bar, tempered as a scan is, at each
+  // decisive weighing. They fade over a few weighings instead of holding the cloud's spread,
+  // and the convergence test, open for as long, waited on them for up to 13 s.
+  for (auto& p : particles)
+    if (!near({p.x, p.y, p.yaw}, path.best, 2.0 * config.converged_position_m, 2.0 * yawTolerance()))
+      p.log_weight -= config.likelihood_power * config.evidenceMargin();
+  if (!near(before, path.best, config.converged_position_m, yawTolerance())) agreeing_updates = 0;
+}
+
+void ParticleFilter::Impl::checkConvergence(const std::vector<detail::Observation>& observations, double z,
+                                            detail::PathVerdict& path, bool decisive, const std::vector<double>& w,
+                                            const Eigen::Vector3d& mean, UpdateReport& report) {
+  // Paper: the best particle close to the weighted mean, for several updates in a row; and
+  // (beyond the paper) the path decisively better explained there than anywhere else.
+  const bool tracking = T_map_odom.has_value();
+  const double yaw_tol = yawTolerance();
+  const Particle& top = particles[best];
+  report.associated = detail::matchObservations(top, z, observations, rooms, config).associated;
+  double var_xy = 0, var_yaw = 0;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const auto& p = particles[i];
+    var_xy += w[i] * ((p.x - mean.x()) * (p.x - mean.x()) + (p.y - mean.y()) * (p.y - mean.y()));
+    var_yaw += w[i] * wrapAngle(p.yaw - mean.z()) * wrapAngle(p.yaw - mean.z());
+  }
+  const bool clustered = near({top.x, top.y, top.yaw}, mean, config.converged_position_m, yaw_tol) &&
+                         std::sqrt(var_xy) < config.converged_position_m && std::sqrt(var_yaw) < yaw_tol;
+  bool agrees = clustered && (tracking || (decisive && near(mean, path.best, config.converged_position_m, yaw_tol)));
+  bool searched = true;
+  if (agrees && !tracking) {
+    // About to count towards convergence: first make sure no look-alike is missing from the
+    // candidates, then ask again.
+    const detail::Pose2 now = planarPose(odom);
+    searched = evidence.proposeEveryFit(observations, z, now, path.best);
+    path = evidence.verdict(now);
+    report.path_margin = path.margin, report.path_best = path.best, report.path_candidates = path.candidates;
+    report.path_rivals = path.rivals;
+    agrees = searched && path.pose_fixed && path.margin >= config.evidenceMargin() &&
+             near(mean, path.best, config.converged_position_m, yaw_tol);
+  }
+  // A scan whose search could not vouch for the rivals checked the verdict against nothing: it
+  // neither counts towards convergence nor breaks the run of agreeing ones.
+  if (searched) agreeing_updates = agrees ? agreeing_updates + 1 : 0;
+  if (agreeing_updates >= config.converged_updates) {
+    // Paper Eq.: map <- odom = best particle (+) inverse of the odometry pose. After that it
+    // follows the filter's weighted mean (tracking, until an S-Graph takes over): smoother
+    // than the best particle, which the roughening keeps shaking.
+    Particle at = top;
+    if (T_map_odom) at.x = mean.x(), at.y = mean.y(), at.yaw = mean.z();
+    T_map_odom = poseOf(at) * odom.inverse();
+  }
+  report.converged = T_map_odom.has_value();
+}
+
+void ParticleFilter::Impl::resampleAfter(const std::vector<double>& w, UpdateReport& report) {
+  const auto tracking_count = static_cast<std::size_t>(std::max(1, config.tracking_particles));
+  const double n = static_cast<double>(particles.size());
+  if (T_map_odom && particles.size() > tracking_count) {
+    resample(w, tracking_count);
+    report.resampled = true;
+  } else if (report.ess < config.resample_ess_fraction * n) {
+    resample(w, particles.size());
+    report.resampled = true;
+  } else {
+    // Keep the weights bounded: only their differences matter.
+    const double top = particles[best].log_weight;
+    for (auto& p : particles) p.log_weight -= top;
+  }
+}
+
+}  // namespace bimloc::pf
