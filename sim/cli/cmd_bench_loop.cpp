@@ -3,6 +3,7 @@
 // evidence) as `bimloc run --jobs 1` runs them, against the simulator alone on the same
 // scenario in the same run. Real-time factors, and the localizer's share of the loop.
 #include "sim/cli/commands.hpp"
+#include "sim/cli/run_pool.hpp"
 #include "sim/cli/table.hpp"
 #include "sim/runner/room_scenarios.hpp"
 #include "sim/runner/run_scenario.hpp"
@@ -83,12 +84,7 @@ void run(const LoopBenchArgs& args) {
       alone = std::min(alone, seconds(t0));
       t0 = Clock::now();
       const double cpu0 = cpuNow();
-      try {
-        checkScenarioAgainstWorld(scenario, world);
-        result = runScenario(scenario, world);
-      } catch (const ScenarioError&) {
-        result = runScenario(stayInRoom(scenario), world);  // doors closed in the mesh, as `run` does
-      }
+      result = bimloc::cli::runChecked(scenario, world, /*room_mode=*/true);  // as `run` does
       loop = std::min(loop, seconds(t0));
       loop_cpu = std::min(loop_cpu, cpuNow() - cpu0);
     }

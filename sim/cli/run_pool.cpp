@@ -20,6 +20,20 @@ const World& WorldCache::get(const std::string& path) {
   return *it->second;
 }
 
+ScenarioResult runChecked(const Scenario& s, const World& world, bool room_mode, const SnapshotHook& hook,
+                          std::vector<TraceRow>* trace) {
+  try {
+    checkScenarioAgainstWorld(s, world);
+    return runScenario(s, world, hook, trace);
+  } catch (const ScenarioError& e) {
+    if (!room_mode) throw;
+    if (trace) trace->clear();
+    ScenarioResult r = runScenario(stayInRoom(s), world, hook, trace);
+    r.warnings.insert(r.warnings.begin(), std::string("no path out of the room, walked inside it: ") + e.what());
+    return r;
+  }
+}
+
 namespace {
 
 ScenarioResult runOne(const Scenario& s, WorldCache& worlds, const RunPoolOptions& options, bool room_mode) {
@@ -31,19 +45,7 @@ ScenarioResult runOne(const Scenario& s, WorldCache& worlds, const RunPoolOption
     if (trace) writeTrace(options.trace, s.name, rows);
     return r;
   };
-  try {
-    checkScenarioAgainstWorld(s, world);
-    return traced(runScenario(s, world, hook, trace));
-  } catch (const ScenarioError& e) {
-    // A plan whose doors are closed in the mesh has no path out of the room: walk in it.
-    if (room_mode) {
-      rows.clear();
-      ScenarioResult r = traced(runScenario(stayInRoom(s), world, hook, trace));
-      r.warnings.insert(r.warnings.begin(), std::string("no path out of the room, walked inside it: ") + e.what());
-      return r;
-    }
-    throw;
-  }
+  return traced(runChecked(s, world, room_mode, hook, trace));
 }
 
 }  // namespace

@@ -29,6 +29,12 @@ struct RunPoolOptions {
   std::string progress_label = "running";
 };
 
+// One scenario, checked against its world first. With `room_mode` (scenarios generated per
+// start room, and the benchmark's), a plan whose doors are closed in the mesh has no path out
+// of the room: the base walks inside it instead, and the result says so in a warning.
+sim::ScenarioResult runChecked(const sim::Scenario& s, const sim::World& world, bool room_mode,
+                               const sim::SnapshotHook& hook = {}, std::vector<sim::TraceRow>* trace = nullptr);
+
 struct PooledRun {
   sim::ScenarioResult result;
   std::string error;  // the scenario could not run at all
