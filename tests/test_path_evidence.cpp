@@ -198,7 +198,9 @@ TEST(SharedPlans, AClosetWhereNoScanFixesAPoseLocalizesOnlyOnceTheRobotIsOut) {
     const sim::ScenarioResult r = sim::runScenario(scenario, world);
     EXPECT_FALSE(r.false_convergence) << scenario.name;
     EXPECT_TRUE(r.converged) << scenario.name;
-    if (r.convergence_time_s) EXPECT_GT(*r.convergence_time_s, 5.0) << scenario.name;
+    if (r.convergence_time_s) {
+      EXPECT_GT(*r.convergence_time_s, 5.0) << scenario.name;
+    }
     ++runs;
   }
   EXPECT_EQ(runs, 1);
