@@ -240,38 +240,40 @@ bool PathEvidence::proposeEveryFit(const std::vector<Observation>& observations,
   return false;
 }
 
-double PathEvidence::distinctMargin(const Candidate& p, const Candidate& q) const {
-  // Faces of P as keys 0 ... ; faces of Q (observations Q explains and P does not) after them.
-  const int rival_keys = static_cast<int>(rooms_.landmarks(0).size()) + 1;
-  std::vector<std::pair<int, double>> deltas;
-  double out_of_rooms = 0;
-  for (std::size_t k = 0; k < p.per_scan.size() && k < q.per_scan.size(); ++k) {
-    const ScanScore& a = p.per_scan[k];
-    const ScanScore& b = q.per_scan[k];
-    out_of_rooms += (b.out_of_rooms ? 1.0 : 0.0) - (a.out_of_rooms ? 1.0 : 0.0);
-    for (std::size_t o = 0; o < a.per_observation.size() && o < b.per_observation.size(); ++o) {
-      const ObservationMatch& ma = a.per_observation[o];
-      const ObservationMatch& mb = b.per_observation[o];
-      const double delta = 0.5 * (static_cast<double>(mb.m2) - static_cast<double>(ma.m2));
-      if (delta == 0.0) continue;
-      // By P's face where P matched one (the signed differences of one face average out when
-      // both places explain it alike), else by the face Q matched.
-      const int key = ma.face >= 0 ? ma.face : (mb.face >= 0 ? rival_keys + mb.face : -1);
-      if (key >= 0) deltas.emplace_back(key, delta);
-    }
-  }
-  std::sort(deltas.begin(), deltas.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+void FaceMargin::add(const ObservationMatch& at_p, const ObservationMatch& at_q) {
+  const double delta = 0.5 * (static_cast<double>(at_q.m2) - static_cast<double>(at_p.m2));
+  if (delta == 0.0) return;
+  // By P's face where P matched one (the signed differences of one face average out when
+  // both places explain it alike), else by the face Q matched.
+  const int key = at_p.face >= 0 ? at_p.face : (at_q.face >= 0 ? rival_keys_ + at_q.face : -1);
+  if (key >= 0) deltas_.emplace_back(key, delta);
+}
+
+double FaceMargin::total(double gate, double scans) {
+  std::sort(deltas_.begin(), deltas_.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   double margin = 0;
-  for (std::size_t i = 0; i < deltas.size();) {
+  for (std::size_t i = 0; i < deltas_.size();) {
     std::size_t j = i;
     double sum = 0;
-    for (; j < deltas.size() && deltas[j].first == deltas[i].first; ++j) sum += deltas[j].second;
+    for (; j < deltas_.size() && deltas_[j].first == deltas_[i].first; ++j) sum += deltas_[j].second;
     margin += sum / static_cast<double>(j - i);
     i = j;
   }
+  return margin + 0.5 * gate * out_of_rooms_ / std::max(1.0, scans);
+}
+
+double PathEvidence::distinctMargin(const Candidate& p, const Candidate& q) const {
+  // Faces of P as keys 0 ... ; faces of Q (observations Q explains and P does not) after them.
+  FaceMargin margin(static_cast<int>(rooms_.landmarks(0).size()) + 1);
+  for (std::size_t k = 0; k < p.per_scan.size() && k < q.per_scan.size(); ++k) {
+    const ScanScore& a = p.per_scan[k];
+    const ScanScore& b = q.per_scan[k];
+    margin.addScan(a.out_of_rooms, b.out_of_rooms);
+    for (std::size_t o = 0; o < a.per_observation.size() && o < b.per_observation.size(); ++o)
+      margin.add(a.per_observation[o], b.per_observation[o]);
+  }
   // The room prior, as in total(): at most one clutter plane's worth.
-  const double n = std::max<double>(1.0, static_cast<double>(scans_.size()));
-  return margin + 0.5 * config_.gate_mahalanobis2 * out_of_rooms / n;
+  return margin.total(config_.gate_mahalanobis2, static_cast<double>(scans_.size()));
 }
 
 bool PathEvidence::fixesPose(const Candidate& p) const {

@@ -29,6 +29,30 @@ bool near(const Pose2& a, const Pose2& b, double metres, double radians);
 // in the present base frame (odometry over a few metres: centimetres off, well within sigma).
 Observation seenFrom(const Observation& o, const Pose2& rel);
 
+// The margin of a place P over a place Q, counted once per distinct wall face (the rule of
+// PathEvidence::distinctMargin, shared by the storey bank's cross-storey margin): the
+// observations P explains differently from Q are grouped by the face they match at P (where P
+// matches none, by the face at Q, keyed from `rival_keys` on), each face contributes the mean
+// difference of its observations, the faces add up, and the room prior is worth at most one
+// clutter plane over the window.
+class FaceMargin {
+ public:
+  explicit FaceMargin(int rival_keys) : rival_keys_(rival_keys) {}
+  // One scan's room prior: whether P's and Q's poses were in no room.
+  void addScan(bool p_out_of_rooms, bool q_out_of_rooms) {
+    out_of_rooms_ += (q_out_of_rooms ? 1.0 : 0.0) - (p_out_of_rooms ? 1.0 : 0.0);
+  }
+  // One observation, as matched at P and at Q.
+  void add(const ObservationMatch& at_p, const ObservationMatch& at_q);
+  // The margin, the room prior spread over a window of `scans` scans.
+  double total(double gate, double scans);
+
+ private:
+  int rival_keys_;
+  std::vector<std::pair<int, double>> deltas_;
+  double out_of_rooms_ = 0;
+};
+
 struct PathVerdict {
   bool has_best = false;
   Pose2 best = Pose2::Zero();  // map <- base now, of the best candidate

@@ -30,39 +30,18 @@ double roomArea(const bim::Storey& storey) {
   return area;
 }
 
-// The margin of place P (one storey) over place Q (another), counted as the path evidence
-// counts it within a storey (PathEvidence::distinctMargin, which this mirrors: keep them in
-// step): the observations are grouped by the face they match at P (where P matches none, by
-// the face at Q), each face contributes the mean difference of its observations, the faces
-// add up, and the room prior is worth at most one clutter plane. The faces of the two
-// storeys are different faces: Q's are keyed apart.
+// The margin of place P (one storey) over place Q (another), counted by the path evidence's
+// per-face rule (detail::FaceMargin). The faces of the two storeys are different faces: Q's
+// are keyed apart.
 double crossMargin(const PathEvidence::WindowFit& p, const PathEvidence::WindowFit& q, double gate) {
   constexpr int kRivalKeys = 1 << 24;  // above any face id of a storey (2 * walls)
-  std::vector<std::pair<int, double>> deltas;
-  double out_of_rooms = 0;
+  detail::FaceMargin margin(kRivalKeys);
   const std::size_t scans = std::min(p.matches.size(), q.matches.size());
   for (std::size_t k = 0; k < scans; ++k) {
-    out_of_rooms += (q.out_of_rooms[k] ? 1.0 : 0.0) - (p.out_of_rooms[k] ? 1.0 : 0.0);
-    for (std::size_t o = 0; o < p.matches[k].size() && o < q.matches[k].size(); ++o) {
-      const detail::ObservationMatch& a = p.matches[k][o];
-      const detail::ObservationMatch& b = q.matches[k][o];
-      const double delta = 0.5 * (static_cast<double>(b.m2) - static_cast<double>(a.m2));
-      if (delta == 0.0) continue;
-      const int key = a.face >= 0 ? a.face : (b.face >= 0 ? kRivalKeys + b.face : -1);
-      if (key >= 0) deltas.emplace_back(key, delta);
-    }
+    margin.addScan(p.out_of_rooms[k], q.out_of_rooms[k]);
+    for (std::size_t o = 0; o < p.matches[k].size() && o < q.matches[k].size(); ++o) margin.add(p.matches[k][o], q.matches[k][o]);
   }
-  std::sort(deltas.begin(), deltas.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  double margin = 0;
-  for (std::size_t i = 0; i < deltas.size();) {
-    std::size_t j = i;
-    double sum = 0;
-    for (; j < deltas.size() && deltas[j].first == deltas[i].first; ++j) sum += deltas[j].second;
-    margin += sum / static_cast<double>(j - i);
-    i = j;
-  }
-  const double n = std::max<double>(1.0, static_cast<double>(scans));
-  return margin + 0.5 * gate * out_of_rooms / n;
+  return margin.total(gate, static_cast<double>(scans));
 }
 
 }  // namespace
