@@ -5,6 +5,7 @@
 #include "sim_fixtures.hpp"
 #include "test_support.hpp"
 
+#include "face_index_fixtures.hpp"
 #include "pf/hypotheses.hpp"
 #include "pf/room_index.hpp"
 
@@ -104,18 +105,7 @@ TEST(OutsideRooms, PosesInNoRoomThatAScanFitsAreFound) {
     ASSERT_EQ(sim::outsideKind(storey, truth.head<2>()), "outside");
     const auto walls = test::wallsSeenFrom(test::pose(truth.x(), truth.y(), truth.z()), mount);
     // The observations as the filter makes them (level base: the yaw-free base frame is the base's).
-    std::vector<pf::detail::Observation> observations;
-    for (const auto& w : walls) {
-      pf::detail::Observation o;
-      o.normal_base = mount.linear() * w.normal.normalized();
-      o.d_offset = w.d - o.normal_base.dot(mount.translation());
-      o.azimuth_base = std::atan2(o.normal_base.y(), o.normal_base.x());
-      o.elevation = std::asin(std::clamp(o.normal_base.z(), -1.0, 1.0));
-      const Eigen::Vector3d c = mount.linear() * w.centroid + mount.translation();
-      o.centroid_base = c.head<2>();
-      o.range_m = c.norm();
-      observations.push_back(o);
-    }
+    const std::vector<pf::detail::Observation> observations = test::observations(walls, mount);
     const auto fits = pf::detail::poseHypotheses(observations, 0.5, faces, every, std::numeric_limits<std::size_t>::max(),
                                                  1.5 * every.gate_mahalanobis2, /*outside_rooms=*/true);
     EXPECT_FALSE(fits.empty());

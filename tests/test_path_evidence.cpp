@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace bimloc;
@@ -35,6 +36,22 @@ bim::Storey shifted(bim::Storey s, const Eigen::Vector3d& t) {
     room.centre += t.head<2>();
   }
   return s;
+}
+
+// The generated room scenarios of a plan's storey (25 s tours), those starting in `rooms` (all
+// when empty), run in the loop.
+std::vector<sim::ScenarioResult> runRooms(const std::string& plan, const sim::World& world, const std::string& storey,
+                                          int seeds, const std::vector<std::string>& rooms = {}) {
+  sim::RoomScenarioOptions options;
+  options.plan = plan;
+  options.storey = storey;
+  options.duration_s = 25.0;
+  options.seeds = seeds;
+  std::vector<sim::ScenarioResult> results;
+  for (const auto& scenario : sim::roomScenarios(world, options))
+    if (rooms.empty() || std::find(rooms.begin(), rooms.end(), scenario.start.room) != rooms.end())
+      results.push_back(sim::runScenario(scenario, world));
+  return results;
 }
 
 }  // namespace
@@ -146,19 +163,12 @@ TEST(SharedPlans, DuplexIsPointSymmetricSoNoStartRoomConverges) {
       EXPECT_TRUE(twin) << wall.name;
     }
 
-  sim::RoomScenarioOptions options;
-  options.plan = plan;
-  options.storey = "Level 1";
-  options.duration_s = 25.0;
-  int runs = 0;
-  for (const auto& scenario : sim::roomScenarios(world, options)) {
-    if (scenario.start.room != "A102" && scenario.start.room != "B103") continue;
-    const sim::ScenarioResult r = sim::runScenario(scenario, world);
-    EXPECT_FALSE(r.converged) << scenario.name;
-    EXPECT_FALSE(r.false_convergence) << scenario.name;
-    ++runs;
+  const auto results = runRooms(plan, world, "Level 1", 1, {"A102", "B103"});
+  for (const auto& r : results) {
+    EXPECT_FALSE(r.converged) << r.name;
+    EXPECT_FALSE(r.false_convergence) << r.name;
   }
-  EXPECT_EQ(runs, 2);
+  EXPECT_EQ(results.size(), 2u);
 }
 
 TEST(SharedPlans, AnAtticBetweenTwoGablesNeverFixesThePoseSoNeverConverges) {
@@ -167,19 +177,12 @@ TEST(SharedPlans, AnAtticBetweenTwoGablesNeverFixesThePoseSoNeverConverges) {
   // 180-degree turn while the rival search found nothing (no scan fixes a pose).
   BIMLOC_REQUIRE_SHARED(plan, "ExampleHOM.ifc");
   const sim::World world = sim::World::fromPlan(plan);
-  sim::RoomScenarioOptions options;
-  options.plan = plan;
-  options.storey = "attic";
-  options.duration_s = 25.0;
-  options.seeds = 2;
-  int runs = 0;
-  for (const auto& scenario : sim::roomScenarios(world, options)) {
-    const sim::ScenarioResult r = sim::runScenario(scenario, world);
-    EXPECT_FALSE(r.converged) << scenario.name;
-    EXPECT_FALSE(r.false_convergence) << scenario.name;
-    ++runs;
+  const auto results = runRooms(plan, world, "attic", 2);
+  for (const auto& r : results) {
+    EXPECT_FALSE(r.converged) << r.name;
+    EXPECT_FALSE(r.false_convergence) << r.name;
   }
-  EXPECT_EQ(runs, 2);
+  EXPECT_EQ(results.size(), 2u);
 }
 
 TEST(SharedPlans, AClosetWhereNoScanFixesAPoseLocalizesOnlyOnceTheRobotIsOut) {
@@ -188,20 +191,13 @@ TEST(SharedPlans, AClosetWhereNoScanFixesAPoseLocalizesOnlyOnceTheRobotIsOut) {
   // was "infinite"; it converged 10 m off at 1.9 s. The search now merges the latest scans.
   BIMLOC_REQUIRE_SHARED(plan, "Jesse.1.ifc");
   const sim::World world = sim::World::fromPlan(plan);
-  sim::RoomScenarioOptions options;
-  options.plan = plan;
-  options.storey = "Level 1";
-  options.duration_s = 25.0;
-  int runs = 0;
-  for (const auto& scenario : sim::roomScenarios(world, options)) {
-    if (scenario.start.room != "R16") continue;
-    const sim::ScenarioResult r = sim::runScenario(scenario, world);
-    EXPECT_FALSE(r.false_convergence) << scenario.name;
-    EXPECT_TRUE(r.converged) << scenario.name;
+  const auto results = runRooms(plan, world, "Level 1", 1, {"R16"});
+  for (const auto& r : results) {
+    EXPECT_FALSE(r.false_convergence) << r.name;
+    EXPECT_TRUE(r.converged) << r.name;
     if (r.convergence_time_s) {
-      EXPECT_GT(*r.convergence_time_s, 5.0) << scenario.name;
+      EXPECT_GT(*r.convergence_time_s, 5.0) << r.name;
     }
-    ++runs;
   }
-  EXPECT_EQ(runs, 1);
+  EXPECT_EQ(results.size(), 1u);
 }
