@@ -202,32 +202,14 @@ bool PathEvidence::proposeEveryFit(const std::vector<Observation>& observations,
   // scan with the latest scans merged in (a robot turning in a closet sees two walls per scan,
   // never enough to fix a pose alone). The first source whose fits include the best place is
   // the search: every place it explains about as well is then among the candidates.
-  struct Source {
-    std::vector<Observation> observations;
-    double z = 0;
-    Pose2 odom;
-  };
-  // (The latest scan of the window is often this one: skipped.)
-  std::vector<const Scan*> latest;
-  for (auto it = scans_.rbegin(); it != scans_.rend() && latest.size() < 3; ++it)
-    if (it->odom != odom) latest.push_back(&*it);
-  std::vector<Source> sources{{observations, z_base, odom}};
-  for (const Scan* scan : latest) sources.push_back({scan->observations, scan->z_base, scan->odom});
-  Source merged{observations, z_base, odom};
-  for (const Scan* it : latest) {
-    const Pose2 rel = compose(inverse(odom), it->odom);
-    for (const auto& o : it->observations) merged.observations.push_back(seenFrom(o, rel));
-    sources.push_back(merged);
-  }
-  for (const auto& source : sources) {
-    // Only those within three clutter planes of the best are proposed: the rest need not be
-    // scored to the end (the same fits, the same bits, far fewer observations matched).
-    const double wanted = 1.5 * config_.gate_mahalanobis2;
-    const auto fits = poseHypotheses(source.observations, source.z, rooms_, every, std::numeric_limits<std::size_t>::max(),
-                                     wanted, /*outside_rooms=*/true);
-    if (fits.empty()) continue;
-    // Those that fit the source within three clutter planes of its best fit, moved on to now.
-    const Pose2 since = compose(inverse(source.odom), odom);
+  // One source searched: its fits within three clutter planes of its best fit, moved on to
+  // now, join the candidates. Only those are proposed: the rest need not be scored to the end
+  // (the same fits, the same bits, far fewer observations matched).
+  const double wanted = 1.5 * config_.gate_mahalanobis2;
+  const auto search = [&](const std::vector<Observation>& source, double z, const Pose2& at) {
+    const auto fits = poseHypotheses(source, z, rooms_, every, std::numeric_limits<std::size_t>::max(), wanted,
+                                     /*outside_rooms=*/true);
+    const Pose2 since = compose(inverse(at), odom);
     bool found_best = false;
     for (const auto& h : fits) {
       if (h.log_likelihood < fits.front().log_likelihood - wanted) break;
@@ -235,7 +217,21 @@ bool PathEvidence::proposeEveryFit(const std::vector<Observation>& observations,
       found_best |= near(now, best_now, kOtherPlaceM, kOtherPlaceRad);
       propose(now, odom);
     }
-    if (found_best) return true;
+    return found_best;
+  };
+  // (The latest scan of the window is often this one: skipped.)
+  std::vector<const Scan*> latest;
+  for (auto it = scans_.rbegin(); it != scans_.rend() && latest.size() < 3; ++it)
+    if (it->odom != odom) latest.push_back(&*it);
+  if (search(observations, z_base, odom)) return true;
+  for (const Scan* scan : latest)
+    if (search(scan->observations, scan->z_base, scan->odom)) return true;
+  // Merged only when every scan alone failed (the merge copies the observations).
+  std::vector<Observation> merged = observations;
+  for (const Scan* scan : latest) {
+    const Pose2 rel = compose(inverse(odom), scan->odom);
+    for (const auto& o : scan->observations) merged.push_back(seenFrom(o, rel));
+    if (search(merged, z_base, odom)) return true;
   }
   return false;
 }
