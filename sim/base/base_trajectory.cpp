@@ -131,6 +131,11 @@ void randomWalk(ScriptBuilder& script, const bim::Storey& storey, const MotionCo
 
 // After a tour: on to the nearest room not yet visited that the base can reach, until the
 // duration is used; with none left, a random walk where it stands (if that is a room).
+// From where the base is, through the doors, to a free spot near the room's centre.
+void legToRoom(ScriptBuilder& script, const bim::Room& room) {
+  script.addLeg(legTo(script.space, script.timeline.position(), roomGoal(script.space, room), "room " + room.name));
+}
+
 void explore(ScriptBuilder& script, const bim::Storey& storey, const MotionConfig& motion,
              std::vector<const bim::Room*> visited, double duration_s, std::uint64_t seed) {
   const auto seen = [&visited](const bim::Room& r) { return std::find(visited.begin(), visited.end(), &r) != visited.end(); };
@@ -144,7 +149,7 @@ void explore(ScriptBuilder& script, const bim::Storey& storey, const MotionConfi
     for (const auto& [distance, room] : next) {
       visited.push_back(room);
       try {
-        script.addLeg(legTo(script.space, here, roomGoal(script.space, *room), "room " + room->name));
+        legToRoom(script, *room);
         moved = true;
         break;
       } catch (const MotionError&) {
@@ -152,8 +157,8 @@ void explore(ScriptBuilder& script, const bim::Storey& storey, const MotionConfi
       }
     }
     if (moved) continue;
-    const Pose2 now{here.x(), here.y(), script.timeline.yaw()};
     if (!roomAt(storey, here)) return;  // nowhere to wander: it stands
+    const Pose2 now{here.x(), here.y(), script.timeline.yaw()};
     MotionConfig wander = motion;
     wander.walk_room.clear();
     try {
@@ -224,7 +229,7 @@ BaseTrajectory BaseTrajectory::plan(const World& world, std::size_t storey, cons
         if (moved && script.timeline.end_s() >= duration_s) break;
         visited.push_back(&room);
         try {
-          script.addLeg(legTo(space, script.timeline.position(), roomGoal(space, room), "room " + room.name));
+          legToRoom(script, room);
           moved = true;
         } catch (const MotionError&) {
           if (!motion.skip_unreachable_rooms) throw;
