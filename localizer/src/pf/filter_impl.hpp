@@ -104,6 +104,11 @@ struct ParticleFilter::Impl {
                         bool decisive, const std::vector<double>& w, const Eigen::Vector3d& mean, UpdateReport& report);
   void resampleAfter(const std::vector<double>& w, UpdateReport& report);
   double yawTolerance() const { return config.converged_yaw_deg * M_PI / 180.0; }
+  // Whether a pose is at the path evidence's best place (twice the convergence radius: the
+  // window's fitted pose carries the drift of its half-window).
+  bool atPathBest(const detail::Pose2& pose, const detail::PathVerdict& path) const {
+    return detail::near(pose, path.best, 2.0 * config.converged_position_m, 2.0 * yawTolerance());
+  }
 
   Eigen::Isometry3d poseOf(const Particle& p) const {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

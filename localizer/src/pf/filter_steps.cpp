@@ -72,8 +72,7 @@ void ParticleFilter::Impl::resetFromTheScan(const std::vector<detail::Hypothesis
     return;
   std::vector<detail::Hypothesis> reset;
   for (const auto& h : hyps)
-    if (!decisive || near({h.x, h.y, h.yaw}, path.best, 2.0 * config.converged_position_m, 2.0 * yawTolerance()))
-      reset.push_back(h);
+    if (!decisive || atPathBest({h.x, h.y, h.yaw}, path)) reset.push_back(h);
   const double n = static_cast<double>(particles.size());
   report.injected += inject(reset, static_cast<std::size_t>(config.injection_fraction * n));
   if (!reset.empty() && !decisive) agreeing_updates = 0;  // drawn at the best place: no jump
@@ -95,8 +94,7 @@ void ParticleFilter::Impl::followThePath(const detail::PathVerdict& path, Update
   // decisive weighing. They fade over a few weighings instead of holding the cloud's spread,
   // and the convergence test, open for as long, waited on them for up to 13 s.
   for (auto& p : particles)
-    if (!near({p.x, p.y, p.yaw}, path.best, 2.0 * config.converged_position_m, 2.0 * yawTolerance()))
-      p.log_weight -= config.likelihood_power * config.evidenceMargin();
+    if (!atPathBest({p.x, p.y, p.yaw}, path)) p.log_weight -= config.likelihood_power * config.evidenceMargin();
   if (!near(before, path.best, config.converged_position_m, yawTolerance())) agreeing_updates = 0;
 }
 
