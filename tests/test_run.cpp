@@ -14,15 +14,15 @@ using bimloc::test::tempDir;
 
 namespace {
 
-std::string scenario(const std::string& dir, const std::string& name, const std::string& room, int seed) {
+std::string scenario(const std::string& dir, const std::string& name, const std::string& room, int seed, int duration_s = 20) {
   const std::string path = dir + "/" + name + ".yaml";
   std::ofstream(path) << "name: " << name << "\n"
                       << "world: " << BIMLOC_WORLDS_DIR << "/site_office.ifc\n"
                       << "start: {random_in_room: " << room << "}\n"
                       << "motion: {type: tour, rooms: [C100]}\n"
-                      << "duration_s: 20\n"
+                      << "duration_s: " << duration_s << "\n"
                       << "seed: " << seed << "\n"
-                      << "expect: {converge: true, max_convergence_time_s: 20}\n";
+                      << "expect: {converge: true, max_convergence_time_s: " << duration_s << "}\n";
   return path;
 }
 
@@ -30,7 +30,7 @@ std::string scenario(const std::string& dir, const std::string& name, const std:
 
 TEST(Run, JsonIsTheDocumentedObjectAndJobsDoNotChangeIt) {
   const std::string dir = tempDir("run");
-  const std::string args = "'" + scenario(dir, "a", "R105", 1) + "' '" + scenario(dir, "b", "S100", 2) + "' --json";
+  const std::string args = "'" + scenario(dir, "a", "R105", 1, 30) + "' '" + scenario(dir, "b", "S100", 2, 30) + "' --json";
   const auto one = runBimloc("run " + args + " --jobs 1 --out '" + dir + "/snaps'");
   const auto two = runBimloc("run " + args + " --jobs 2");
   auto j1 = nlohmann::json::parse(one.out), j2 = nlohmann::json::parse(two.out);
@@ -40,7 +40,17 @@ TEST(Run, JsonIsTheDocumentedObjectAndJobsDoNotChangeIt) {
     EXPECT_TRUE(j1["scenarios"][0].contains(key)) << key;
   for (const char* key : {"runs", "localized", "false_convergences", "median_convergence_s", "sim_seconds", "wall_seconds"})
     EXPECT_TRUE(j1["summary"].contains(key)) << key;
+  for (const char* key : {"rpe_m_per_m", "losses", "wall_deviations"}) EXPECT_TRUE(j1["scenarios"][0].contains(key)) << key;
+  for (const char* key : {"median_ate_m", "losses"}) EXPECT_TRUE(j1["summary"].contains(key)) << key;
   EXPECT_EQ(j1["summary"]["false_convergences"], 0);
+  // The default method (the paper's: the filter, then the S-Graph) localizes both and tracks.
+  for (const auto& s : j1["scenarios"]) {
+    EXPECT_EQ(s["method"], "sgraph");
+    EXPECT_TRUE(s["converged"]) << s["name"];
+    EXPECT_LT(s["ate_m"].get<double>(), 0.1) << s["name"];
+    EXPECT_EQ(s["losses"], 0) << s["name"];
+    EXPECT_FALSE(s["wall_deviations"].empty()) << s["name"];
+  }
   // Everything but the wall-clock figures is the same with 1 or 2 jobs.
   j1["summary"].erase("wall_seconds"), j2["summary"].erase("wall_seconds");
   EXPECT_EQ(j1.dump(), j2.dump());

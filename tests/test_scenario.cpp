@@ -1,5 +1,6 @@
 // Scenario files: every key read, defaults, and every kind of mistake reported with the file and
 // the line; then the checks against the default world and the example scenarios.
+#include "sim/scenario/localizer_config.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/world/world.hpp"
 #include "test_support.hpp"
@@ -93,7 +94,10 @@ sensor:
 odometry: {preset: lidar, rate_hz: 100, alpha1: 0.02, yaw_bias_sigma_rad_per_m: 0.001}
 localizer:
   particles: 500
-  planes: {min_points: 50, name: "x", on: true}
+  method: pf
+  planes: {min_inliers: 50}
+  pf: {use_hypotheses: false}
+  sgraph: {window_keyframes: 8}
 seed: 42
 expect: {converge: false, max_convergence_time_s: 20, max_position_error_m: 0.3, max_yaw_error_deg: 5, max_ate_m: 0.1}
 )";
@@ -140,7 +144,15 @@ expect: {converge: false, max_convergence_time_s: 20, max_position_error_m: 0.3,
   EXPECT_EQ(s.odometry.scale_bias_walk_per_sqrt_m, lidar.scale_bias_walk_per_sqrt_m);
   EXPECT_EQ(s.odometry.scale_bias_sigma, lidar.scale_bias_sigma);
   EXPECT_EQ(s.odometry.yaw_bias_sigma_rad_per_m, 0.001);
-  EXPECT_EQ(s.localizer, nlohmann::json::parse(R"({"particles": 500, "planes": {"min_points": 50, "name": "x", "on": true}})"));
+  EXPECT_EQ(s.localizer, nlohmann::json::parse(R"({"particles": 500, "method": "pf", "planes": {"min_inliers": 50},
+                                                   "pf": {"use_hypotheses": false}, "sgraph": {"window_keyframes": 8}})"));
+  // ... and each of them reaches the localizer's config (no key the runner would reject).
+  const LocalizerSettings settings = readLocalizerSettings(s.localizer, s.file, s.lines);
+  EXPECT_EQ(settings.config.method, LocalizerMethod::Pf);
+  EXPECT_EQ(settings.config.pf.particles, 500);
+  EXPECT_EQ(settings.config.planes.min_inliers, 50);
+  EXPECT_FALSE(settings.config.pf.use_hypotheses);
+  EXPECT_EQ(settings.config.sgraph.window_keyframes, 8);
   EXPECT_EQ(s.seed, 42u);
   EXPECT_FALSE(s.expect.converge);
   EXPECT_EQ(s.expect.max_convergence_time_s, 20);

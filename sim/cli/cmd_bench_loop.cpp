@@ -26,7 +26,8 @@ struct LoopBenchArgs {
   std::vector<std::string> plans;  // more: a few start rooms of each plan's storey (--plan)
   std::string storey = "0";
   int rooms_per_plan = 3;
-  std::string method = "pf";
+  std::string method = "sgraph";
+  double duration_s = 0;  // 0: each scenario's own
   int rounds = 2;
   bool json = false;
 };
@@ -48,6 +49,15 @@ std::vector<Scenario> planScenarios(const LoopBenchArgs& args) {
   return out;
 }
 
+// The localizer's time per simulated second in the first and the last full minute of the run:
+// flat when its cost does not grow with the walk (the S-Graph's window, the filter's window).
+std::string minutes(const ScenarioResult& r) {
+  const auto full = static_cast<std::size_t>(r.sim_seconds / 60.0 + 1e-6);  // minutes not cut short
+  const auto& m = r.localizer_seconds_by_minute;
+  if (full < 2 || m.size() < full) return "-";
+  return bimloc::cli::fixed(1000.0 * m.front() / 60.0, 1) + " / " + bimloc::cli::fixed(1000.0 * m[full - 1] / 60.0, 1);
+}
+
 double seconds(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // CPU seconds of the process (all its threads): on a machine shared with other work, wall time
@@ -61,11 +71,15 @@ double cpuNow() {
 void run(const LoopBenchArgs& args) {
   nlohmann::json rows = nlohmann::json::array();
   bimloc::cli::Table table({"scenario", "wall faces", "simulated [s]", "simulator alone [x RT]", "whole loop [x RT]",
-                            "whole loop, CPU [x RT]", "localizer share"});
+                            "whole loop, CPU [x RT]", "localizer share", "localizer [ms/s] 1st / last min"});
   double total_sim = 0, total_loop = 0, total_alone = 0, total_loop_cpu = 0;
   std::vector<Scenario> scenarios;
   for (const auto& file : args.scenarios) scenarios.push_back(loadScenario(file));
   for (auto& s : planScenarios(args)) scenarios.push_back(std::move(s));
+  for (auto& s : scenarios) {
+    s.localizer["method"] = args.method;
+    if (args.duration_s > 0) s.duration_s = args.duration_s, s.motion.explore_after_tour = true, s.expect.max_convergence_time_s = args.duration_s;
+  }
   for (const auto& scenario : scenarios) {
     const std::string& file = scenario.name;
     const World world = World::load(scenario.world);
@@ -100,10 +114,12 @@ void run(const LoopBenchArgs& args) {
                     {"loop_cpu_seconds", loop_cpu},
                     {"loop_cpu_real_time_factor", sim_s / loop_cpu},
                     {"localizer_share", 1.0 - alone / loop},
-                    {"converged", result.converged}});
+                    {"converged", result.converged},
+                    {"method", result.method},
+                    {"localizer_seconds_by_minute", result.localizer_seconds_by_minute}});
     using bimloc::cli::fixed;
     table.add({scenario.name, std::to_string(faces), fixed(sim_s, 1), fixed(sim_s / alone, 1), fixed(sim_s / loop, 1),
-               fixed(sim_s / loop_cpu, 1), fixed(100.0 * (1.0 - alone / loop), 0) + " %"});
+               fixed(sim_s / loop_cpu, 1), fixed(100.0 * (1.0 - alone / loop), 0) + " %", minutes(result)});
   }
   const nlohmann::json summary = {{"sim_seconds", total_sim},
                                   {"loop_real_time_factor", total_sim / total_loop},
@@ -116,7 +132,7 @@ void run(const LoopBenchArgs& args) {
   }
   using bimloc::cli::fixed;
   table.add({"all", "", fixed(total_sim, 1), fixed(total_sim / total_alone, 1), fixed(total_sim / total_loop, 1),
-             fixed(total_sim / total_loop_cpu, 1), fixed(100.0 * (1.0 - total_alone / total_loop), 0) + " %"});
+             fixed(total_sim / total_loop_cpu, 1), fixed(100.0 * (1.0 - total_alone / total_loop), 0) + " %", ""});
   std::cout << "one core, best of " << args.rounds << " rounds\n\n";
   table.print(std::cout);
 }
@@ -134,8 +150,12 @@ void addBenchLoopCommand(CLI::App& bench) {
   cmd->add_option("--storey", args->storey, "storey of the --plan plans")->capture_default_str();
   cmd->add_option("--rooms-per-plan", args->rooms_per_plan, "start rooms per --plan, spread over the storey")
       ->check(CLI::Range(1, 1000))->capture_default_str();
-  cmd->add_option("--method", args->method, "method of the --plan runs: pf or pf-no-rooms")
-      ->check(CLI::IsMember({"pf", "pf-no-rooms"}))->capture_default_str();
+  cmd->add_option("--method", args->method,
+                  "method of every run (over the scenario files' own): sgraph (the paper: the filter, then the S-Graph "
+                  "tracks), pf (the filter tracks) or pf-no-rooms (the ablation)")
+      ->check(CLI::IsMember({"sgraph", "pf", "pf-no-rooms"}))->capture_default_str();
+  cmd->add_option("--duration", args->duration_s, "seconds of every run (over the scenarios' own; longer tours explore on)")
+      ->check(CLI::Range(1.0, 7200.0));
   cmd->add_option("--rounds", args->rounds, "measurements of each, the best kept")->capture_default_str()->check(CLI::Range(1, 100));
   cmd->add_flag("--json", args->json, "print one JSON object");
   cmd->callback([args] { run(*args); });

@@ -1,4 +1,4 @@
-// bimloc localize DATASET --plan PLAN [--storey S|auto] [--method pf|pf-no-rooms] [--json]
+// bimloc localize DATASET --plan PLAN [--storey S|auto] [--method sgraph|pf|pf-no-rooms] [--config FILE.yaml] [--json]
 // The same localizer as `bimloc run`, offline, on a recorded dataset.
 #include "sim/cli/commands.hpp"
 #include "sim/cli/run_report.hpp"
@@ -19,7 +19,8 @@ struct LocalizeArgs {
   std::string dataset;
   std::string plan;
   std::string storey;
-  std::string method = "pf";
+  std::string method = "sgraph";
+  std::string config;
   std::uint64_t seed = 0;
   bool json = false;
 };
@@ -36,37 +37,34 @@ void run(const LocalizeArgs& args) {
   if (!storey) throw std::runtime_error(args.plan + ": no storey '" + storey_name + "'");
   const auto truth_storey = static_cast<std::size_t>(storey - building.storeys.data());
 
-  bimloc::pf::ParticleFilterConfig config;
-  config.use_rooms = args.method == "pf";
+  LocalizerSettings settings = args.config.empty() ? LocalizerSettings{} : loadLocalizerConfig(args.config);
+  bimloc::LocalizerConfig config = settings.config;
+  if (!args.method.empty()) config.method = *bimloc::methodFromString(args.method);
   config.seed = args.seed;
-  const std::vector<std::size_t> storeys =
-      storey_auto ? bimloc::pf::StoreyBank::candidateStoreys(building) : std::vector<std::size_t>{truth_storey};
-  if (storeys.empty()) throw std::runtime_error(args.plan + ": no storey with walls and rooms");
-  bimloc::pf::StoreyBank filter(building, storeys, data.T_base_lidar, config);
-  bimloc::planes::PlaneExtractionConfig planes_config;
-  planes_config.seed = args.seed;
+  config.storey = storey_auto || settings.storey_auto ? std::string() : storeyKey(building, truth_storey);
+  bimloc::Localizer localizer(building, data.T_base_lidar, config);
   RunScore score(building, truth_storey);
   ScenarioResult r;
-  r.name = args.dataset, r.plan = args.plan, r.storey = storey->name, r.method = args.method, r.seed = args.seed;
-  r.storey_auto = storey_auto;
+  r.name = args.dataset, r.plan = args.plan, r.storey = storey->name, r.method = bimloc::toString(config.method), r.seed = args.seed;
+  r.storey_auto = config.storey.empty();
   r.start_room = "(unknown)";
+  std::optional<bimloc::LocalizationResult> last;
   for (const auto& scan : data.scans) {
     const double t = scan.stamp_s + 0.5 * data.turn_period_s;  // mid-turn, as the runner
-    filter.predict(nearest(data.odometry, t).pose);
-    // As the runner: planes only for the scans the filter weighs.
-    const auto bank = filter.update(filter.wantsObservations()
-                                        ? bimloc::planes::extractPlanes(readPcdPoints(scan.file), planes_config).walls
-                                        : std::vector<bimloc::planes::ObservedPlane>{});
-    if (bank.decided && !r.storey_margin && storey_auto) r.storey_margin = bank.storey_margin;
-    for (const auto& w : bank.filter.warnings) r.warnings.push_back(scan.file + ": " + w);
-    if (!data.ground_truth.empty()) score.add(t - data.scans.front().stamp_s, filter, nearest(data.ground_truth, t).pose);
+    // The scan's file is read only when the localizer looks at it, as the runner extracts planes.
+    last = localizer.step(t, nearest(data.odometry, t).pose, [&scan] { return readPcdPoints(scan.file); });
+    if (last->filter && last->filter->decided && !r.storey_margin && r.storey_auto) r.storey_margin = last->filter->storey_margin;
+    for (const auto& w : last->warnings) r.warnings.push_back(scan.file + ": " + w);
+    if (!data.ground_truth.empty()) score.add(t - data.scans.front().stamp_s, *last, nearest(data.ground_truth, t).pose);
   }
   if (data.ground_truth.empty()) {
-    r.converged = filter.converged();
-    if (filter.storey()) r.found_storey = building.storeys[*filter.storey()].name;
+    r.converged = last && last->convergence_stamp_s;
+    if (last && last->storey) r.found_storey = building.storeys[*last->storey].name;
+    r.losses = last ? last->losses : 0;
   } else {
-    score.finish(filter, r);
+    score.finish(r);
   }
+  if (const auto* tracker = localizer.tracker()) r.wall_deviations = tracker->wallDeviations();
   r.sim_seconds = data.scans.empty() ? 0.0 : data.scans.back().stamp_s - data.scans.front().stamp_s + data.turn_period_s;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.passed = r.converged && !r.false_convergence;
@@ -75,13 +73,16 @@ void run(const LocalizeArgs& args) {
     std::cout << report.dump() << "\n";
   } else {
     bimloc::cli::printRunTable({r}, report, std::cout);
-    if (const auto T = filter.T_map_odom()) {
-      const Eigen::Quaterniond q(T->linear());
-      std::cout << "map <- odom: xyz " << T->translation().transpose() << ", quaternion xyzw " << q.x() << " " << q.y() << " "
-                << q.z() << " " << q.w() << "\n";
+    if (last && last->T_map_odom) {
+      const Eigen::Isometry3d& T = *last->T_map_odom;
+      const Eigen::Quaterniond q(T.linear());
+      std::cout << "map <- odom: xyz " << T.translation().transpose() << ", quaternion xyzw " << q.x() << " " << q.y() << " "
+                << q.z() << " " << q.w() << " (" << bimloc::toString(last->state) << ")\n";
     }
     if (data.ground_truth.empty()) std::cout << "(no ground_truth.tum: errors not evaluated)\n";
   }
+  // As `run`: a run that did not localize, or localized falsely, fails.
+  if (!r.passed) throw bimloc::cli::ExitCode{1};
 }
 
 }  // namespace
@@ -98,7 +99,12 @@ void addLocalizeCommand(CLI::App& app) {
   cmd->add_option("--storey", args->storey,
                   "storey name or index (default: as recorded, else 0); auto: not told, every storey with walls and rooms "
                   "is a candidate (scored against the recorded storey)");
-  cmd->add_option("--method", args->method, "pf or pf-no-rooms")->check(CLI::IsMember({"pf", "pf-no-rooms"}))->capture_default_str();
+  cmd->add_option("--method", args->method,
+                  "sgraph (the paper: the filter, then the S-Graph tracks), pf (the filter tracks) or pf-no-rooms (the ablation)")
+      ->check(CLI::IsMember({"sgraph", "pf", "pf-no-rooms"}))
+      ->capture_default_str();
+  cmd->add_option("--config", args->config, "YAML file of localizer settings (the keys of a scenario's `localizer:`)")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--seed", args->seed, "seed of the filter")->capture_default_str();
   cmd->add_flag("--json", args->json, "print one JSON object");
   cmd->callback([args] { run(*args); });

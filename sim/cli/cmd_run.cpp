@@ -1,4 +1,4 @@
-// bimloc run SCENARIO... | --plan PLAN --all-rooms [--storey S|auto] [--starts rooms|outside] [--json] [--out DIR] [--jobs N]
+// bimloc run SCENARIO... | --plan PLAN --all-rooms [--storey S|auto] [--method M] [--config FILE.yaml] [--starts rooms|outside] [--json] [--out DIR] [--jobs N]
 #include "sim/cli/commands.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
@@ -18,7 +18,8 @@ struct RunArgs {
   bool all_rooms = false;
   std::string starts = "rooms";
   int seeds = 1;
-  std::string method = "pf";
+  std::string method = "sgraph";
+  std::string config;
   double duration_s = 40.0;
   bool json = false;
   std::string out;
@@ -44,6 +45,7 @@ void run(const RunArgs& args) {
   }
   if (scenarios.empty()) throw std::runtime_error("nothing to run: give scenario files, or --plan PLAN --all-rooms");
   bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
+  if (!args.config.empty()) bimloc::cli::applyConfig(scenarios, args.config);
 
   // Scenarios in parallel, results in input order: the same output whatever --jobs.
   const auto start = std::chrono::steady_clock::now();
@@ -76,7 +78,7 @@ void addRunCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "run",
       "Run scenarios in the loop: the simulator feeds scans and odometry at the sensor's rate into the localizer\n"
-      "(the room-aware particle filter), and each run is scored against the ground truth and the scenario's\n"
+      "(the room-aware particle filter, then the S-Graph tracker), and each run is scored against the ground truth and the scenario's\n"
       "expectations: converged, convergence time, room found, errors, ATE, false convergence. Exit status 1\n"
       "when any scenario fails. With --plan PLAN --all-rooms: one scenario per room of the storey; --starts outside:\n"
       "starts in no room (halls without a space, doorways, just outside); --storey auto: the localizer is not told\n"
@@ -96,8 +98,8 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--seeds", args->seeds, "seeds per room with --all-rooms; starts per storey with --starts outside")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  cmd->add_option("--method", args->method, "pf (with the room factor) or pf-no-rooms (the ablation)")
-      ->check(CLI::IsMember({"pf", "pf-no-rooms"}))
+  cmd->add_option("--method", args->method, "sgraph (the paper: the filter, then the S-Graph tracks), pf (the filter tracks) or pf-no-rooms (the ablation)")
+      ->check(CLI::IsMember({"sgraph", "pf", "pf-no-rooms"}))
       ->capture_default_str();
   cmd->add_option("--duration", args->duration_s, "seconds per --all-rooms scenario")->check(CLI::Range(1.0, 3600.0));
   cmd->add_flag("--json", args->json, "print one JSON object instead of the table");
@@ -111,6 +113,10 @@ void addRunCommand(CLI::App& app) {
                   "considered")
       ->delimiter(',');
   cmd->add_option("--prior-pose", args->prior_pose, "what you know of the start: x,y,yaw_deg,sigma_m (map frame)");
+  cmd->add_option("--config", args->config,
+                  "YAML file of localizer settings (the keys of a scenario's `localizer:`, e.g. `pf: {particles: 8000}`), "
+                  "over every scenario's own")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->callback([args] { run(*args); });
 }

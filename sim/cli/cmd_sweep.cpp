@@ -23,7 +23,7 @@ using bimloc::cli::fixed;
 struct SweepArgs {
   std::vector<std::string> plans;
   int seeds = 2;
-  std::string method = "pf";
+  std::string method = "sgraph";
   double duration_s = 40.0;
   int jobs = 1;
   bool json = false;
@@ -141,7 +141,7 @@ void addSweepCommand(CLI::App& app) {
       "Make hard plans with `bimloc worldgen --random SEED --random-count K --out DIR`, then sweep DIR/*.ifc.");
   cmd->add_option("plans", args->plans, "IFC plans (or extract folders)")->required();
   cmd->add_option("--seeds", args->seeds, "seeds per room")->check(CLI::Range(1, 1000))->capture_default_str();
-  cmd->add_option("--method", args->method, "pf (with the room factor) or pf-no-rooms (the ablation)")
+  cmd->add_option("--method", args->method, "sgraph (the paper: the filter, then the S-Graph tracks), pf (the filter tracks) or pf-no-rooms (the ablation)")
       ->check(CLI::IsMember({"pf", "pf-no-rooms"}))
       ->capture_default_str();
   cmd->add_option("--duration", args->duration_s, "seconds per run")->check(CLI::Range(1.0, 3600.0))->capture_default_str();

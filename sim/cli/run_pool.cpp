@@ -73,6 +73,11 @@ void applyPrior(std::vector<Scenario>& scenarios, const std::vector<std::string>
   }
 }
 
+void applyConfig(std::vector<Scenario>& scenarios, const std::string& config_file) {
+  const nlohmann::json block = loadLocalizerBlock(config_file);
+  for (auto& s : scenarios) s.localizer.merge_patch(block);
+}
+
 void keepStartRooms(std::vector<Scenario>& scenarios, const std::vector<std::string>& rooms) {
   if (rooms.empty()) return;
   std::vector<Scenario> kept;

@@ -43,6 +43,8 @@ struct PooledRun {
 // What a user knows of the start, for every scenario: --prior-room NAME[,NAME...] and
 // --prior-pose x,y,yaw_deg,sigma_m (the scenario's localizer.prior_* keys). Throws
 // std::invalid_argument for a malformed pose.
+// --config FILE.yaml: its localizer keys over every scenario's own (sections merged key by key).
+void applyConfig(std::vector<sim::Scenario>& scenarios, const std::string& config_file);
 void applyPrior(std::vector<sim::Scenario>& scenarios, const std::vector<std::string>& rooms, const std::string& pose);
 
 // Keeps the scenarios whose start room is one of `rooms` (all when empty); throws naming an

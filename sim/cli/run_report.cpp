@@ -27,19 +27,34 @@ nlohmann::json storeysJson(const std::vector<sim::ScenarioResult::StoreyOption>&
   return out;
 }
 
+nlohmann::json wallsJson(const std::vector<sgraph::WallDeviation>& walls) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& w : walls)
+    out.push_back({{"wall", w.wall_id}, {"offset_m", w.offset_m}, {"angle_deg", w.angle_deg},
+                   {"thickness_change_m", w.thickness_change_m}, {"observations", w.observations}});
+  return out;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
 }  // namespace
 
 nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double wall_seconds) {
   nlohmann::json scenarios = nlohmann::json::array();
-  int localized = 0, false_convergences = 0;
+  int localized = 0, false_convergences = 0, losses = 0;
   double sim_seconds = 0;
-  std::vector<double> times;
+  std::vector<double> times, ates;
   for (const auto& r : results) {
     scenarios.push_back({{"name", r.name}, {"plan", r.plan}, {"storey", r.storey}, {"start_room", r.start_room},
                          {"method", r.method}, {"seed", r.seed}, {"converged", r.converged},
                          {"convergence_time_s", orNull(r.convergence_time_s)}, {"found_room", orNull(r.found_room)},
                          {"true_room", r.true_room}, {"position_error_m", r.position_error_m},
                          {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", orNull(r.ate_m)},
+                         {"rpe_m_per_m", orNull(r.rpe_m_per_m)}, {"losses", r.losses},
+                         {"wall_deviations", wallsJson(r.wall_deviations)},
                          {"false_convergence", r.false_convergence}, {"convergence_margin", orNull(r.convergence_margin)},
                          {"hypotheses", placesJson(r.hypotheses)}, {"storey_auto", r.storey_auto},
                          {"found_storey", orNull(r.found_storey)}, {"storey_margin", orNull(r.storey_margin)},
@@ -48,16 +63,16 @@ nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double
     localized += r.converged && !r.false_convergence;
     false_convergences += r.false_convergence;
     sim_seconds += r.sim_seconds;
+    losses += r.losses;
     if (r.convergence_time_s) times.push_back(*r.convergence_time_s);
+    if (r.ate_m && !r.false_convergence) ates.push_back(*r.ate_m);
   }
-  nlohmann::json median = nullptr;
-  if (!times.empty()) {
-    std::sort(times.begin(), times.end());
-    median = times.size() % 2 ? times[times.size() / 2] : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
-  }
+  const nlohmann::json median_time = times.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(times));
+  const nlohmann::json median_ate = ates.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(ates));
   return {{"scenarios", scenarios},
           {"summary", {{"runs", results.size()}, {"localized", localized}, {"false_convergences", false_convergences},
-                       {"median_convergence_s", median}, {"sim_seconds", sim_seconds}, {"wall_seconds", wall_seconds}}}};
+                       {"median_convergence_s", median_time}, {"median_ate_m", median_ate}, {"losses", losses},
+                       {"sim_seconds", sim_seconds}, {"wall_seconds", wall_seconds}}}};
 }
 
 void printRunTable(const std::vector<sim::ScenarioResult>& results, const nlohmann::json& report, std::ostream& out) {
@@ -65,14 +80,15 @@ void printRunTable(const std::vector<sim::ScenarioResult>& results, const nlohma
   bool any_auto = false;
   for (const auto& r : results) any_auto = any_auto || r.storey_auto;
   std::vector<std::string> header{"scenario", "method", "converged", "time [s]", "room found / true", "pos err [m]",
-                                  "yaw err [deg]", "ATE [m]", "false", "result"};
+                                  "yaw err [deg]", "ATE [m]", "RPE [m/m]", "lost", "false", "result"};
   if (any_auto) header.insert(header.begin() + 4, "storey found / true");
   Table table(header);
   for (const auto& r : results) {
     std::vector<std::string> row{r.name, r.method, r.converged ? "yes" : "no",
                                  r.convergence_time_s ? fixed(*r.convergence_time_s, 1) : "-",
                (r.found_room ? *r.found_room : std::string("-")) + " / " + r.true_room, fixed(r.position_error_m, 3),
-               fixed(r.yaw_error_deg, 2), r.ate_m ? fixed(*r.ate_m, 3) : "-", r.false_convergence ? "FALSE" : "",
+               fixed(r.yaw_error_deg, 2), r.ate_m ? fixed(*r.ate_m, 3) : "-", r.rpe_m_per_m ? fixed(*r.rpe_m_per_m, 3) : "-",
+               r.losses ? std::to_string(r.losses) : "", r.false_convergence ? "FALSE" : "",
                r.passed ? "pass" : "FAIL"};
     if (any_auto) {
       std::string found = r.found_storey ? *r.found_storey : "-";
@@ -90,7 +106,8 @@ void printRunTable(const std::vector<sim::ScenarioResult>& results, const nlohma
   out << "\n" << s["localized"].get<int>() << " of " << s["runs"].get<std::size_t>() << " localized, "
       << s["false_convergences"].get<int>() << " false convergences, median convergence "
       << (s["median_convergence_s"].is_null() ? std::string("-") : fixed(s["median_convergence_s"].get<double>(), 1) + " s")
-      << "; " << fixed(s["sim_seconds"].get<double>(), 0) << " s simulated in " << fixed(s["wall_seconds"].get<double>(), 1)
+      << ", median ATE " << (s["median_ate_m"].is_null() ? std::string("-") : fixed(s["median_ate_m"].get<double>(), 3) + " m")
+      << ", " << s["losses"].get<int>() << " losses of track; " << fixed(s["sim_seconds"].get<double>(), 0) << " s simulated in " << fixed(s["wall_seconds"].get<double>(), 1)
       << " s\n";
   for (const auto& r : results)
     for (const auto& f : r.failures) out << "  " << r.name << ": " << f << "\n";

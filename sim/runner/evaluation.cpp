@@ -12,10 +12,6 @@ namespace {
 constexpr double kFalsePositionM = 0.5;  // declared converged while farther off than this ...
 constexpr double kFalseYawDeg = 10.0;    // ... or turned more than this: a false convergence
 
-std::string roomName(const bim::Storey& storey, int index) {
-  return index < 0 ? std::string("(outside)") : storey.rooms[static_cast<std::size_t>(index)].name;
-}
-
 // The room the true pose is in, by name.
 std::string trueRoom(const bim::Storey& storey, const Eigen::Isometry3d& truth) {
   const bim::Room* room = roomAt(storey, truth.translation().head<2>());
@@ -29,32 +25,60 @@ double yawErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::abs(std::atan2(std::sin(d), std::cos(d))) * 180.0 / M_PI;
 }
 
-bool RunScore::add(double t, const pf::StoreyBank& localizer, const Eigen::Isometry3d& truth) {
+bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth) {
   truth_ = truth;
-  estimate_ = localizer.T_map_base();
-  if (!localizer.converged()) return false;
+  estimate_ = step.T_map_base;
+  losses_ = step.losses;
+  if (step.state == LocalizationState::Searching || !step.storey) return false;
   const bool first = !converged_;
-  const bim::Storey& found = building_.storeys.at(*localizer.storey());
+  const bim::Storey& found = building_.storeys.at(*step.storey);
   if (first) {
     converged_ = true;
     convergence_time_ = t;
-    found_room_ = roomName(found, localizer.estimateRoom());
+    found_room_ = step.room < 0 ? std::string("(outside)") : step.room_name;
     found_storey_ = found.name;
     true_room_ = trueRoom(building_.storeys.at(storey_), truth);
   }
+  if (step.state == LocalizationState::Lost) return first;  // it says it does not know
   // Right place, wrong storey is a false convergence too: the plan's x, y repeat on every storey.
   const double error = (estimate_.translation() - truth.translation()).head<2>().norm();
-  if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg || *localizer.storey() != storey_)
-    false_convergence_ = true;
+  if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg || *step.storey != storey_) false_convergence_ = true;
   sum_sq_ += error * error;
   ++after_;
+  track_.emplace_back(planarPose(truth), planarPose(estimate_));
   return first;
 }
 
-void RunScore::finish(const pf::StoreyBank& localizer, ScenarioResult& r) const {
-  const Eigen::Isometry3d estimate = localizer.T_map_base();
+// Relative pose error per metre: over each stretch of 1 m of true path, the translation the
+// estimate made against the one the truth made, both in the stretch's start frame.
+static std::optional<double> relativeErrorPerMetre(const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& track) {
+  const auto relative = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return Eigen::Rotation2Dd(-a.z()) * Eigen::Vector2d(b.head<2>() - a.head<2>());
+  };
+  double sum_sq = 0;
+  int n = 0;
+  std::size_t j = 0;
+  double walked = 0;  // true path length from i to j
+  for (std::size_t i = 0; i < track.size(); ++i) {
+    if (i > 0) walked -= (track[i].first.head<2>() - track[i - 1].first.head<2>()).norm();
+    if (j < i) j = i, walked = 0;
+    while (walked < 1.0 && j + 1 < track.size()) {
+      walked += (track[j + 1].first.head<2>() - track[j].first.head<2>()).norm();
+      ++j;
+    }
+    if (walked < 1.0) break;
+    const Eigen::Vector2d e = relative(track[i].second, track[j].second) - relative(track[i].first, track[j].first);
+    sum_sq += e.squaredNorm() / (walked * walked);
+    ++n;
+  }
+  if (n == 0) return std::nullopt;
+  return std::sqrt(sum_sq / n);
+}
+
+void RunScore::finish(ScenarioResult& r) const {
   r.converged = converged_;
   r.false_convergence = false_convergence_;
+  r.losses = losses_;
   if (converged_) {
     r.convergence_time_s = convergence_time_;
     r.found_room = found_room_;
@@ -63,9 +87,10 @@ void RunScore::finish(const pf::StoreyBank& localizer, ScenarioResult& r) const 
   } else {
     r.true_room = trueRoom(building_.storeys.at(storey_), truth_);
   }
-  r.position_error_m = (estimate.translation() - truth_.translation()).head<2>().norm();
-  r.yaw_error_deg = yawErrorDeg(estimate, truth_);
+  r.position_error_m = (estimate_.translation() - truth_.translation()).head<2>().norm();
+  r.yaw_error_deg = yawErrorDeg(estimate_, truth_);
   if (after_ > 0) r.ate_m = std::sqrt(sum_sq_ / after_);
+  r.rpe_m_per_m = relativeErrorPerMetre(track_);
 }
 
 }  // namespace bimloc::sim

@@ -32,7 +32,7 @@ void storeyScenarios(const World& world, const RoomScenarioOptions& o, std::size
   std::map<std::string, int> name_count;
   for (const auto& r : rooms) ++name_count[r.name];
   const auto label = [&](const bim::Room& r) { return name_count[r.name] == 1 && !r.name.empty() ? r.name : r.id; };
-  const std::string suffix = o.method == "pf" ? "" : " (" + o.method + ")";
+  const std::string suffix = o.method == "sgraph" ? "" : " (" + o.method + ")";
   // The tour: out to the largest room (usually the corridor or the living room), then to the
   // room farthest from the start.
   std::size_t largest = 0;

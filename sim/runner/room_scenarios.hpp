@@ -20,7 +20,7 @@ struct RoomScenarioOptions {
   // no room per storey (start.outside_rooms).
   std::string starts = "rooms";
   int seeds = 1;
-  std::string method = "pf";  // pf | pf-no-rooms
+  std::string method = "sgraph";  // sgraph | pf | pf-no-rooms
   double duration_s = 40.0;
   std::uint64_t first_seed = 1;
 };

@@ -8,6 +8,7 @@
 #include <bimloc/bim/geometry2d.hpp>
 #include <bimloc/geometry/planar_pose.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -57,6 +58,12 @@ void judge(const Scenario& s, ScenarioResult& r) {
 
 }  // namespace
 
+std::string storeyKey(const bim::Building& building, std::size_t index) {
+  const std::string& id = building.storeys.at(index).id;
+  const auto same = std::count_if(building.storeys.begin(), building.storeys.end(), [&](const bim::Storey& s) { return s.id == id; });
+  return !id.empty() && same == 1 ? id : std::to_string(index);
+}
+
 ScenarioResult runScenario(const Scenario& s, const World& world, const SnapshotHook& snapshot, std::vector<TraceRow>* trace) {
   const auto wall_start = std::chrono::steady_clock::now();
   ScenarioResult r;
@@ -64,8 +71,6 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
   r.plan = s.world;
   r.seed = s.seed;
   r.start_room = s.start.kind == StartConfig::Kind::Pose ? std::string("(pose)") : s.start.room;
-  const LocalizerSettings settings = localizerSettings(s);
-  r.method = settings.filter.use_rooms ? "pf" : "pf-no-rooms";
 
   const Simulator sim(s, world);
   const bim::Building& building = world.building();
@@ -73,63 +78,75 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
   r.storey = storey.name;
   if (s.start.kind == StartConfig::Kind::OutsideRooms)
     r.start_room = "(" + outsideKind(storey, Eigen::Vector2d(sim.start().x, sim.start().y)) + ")";
-  // The localizer: told the storey, or (storey auto) every storey that could hold the robot.
+  // The localizer: told the storey, or (storey auto) not, every storey that could hold the robot.
+  const LocalizerSettings settings = localizerSettings(s);
+  LocalizerConfig config = settings.config;
   r.storey_auto = settings.storey_auto;
-  const std::vector<std::size_t> storeys =
-      settings.storey_auto ? pf::StoreyBank::candidateStoreys(building) : std::vector<std::size_t>{sim.storey()};
-  if (storeys.empty()) throw ScenarioError(s.file + ": storey auto: no storey of the plan has both walls and rooms");
-  pf::StoreyBank filter(building, storeys, s.sensor.T_base_lidar, settings.filter);
+  r.method = toString(config.method);
+  if (!r.storey_auto) config.storey = storeyKey(building, sim.storey());
+  std::optional<Localizer> localizer;
+  try {
+    localizer.emplace(building, s.sensor.T_base_lidar, config);
+  } catch (const std::invalid_argument& e) {
+    throw ScenarioError(s.file + ": " + e.what());
+  }
   const std::vector<OdometrySample> odometry = sim.odometry();
   const auto odometryAt = [&](double t) {
     const auto k = static_cast<std::size_t>(std::llround(t * s.odometry.rate_hz));
     return odometry[std::min(k, odometry.size() - 1)].T_odom_base;
   };
   const auto moment = [&](const char* phase, double t, const Eigen::Isometry3d& truth) {
-    snapshot({phase, t, &filter.filter(), filter.leader(), truth});
+    snapshot({phase, t, &localizer->filter().filter(), localizer->filter().leader(), truth, localizer->tracker()});
   };
   if (snapshot) moment("initialization", 0.0, sim.trajectory().T_map_base(0.0));
 
   RunScore score(building, sim.storey());
   std::optional<pf::UpdateReport> last_verdict;  // the last update the path evidence spoke at
   std::size_t verdict_storey = sim.storey();     // ... and the storey it spoke of
-  pf::StoreyBankReport last;
+  std::optional<pf::StoreyBankReport> last_bank;
   int updates = 0;
   const double half_turn = 0.5 * sim.lidar().turnPeriod_s();
   for (std::size_t i = 0; i < sim.turnCount(); ++i) {
     const LidarScan scan = sim.turn(i);
     // The turn sweeps for a whole period: its planes are best explained by the mid-turn pose.
     const double t = scan.stamp_s + half_turn;
-    filter.predict(odometryAt(t));
-    // Planes only for the scans the filter weighs: the others it would not look at.
-    const pf::StoreyBankReport bank = filter.update(filter.wantsObservations()
-                                                        ? planes::extractPlanes(scanPoints(scan), settings.planes).walls
-                                                        : std::vector<planes::ObservedPlane>{});
-    const pf::UpdateReport& report = bank.filter;
-    if (r.storey_auto && bank.decided && !last.decided) r.storey_margin = bank.storey_margin;
-    last = bank;
+    const Eigen::Isometry3d T_odom_base = odometryAt(t);
+    const auto step_start = std::chrono::steady_clock::now();
+    const LocalizationResult step = localizer->step(t, T_odom_base, [&scan] { return scanPoints(scan); });
+    const auto minute = static_cast<std::size_t>(t / 60.0);
+    if (r.localizer_seconds_by_minute.size() <= minute) r.localizer_seconds_by_minute.resize(minute + 1, 0.0);
+    r.localizer_seconds_by_minute[minute] += std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
     ++updates;
-    for (const auto& w : report.warnings) r.warnings.push_back("t=" + std::to_string(t) + ": " + w);
+    for (const auto& w : step.warnings) r.warnings.push_back("t=" + std::to_string(t) + ": " + w);
     const Eigen::Isometry3d truth = sim.trajectory().T_map_base(t);
-    if (trace && report.weighed)
-      trace->push_back({t, planarPose(truth), planarPose(filter.T_map_base()), report,
-                        r.storey_auto ? building.storeys[bank.leader].name : std::string(), bank.storey_margin});
-    if (snapshot && updates == kClusteringUpdate && !filter.converged()) moment("clustering", t, truth);
-    if (report.path_best) last_verdict = report, verdict_storey = bank.leader;
-    if (score.add(t, filter, truth)) {
-      r.convergence_margin = report.path_margin;
+    if (step.filter) {
+      const pf::StoreyBankReport& bank = *step.filter;
+      if (r.storey_auto && bank.decided && !(last_bank && last_bank->decided)) r.storey_margin = bank.storey_margin;
+      last_bank = bank;
+      const pf::UpdateReport& report = bank.filter;
+      if (trace && report.weighed)
+        trace->push_back({t, planarPose(truth), planarPose(step.T_map_base), report,
+                          r.storey_auto ? building.storeys[bank.leader].name : std::string(), bank.storey_margin});
+      if (report.path_best) last_verdict = report, verdict_storey = bank.leader;
+    }
+    if (snapshot && updates == kClusteringUpdate && step.state == LocalizationState::Searching) moment("clustering", t, truth);
+    if (score.add(t, step, truth)) {
+      if (step.filter) r.convergence_margin = step.filter->filter.path_margin;
       if (snapshot) moment("convergence", t, truth);
     }
   }
-  if (!filter.converged() && last_verdict) r.hypotheses = placesOf(*last_verdict, building.storeys[verdict_storey]);
-  if (!filter.storey() && r.storey_auto)
-    for (const auto& c : last.candidates)
+  const bool converged = score.converged();
+  if (!converged && last_verdict) r.hypotheses = placesOf(*last_verdict, building.storeys[verdict_storey]);
+  if (!localizer->filter().storey() && r.storey_auto && last_bank)
+    for (const auto& c : last_bank->candidates)
       r.storey_candidates.push_back({building.storeys[c.storey].name, c.converged, c.path_log_likelihood});
-  // Not converged: the last picture shows where the particles were left, and why.
-  if (snapshot && !filter.converged() && sim.turnCount() > 0) {
+  // The last picture shows where the particles were left and why, or the graph the tracker built.
+  if (snapshot && sim.turnCount() > 0 && (!converged || localizer->tracker())) {
     const double t_end = sim.lidar().turnPeriod_s() * (static_cast<double>(sim.turnCount()) - 0.5);
     moment("end", t_end, sim.trajectory().T_map_base(t_end));
   }
-  score.finish(filter, r);
+  score.finish(r);
+  if (const sgraph::SGraphTracker* tracker = localizer->tracker()) r.wall_deviations = tracker->wallDeviations();
   r.sim_seconds = static_cast<double>(sim.turnCount()) * sim.lidar().turnPeriod_s();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   judge(s, r);

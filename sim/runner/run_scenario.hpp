@@ -3,12 +3,11 @@
 // against the ground truth and the scenario's expectations.
 #pragma once
 
+#include "sim/scenario/localizer_config.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/world/world.hpp"
 
-#include <bimloc/pf/particle_filter.hpp>
-#include <bimloc/pf/storey_bank.hpp>
-#include <bimloc/planes/plane_extraction.hpp>
+#include <bimloc/localizer.hpp>
 
 #include <functional>
 #include <optional>
@@ -17,15 +16,13 @@
 
 namespace bimloc::sim {
 
-struct LocalizerSettings {
-  pf::ParticleFilterConfig filter;
-  planes::PlaneExtractionConfig planes;
-  bool storey_auto = false;  // localizer.storey: auto (the scenario's `storey: auto` sets it)
-};
-
-// The scenario's `localizer:` mapping over the defaults (method: pf | pf-no-rooms, particles,
-// ...). Throws ScenarioError naming the file for an unknown key or a bad value.
+// The scenario's `localizer:` mapping over the defaults (sim/scenario/localizer_config.hpp),
+// seeded from the scenario's seed; its storey is the runner's to set. Throws ScenarioError at
+// FILE:LINE for an unknown key or a bad value.
 LocalizerSettings localizerSettings(const Scenario& scenario);
+
+// How the localizer is told storey `index`: its GlobalId when that is unique, else the index.
+std::string storeyKey(const bim::Building& building, std::size_t index);
 
 struct ScenarioResult {
   // storey: where the simulator ran (the truth). start_room: the start's room, "(pose)", or for
@@ -52,6 +49,12 @@ struct ScenarioResult {
   double position_error_m = 0;            // at the end of the run
   double yaw_error_deg = 0;
   std::optional<double> ate_m;            // RMSE of position after convergence, no alignment
+  // RPE: RMSE of the relative translation error over every stretch of 1 m of true path after
+  // convergence (m per metre travelled); unset when the robot walked less than that.
+  std::optional<double> rpe_m_per_m;
+  int losses = 0;                         // losses of track after convergence
+  // The S-Graph's estimate of each plan wall it observed: its offset from the plan position.
+  std::vector<sgraph::WallDeviation> wall_deviations;
   bool false_convergence = false;         // converged while > 0.5 m or > 10 deg off, at any time after
   // The path evidence's margin at the update that declared convergence (per distinct face).
   std::optional<double> convergence_margin;
@@ -66,6 +69,8 @@ struct ScenarioResult {
   std::vector<std::string> failures;      // why it did not pass
   std::vector<std::string> warnings;
   double sim_seconds = 0, wall_seconds = 0;
+  // Wall seconds the localizer's steps took in each simulated minute (the last one partial).
+  std::vector<double> localizer_seconds_by_minute;
 };
 
 // What a snapshot needs at a moment of the run (the runner calls it at initialization, while
@@ -76,6 +81,7 @@ struct SnapshotMoment {
   const pf::ParticleFilter* filter = nullptr;  // the leading storey's, with storey auto
   std::size_t storey = 0;                      // the filter's storey
   Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  const sgraph::SGraphTracker* tracker = nullptr;  // once the S-Graph tracks: its graph
 };
 using SnapshotHook = std::function<void(const SnapshotMoment&)>;
 

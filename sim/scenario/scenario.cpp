@@ -1,5 +1,7 @@
 #include "sim/scenario/scenario.hpp"
 
+#include "sim/scenario/localizer_config.hpp"
+
 #include "sim/scenario/scenario_sections.hpp"
 #include "sim/scenario/yaml_mapping.hpp"
 
@@ -82,12 +84,14 @@ Scenario loadScenario(const std::string& path) {
       top.fail("localizer", "localizer must be a mapping (key: value lines), got " + detail::describe(top.value("localizer")));
     s.localizer = detail::toJson(path, top.value("localizer"));
     if (s.localizer.is_null()) s.localizer = nlohmann::json::object();
+    recordLines("localizer", top.value("localizer"), s.lines);
   }
   // `storey: auto`: the localizer is not told which storey (the simulator still needs it).
   if (s.storey == "auto" && !s.localizer.contains("storey")) s.localizer["storey"] = "auto";
   s.seed = readSeed(top);
   s.expect = detail::readExpect(top);
   for (const auto& key : top.given()) s.lines.emplace(key, top.line(key));
+  readLocalizerSettings(s.localizer, path, s.lines);  // a key the localizer would reject fails here, at its line
   return s;
 }
 

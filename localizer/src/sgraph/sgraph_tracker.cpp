@@ -190,6 +190,7 @@ detail::SolveReport SGraphTracker::Impl::optimize(const detail::Keyframe& kf, SG
   r.initial_cost = solve.initial_cost;
   r.final_cost = solve.final_cost;
   r.solve_time_s = solve.time_s;
+  r.covariance = solve.newest_covariance;
   return solve;
 }
 

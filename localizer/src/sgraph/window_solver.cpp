@@ -28,6 +28,20 @@ void addEvidence(ceres::Problem& problem, WallNode& node) {
   problem.AddResidualBlock(GaussianPrior<3>::create(mean, llt.matrixL().transpose()), nullptr, node.params.data());
 }
 
+// How well the window knows where the robot is now: the newest pose's block of the inverse
+// Hessian. Sparse QR, which fails on a rank-deficient Jacobian rather than invent a
+// pseudo-inverse; single-threaded: same input, same output.
+std::optional<Eigen::Matrix3d> newestCovariance(ceres::Problem& problem, const double* pose) {
+  ceres::Covariance::Options options;
+  options.num_threads = 1;
+  ceres::Covariance covariance(options);
+  const std::vector<std::pair<const double*, const double*>> blocks{{pose, pose}};
+  if (!covariance.Compute(blocks, &problem)) return std::nullopt;
+  Eigen::Matrix<double, 3, 3, Eigen::RowMajor> block;
+  if (!covariance.GetCovarianceBlock(pose, pose, block.data())) return std::nullopt;
+  return Eigen::Matrix3d(block);
+}
+
 }  // namespace
 
 Eigen::Vector3d odometrySigma(const Keyframe& a, const Keyframe& b, const SGraphConfig& c) {
@@ -156,6 +170,7 @@ SolveReport optimizeWindow(Graph& g, const SGraphConfig& c) {
     for (int n : nodes) g.nodes[static_cast<std::size_t>(n)].params = params[i++];
     return report;
   }
+  report.newest_covariance = newestCovariance(problem, g.window.back().pose.data());
   for (Keyframe& kf : g.window) kf.pose[2] = wrapAngle(kf.pose[2]);
   return report;
 }

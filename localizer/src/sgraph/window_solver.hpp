@@ -6,6 +6,7 @@
 #include "graph.hpp"
 
 #include <ceres/cost_function.h>
+#include <optional>
 #include <string>
 
 namespace bimloc::sgraph::detail {
@@ -16,6 +17,9 @@ struct SolveReport {
   double time_s = 0;
   bool usable = true;  // false: the solver failed or diverged; the estimate was left as it was
   std::string message;
+  // Marginal covariance of the newest keyframe's (x, y, yaw) at the solution (Ceres'
+  // Covariance, robust kernels applied); unset when the Jacobian is rank deficient.
+  std::optional<Eigen::Matrix3d> newest_covariance;
 };
 
 SolveReport optimizeWindow(Graph& g, const SGraphConfig& config);

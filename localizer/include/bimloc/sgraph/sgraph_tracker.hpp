@@ -14,6 +14,7 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -142,6 +143,9 @@ struct SGraphResult {
   int iterations = 0;
   double initial_cost = 0, final_cost = 0;
   double solve_time_s = 0;
+  // Covariance of the newest keyframe's map (x, y, yaw) after the window's optimization
+  // (Ceres' marginal covariance); unset between keyframes' solves or when rank deficient.
+  std::optional<Eigen::Matrix3d> covariance;
   TrackingState state = TrackingState::Tracking;
   std::vector<std::string> warnings;
 };

@@ -1,0 +1,236 @@
+#include <bimloc/localizer.hpp>
+
+#include <bimloc/bim/geometry2d.hpp>
+#include <bimloc/geometry/planar_pose.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace bimloc {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// The stages' seeds from the one seed: the same derivation the bench used before the
+// localizer owned the loop, so runs keep their bytes.
+LocalizerConfig seeded(LocalizerConfig c) {
+  c.pf.seed = c.seed * 0x9E3779B97F4A7C15ull + 11;
+  c.planes.seed = c.seed;
+  c.pf.use_rooms = c.method != LocalizerMethod::PfNoRooms;
+  return c;
+}
+
+// Weighted covariance of the particles' (x, y, yaw) about their weighted mean.
+Eigen::Matrix3d particleCovariance(const pf::ParticleFilter& filter) {
+  const auto& particles = filter.particles();
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  if (particles.empty()) return Eigen::Matrix3d::Identity();
+  double top = -INFINITY;
+  for (const auto& p : particles) top = std::max(top, p.log_weight);
+  double sum = 0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double s = 0, c = 0;
+  for (const auto& p : particles) {
+    const double w = std::exp(p.log_weight - top);
+    sum += w, mean.x() += w * p.x, mean.y() += w * p.y, s += w * std::sin(p.yaw), c += w * std::cos(p.yaw);
+  }
+  mean.head<2>() /= sum;
+  mean.z() = std::atan2(s, c);
+  for (const auto& p : particles) {
+    const double w = std::exp(p.log_weight - top) / sum;
+    const Eigen::Vector3d e(p.x - mean.x(), p.y - mean.y(), std::remainder(p.yaw - mean.z(), 2 * M_PI));
+    cov += w * e * e.transpose();
+  }
+  return cov;
+}
+
+int roomOf(const bim::Storey& storey, const Eigen::Vector2d& p) {
+  for (std::size_t i = 0; i < storey.rooms.size(); ++i)
+    if (bim::pointInPolygon(storey.rooms[i].footprint, p)) return static_cast<int>(i);
+  return -1;
+}
+
+}  // namespace
+
+const char* toString(LocalizerMethod method) {
+  switch (method) {
+    case LocalizerMethod::SGraph: return "sgraph";
+    case LocalizerMethod::Pf: return "pf";
+    case LocalizerMethod::PfNoRooms: return "pf-no-rooms";
+  }
+  return "?";
+}
+
+std::optional<LocalizerMethod> methodFromString(const std::string& name) {
+  if (name == "sgraph") return LocalizerMethod::SGraph;
+  if (name == "pf") return LocalizerMethod::Pf;
+  if (name == "pf-no-rooms") return LocalizerMethod::PfNoRooms;
+  return std::nullopt;
+}
+
+const char* toString(LocalizationState state) {
+  switch (state) {
+    case LocalizationState::Searching: return "searching";
+    case LocalizationState::Converged: return "converged";
+    case LocalizationState::Tracking: return "tracking";
+    case LocalizationState::Lost: return "lost";
+  }
+  return "?";
+}
+
+struct Localizer::Impl {
+  const bim::Building& building;
+  Eigen::Isometry3d T_base_lidar;
+  LocalizerConfig config;
+  std::vector<std::size_t> storeys;  // the candidates of the first search
+  std::unique_ptr<pf::StoreyBank> bank;            // the current (or last) search
+  bool filter_active = true;                       // the filter runs on this step
+  std::unique_ptr<sgraph::SGraphTracker> tracker;  // since the first hand-over
+  std::optional<sgraph::SGraphResult> last_track;  // the tracker's last answer
+  Eigen::Matrix3d track_covariance = Eigen::Matrix3d::Identity();  // of its last solved keyframe
+  std::optional<double> convergence_stamp;
+  std::optional<std::size_t> tracked_storey;
+  int losses = 0;
+  std::vector<std::string> warnings;
+
+  Impl(const bim::Building& b, const Eigen::Isometry3d& mount, const LocalizerConfig& c) : building(b), T_base_lidar(mount), config(seeded(c)) {}
+
+  bool usesTracker() const { return config.method == LocalizerMethod::SGraph; }
+  bool lost() const { return tracker && tracker->state() == sgraph::TrackingState::Lost; }
+  // Steps of Localizer::step, in order.
+  bool wantsPoints(const Eigen::Isometry3d& T_odom_base) const;
+  void track(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
+  void search(const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
+  void handOver(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
+  void searchAgain(LocalizationResult& r);
+  void describe(LocalizationResult& r) const;
+};
+
+Localizer::Localizer(const bim::Building& building, const Eigen::Isometry3d& T_base_lidar, const LocalizerConfig& config)
+    : impl_(std::make_unique<Impl>(building, T_base_lidar, config)) {
+  Impl& m = *impl_;
+  if (config.storey.empty()) {
+    m.storeys = pf::StoreyBank::candidateStoreys(building);
+    if (m.storeys.empty()) throw std::invalid_argument("no storey of the plan has both walls and rooms");
+  } else {
+    const bim::Storey* storey = building.findStorey(config.storey);
+    if (!storey) throw std::invalid_argument("no storey '" + config.storey + "' in the plan");
+    m.storeys = {static_cast<std::size_t>(storey - building.storeys.data())};
+  }
+  m.bank = std::make_unique<pf::StoreyBank>(building, m.storeys, m.T_base_lidar, m.config.pf);
+}
+
+Localizer::~Localizer() = default;
+Localizer::Localizer(Localizer&&) noexcept = default;
+
+LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<Eigen::Vector3f>& points_lidar) {
+  return step(stamp_s, T_odom_base, PointSource([&points_lidar] { return points_lidar; }));
+}
+
+LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_odom_base, const PointSource& points_lidar) {
+  Impl& m = *impl_;
+  LocalizationResult r;
+  r.stamp_s = stamp_s;
+  // predict -> observe (only what a stage will look at) -> track -> search -> hand over or lose -> describe
+  if (m.filter_active) m.bank->predict(T_odom_base);
+  std::vector<planes::ObservedPlane> walls;
+  if (m.wantsPoints(T_odom_base)) {
+    walls = planes::extractPlanes(points_lidar(), m.config.planes).walls;
+    r.used_points = true;
+    r.walls_observed = static_cast<int>(walls.size());
+  }
+  if (m.tracker) m.track(stamp_s, T_odom_base, walls, r);
+  if (m.filter_active) m.search(walls, r);
+  if (m.usesTracker() && m.filter_active && m.bank->converged()) m.handOver(stamp_s, T_odom_base, walls, r);
+  m.describe(r);
+  return r;
+}
+
+bool Localizer::Impl::wantsPoints(const Eigen::Isometry3d& T_odom_base) const {
+  return (filter_active && bank->wantsObservations()) || (tracker && tracker->wantsObservations(T_odom_base));
+}
+
+// The S-Graph's keyframe (paper, "S-Graph based Localization"); a loss starts a new search.
+void Localizer::Impl::track(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls,
+                            LocalizationResult& r) {
+  const bool was_lost = lost();
+  last_track = tracker->addScan(stamp_s, T_odom_base, walls);
+  for (const auto& w : last_track->warnings) r.warnings.push_back("sgraph: " + w);
+  r.sgraph = last_track;
+  if (last_track->covariance) track_covariance = *last_track->covariance;
+  if (!was_lost && lost()) {
+    ++losses;
+    searchAgain(r);
+  } else if (was_lost && !lost()) {
+    filter_active = false;  // the tracker found the plan again by itself: the search is moot
+  }
+}
+
+void Localizer::Impl::search(const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r) {
+  pf::StoreyBankReport report = bank->update(walls);
+  for (const auto& w : report.filter.warnings) r.warnings.push_back("pf: " + w);
+  r.filter = std::move(report);
+  if (bank->converged() && !convergence_stamp) convergence_stamp = r.stamp_s;
+}
+
+// Paper: "When the particle filter provides the initial pose estimation, S-Graphs starts
+// creating its first robot-tracking layer": the tracker starts from the filter's map <- odom,
+// with this scan as its first keyframe.
+void Localizer::Impl::handOver(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls,
+                               LocalizationResult& r) {
+  tracked_storey = bank->storey();
+  const bim::Storey& storey = building.storeys.at(*tracked_storey);
+  tracker = std::make_unique<sgraph::SGraphTracker>(storey, T_base_lidar, config.sgraph, *bank->T_map_odom());
+  filter_active = false;
+  track_covariance = particleCovariance(bank->filter());
+  last_track = tracker->addScan(stamp_s, T_odom_base, walls);
+  for (const auto& w : last_track->warnings) r.warnings.push_back("sgraph: " + w);
+  r.sgraph = last_track;
+  if (last_track->covariance) track_covariance = *last_track->covariance;
+}
+
+// The tracker lost the plan: the filter searches again on the tracked storey, its particles
+// around the last tracked pose (the tracker keeps going too, and may find the plan first).
+void Localizer::Impl::searchAgain(LocalizationResult& r) {
+  pf::ParticleFilterConfig c = config.pf;
+  c.prior_rooms.clear();
+  c.prior_pose = planarPose(last_track->T_map_base);
+  c.prior_sigma_m = config.relocalize_sigma_m;
+  c.prior_sigma_yaw_deg = config.relocalize_sigma_yaw_deg;
+  c.seed += static_cast<std::uint64_t>(losses);  // a fresh draw per search
+  bank = std::make_unique<pf::StoreyBank>(building, std::vector<std::size_t>{*tracked_storey}, T_base_lidar, c);
+  filter_active = true;
+  r.warnings.push_back("tracking lost: searching again within " + std::to_string(config.relocalize_sigma_m) + " m of the last pose");
+}
+
+void Localizer::Impl::describe(LocalizationResult& r) const {
+  r.losses = losses;
+  r.convergence_stamp_s = convergence_stamp;
+  const bool converged_now = convergence_stamp && *convergence_stamp == r.stamp_s && (r.sgraph || !usesTracker());
+  if (tracker && last_track) {
+    r.state = lost() ? LocalizationState::Lost : LocalizationState::Tracking;
+    r.T_map_base = last_track->T_map_base;
+    r.T_map_odom = last_track->T_map_odom;
+    r.storey = tracked_storey;
+    r.leading_storey = *tracked_storey;
+    r.covariance = track_covariance;
+  } else {
+    r.state = bank->converged() ? LocalizationState::Tracking : LocalizationState::Searching;
+    r.T_map_base = bank->T_map_base();
+    r.T_map_odom = bank->T_map_odom();
+    r.storey = bank->storey();
+    r.leading_storey = bank->leader();
+    r.covariance = particleCovariance(bank->filter());
+  }
+  if (converged_now && r.state == LocalizationState::Tracking) r.state = LocalizationState::Converged;
+  const bim::Storey& storey = building.storeys.at(r.leading_storey);
+  r.room = roomOf(storey, r.T_map_base.translation().head<2>());
+  r.room_name = r.room < 0 ? std::string() : storey.rooms[static_cast<std::size_t>(r.room)].name;
+}
+
+const LocalizerConfig& Localizer::config() const { return impl_->config; }
+const pf::StoreyBank& Localizer::filter() const { return *impl_->bank; }
+const sgraph::SGraphTracker* Localizer::tracker() const { return impl_->tracker.get(); }
+const std::vector<std::string>& Localizer::warnings() const { return impl_->warnings; }
+
+}  // namespace bimloc

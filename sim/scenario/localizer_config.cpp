@@ -1,0 +1,284 @@
+#include "sim/scenario/localizer_config.hpp"
+
+#include "sim/scenario/yaml_mapping.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <variant>
+
+namespace bimloc::sim {
+namespace {
+
+using detail::Range;
+
+// One settable field: where it lives, its range (integers and booleans are numbers here too).
+struct Field {
+  std::string key;
+  std::variant<double*, int*, bool*> target;
+  Range range = Range::closed(-1e12, 1e12);
+};
+
+Range closed(double lo, double hi) { return Range::closed(lo, hi); }
+Range positive(double hi) { return Range::positive(hi); }
+
+std::vector<Field> planeFields(planes::PlaneExtractionConfig& c) {
+  return {{"voxel_size_m", &c.voxel_size_m, closed(0.01, 1)},
+          {"min_range_m", &c.min_range_m, closed(0, 100)},
+          {"max_range_m", &c.max_range_m, positive(1000)},
+          {"ransac_iterations", &c.ransac_iterations, closed(1, 1e6)},
+          {"distance_threshold_m", &c.distance_threshold_m, positive(1)},
+          {"min_inliers", &c.min_inliers, closed(3, 1e7)},
+          {"min_extent_m", &c.min_extent_m, closed(0, 100)},
+          {"vertical_tolerance_deg", &c.vertical_tolerance_deg, closed(0, 45)},
+          {"horizontal_tolerance_deg", &c.horizontal_tolerance_deg, closed(0, 45)},
+          {"max_planes", &c.max_planes, closed(1, 1000)}};
+}
+
+std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
+  return {{"particles", &c.particles, closed(10, 1e6)},
+          {"tracking_particles", &c.tracking_particles, closed(1, 1e6)},
+          {"neighbour_rooms", &c.neighbour_rooms},
+          {"motion_noise_xy_per_m", &c.motion_noise_xy_per_m, closed(0, 10)},
+          {"motion_noise_yaw_per_rad", &c.motion_noise_yaw_per_rad, closed(0, 10)},
+          {"motion_noise_yaw_per_m_rad", &c.motion_noise_yaw_per_m_rad, closed(0, 10)},
+          {"sigma_azimuth_deg", &c.sigma_azimuth_deg, closed(0.01, 90)},
+          {"sigma_elevation_deg", &c.sigma_elevation_deg, closed(0.01, 90)},
+          {"sigma_d_m", &c.sigma_d_m, closed(1e-3, 10)},
+          {"gate_mahalanobis2", &c.gate_mahalanobis2, positive(1e6)},
+          {"segment_margin_m", &c.segment_margin_m, closed(0, 100)},
+          {"likelihood_power", &c.likelihood_power, positive(1)},
+          {"update_min_translation_m", &c.update_min_translation_m, closed(0, 100)},
+          {"update_min_rotation_deg", &c.update_min_rotation_deg, closed(0, 360)},
+          {"max_static_scans", &c.max_static_scans, closed(1, 1e6)},
+          {"anneal_start", &c.anneal_start, closed(1, 100)},
+          {"anneal_rate", &c.anneal_rate, positive(1)},
+          {"use_hypotheses", &c.use_hypotheses},
+          {"initial_hypothesis_fraction", &c.initial_hypothesis_fraction, closed(0, 1)},
+          {"injection_fraction", &c.injection_fraction, closed(0, 1)},
+          {"injection_margin", &c.injection_margin, closed(0, 1e6)},
+          {"max_hypotheses", &c.max_hypotheses, closed(1, 1e6)},
+          {"evidence_faces", &c.evidence_faces, closed(0, 100)},
+          {"evidence_window_m", &c.evidence_window_m, positive(1000)},
+          {"evidence_max_scans", &c.evidence_max_scans, closed(1, 1e5)},
+          {"evidence_spacing_m", &c.evidence_spacing_m, closed(0, 100)},
+          {"evidence_spacing_deg", &c.evidence_spacing_deg, closed(0, 360)},
+          {"evidence_max_candidates", &c.evidence_max_candidates, closed(1, 1e5)},
+          {"evidence_proposals", &c.evidence_proposals, closed(1, 1e5)},
+          {"evidence_drift_fraction", &c.evidence_drift_fraction, closed(0, 1)},
+          {"evidence_yaw_drift_rad_per_m", &c.evidence_yaw_drift_rad_per_m, closed(0, 1)},
+          {"evidence_plan_tolerance_m", &c.evidence_plan_tolerance_m, closed(0, 10)},
+          {"evidence_injection_fraction", &c.evidence_injection_fraction, closed(0, 1)},
+          {"resample_ess_fraction", &c.resample_ess_fraction, closed(0, 1)},
+          {"roughening_xy_m", &c.roughening_xy_m, closed(0, 10)},
+          {"roughening_yaw_deg", &c.roughening_yaw_deg, closed(0, 180)},
+          {"converged_position_m", &c.converged_position_m, positive(100)},
+          {"converged_yaw_deg", &c.converged_yaw_deg, positive(180)},
+          {"converged_updates", &c.converged_updates, closed(1, 1000)},
+          {"outside_rooms_penalty", &c.outside_rooms_penalty, closed(0, 1e6)},
+          {"min_observations", &c.min_observations, closed(1, 100)},
+          {"prior_sigma_m", &c.prior_sigma_m, closed(1e-3, 1e4)},
+          {"prior_sigma_yaw_deg", &c.prior_sigma_yaw_deg, closed(0.01, 180)}};
+}
+
+std::vector<Field> sgraphFields(sgraph::SGraphConfig& c) {
+  return {{"keyframe_spacing_m", &c.keyframe_spacing_m, positive(100)},
+          {"keyframe_spacing_deg", &c.keyframe_spacing_deg, positive(360)},
+          {"window_keyframes", &c.window_keyframes, closed(2, 1000)},
+          {"plane_sigma_azimuth_deg", &c.plane_sigma_azimuth_deg, positive(90)},
+          {"plane_sigma_elevation_deg", &c.plane_sigma_elevation_deg, positive(90)},
+          {"plane_sigma_d_m", &c.plane_sigma_d_m, positive(10)},
+          {"association_sigma_azimuth_deg", &c.association_sigma_azimuth_deg, positive(90)},
+          {"association_sigma_d_m", &c.association_sigma_d_m, positive(10)},
+          {"association_gate_mahalanobis2", &c.association_gate_mahalanobis2, positive(1e6)},
+          {"segment_margin_m", &c.segment_margin_m, closed(0, 100)},
+          {"new_plane_min_sightings", &c.new_plane_min_sightings, closed(1, 1000)},
+          {"candidate_max_age_keyframes", &c.candidate_max_age_keyframes, closed(1, 1e5)},
+          {"room_match_distance_m", &c.room_match_distance_m, positive(100)},
+          {"merge_max_offset_m", &c.merge_max_offset_m, closed(0, 100)},
+          {"odometry_sigma_xy_per_m", &c.odometry_sigma_xy_per_m, closed(0, 10)},
+          {"odometry_sigma_xy_floor_m", &c.odometry_sigma_xy_floor_m, positive(10)},
+          {"odometry_sigma_yaw_per_rad", &c.odometry_sigma_yaw_per_rad, closed(0, 10)},
+          {"odometry_sigma_yaw_per_m_deg", &c.odometry_sigma_yaw_per_m_deg, closed(0, 90)},
+          {"odometry_sigma_yaw_floor_deg", &c.odometry_sigma_yaw_floor_deg, positive(90)},
+          {"odometry_jump_m", &c.odometry_jump_m, positive(1000)},
+          {"odometry_jump_deg", &c.odometry_jump_deg, positive(360)},
+          {"initial_sigma_xy_m", &c.initial_sigma_xy_m, positive(100)},
+          {"initial_sigma_yaw_deg", &c.initial_sigma_yaw_deg, positive(180)},
+          {"wall_prior_sigma_m", &c.wall_prior_sigma_m, positive(10)},
+          {"wall_prior_sigma_deg", &c.wall_prior_sigma_deg, positive(90)},
+          {"wall_thickness_sigma_m", &c.wall_thickness_sigma_m, positive(10)},
+          {"room_prior_sigma_m", &c.room_prior_sigma_m, positive(100)},
+          {"room_factor_sigma_m", &c.room_factor_sigma_m, positive(10)},
+          {"wall_evidence_min_sigma_m", &c.wall_evidence_min_sigma_m, positive(10)},
+          {"wall_evidence_min_sigma_deg", &c.wall_evidence_min_sigma_deg, positive(90)},
+          {"huber_plane_sigmas", &c.huber_plane_sigmas, positive(1e3)},
+          {"huber_odometry_sigmas", &c.huber_odometry_sigmas, positive(1e3)},
+          {"huber_room_sigmas", &c.huber_room_sigmas, positive(1e3)},
+          {"cauchy_wall_prior_sigmas", &c.cauchy_wall_prior_sigmas, positive(1e3)},
+          {"max_iterations", &c.max_iterations, closed(1, 1000)},
+          {"min_plan_associations", &c.min_plan_associations, closed(0, 100)},
+          {"min_plan_fraction", &c.min_plan_fraction, closed(0, 1)},
+          {"loss_mahalanobis2", &c.loss_mahalanobis2, positive(1e6)},
+          {"loss_correction_m", &c.loss_correction_m, positive(100)},
+          {"lost_after_keyframes", &c.lost_after_keyframes, closed(1, 1000)},
+          {"recover_after_keyframes", &c.recover_after_keyframes, closed(1, 1000)}};
+}
+
+std::vector<Field> topFields(LocalizerConfig& c) {
+  return {{"relocalize_sigma_m", &c.relocalize_sigma_m, positive(1e4)},
+          {"relocalize_sigma_yaw_deg", &c.relocalize_sigma_yaw_deg, positive(180)},
+          {"prior_sigma_m", &c.pf.prior_sigma_m, closed(1e-3, 1e4)},
+          {"prior_sigma_yaw_deg", &c.pf.prior_sigma_yaw_deg, closed(0.01, 180)},
+          // The flat keys of the first scenarios, kept.
+          {"particles", &c.pf.particles, closed(10, 1e6)},
+          {"sigma_d_m", &c.pf.sigma_d_m, closed(1e-3, 10)},
+          {"sigma_azimuth_deg", &c.pf.sigma_azimuth_deg, closed(0.01, 90)},
+          {"converged_updates", &c.pf.converged_updates, closed(1, 1000)},
+          {"voxel_size_m", &c.planes.voxel_size_m, closed(0.01, 1)}};
+}
+
+const std::vector<std::string> kOtherTopKeys{"method", "storey", "prior_rooms", "prior_pose", "planes", "pf", "sgraph"};
+
+struct Reader {
+  const std::string& file;
+  const std::map<std::string, int>& lines;
+
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+    const auto it = lines.find(key);
+    detail::fail(file, it == lines.end() ? 0 : it->second, key + ": " + message);
+  }
+
+  void set(const Field& f, const nlohmann::json& value, const std::string& name) const {
+    if (std::holds_alternative<bool*>(f.target)) {
+      if (!value.is_boolean()) fail(name, "expected true or false, got " + value.dump());
+      *std::get<bool*>(f.target) = value.get<bool>();
+      return;
+    }
+    if (!value.is_number()) fail(name, "expected a number, got " + value.dump());
+    const double v = value.get<double>();
+    if (!std::isfinite(v) || !f.range.contains(v)) fail(name, value.dump() + " is outside " + f.range.str());
+    if (auto* i = std::get_if<int*>(&f.target)) {
+      if (v != std::floor(v)) fail(name, "expected a whole number, got " + value.dump());
+      **i = static_cast<int>(v);
+    } else {
+      *std::get<double*>(f.target) = v;
+    }
+  }
+
+  // Every key of `block` must be one of `fields` (or of `others`, read by the caller).
+  void section(const nlohmann::json& block, const std::string& prefix, const std::vector<Field>& fields,
+               const std::vector<std::string>& others = {}) const {
+    if (!block.is_object()) fail(prefix, "expected a mapping (key: value lines)");
+    std::vector<std::string> keys = others;
+    for (const Field& f : fields) keys.push_back(f.key);
+    for (const auto& [key, value] : block.items()) {
+      const std::string name = prefix + "." + key;
+      bool done = std::find(others.begin(), others.end(), key) != others.end();
+      for (const Field& f : fields)
+        if (f.key == key) set(f, value, name), done = true;
+      if (!done) {
+        const std::string guess = detail::nearestWord(key, keys);
+        std::string list;
+        for (const auto& k : keys) list += (list.empty() ? "" : ", ") + k;
+        fail(name, "unknown key" + (guess.empty() ? " (keys of " + prefix + ": " + list + ")" : " (did you mean '" + guess + "'?)"));
+      }
+    }
+  }
+};
+
+}  // namespace
+
+LocalizerSettings readLocalizerSettings(const nlohmann::json& block, const std::string& file, const std::map<std::string, int>& lines) {
+  LocalizerSettings out;
+  LocalizerConfig& c = out.config;
+  const Reader read{file, lines};
+  if (block.is_null()) return out;
+  read.section(block, "localizer", topFields(c), kOtherTopKeys);
+  if (block.contains("method")) {
+    const auto& v = block["method"];
+    const auto m = v.is_string() ? methodFromString(v.get<std::string>()) : std::nullopt;
+    if (!m) read.fail("localizer.method", "expected sgraph, pf or pf-no-rooms, got " + v.dump());
+    c.method = *m;
+  }
+  if (block.contains("storey")) {
+    // The localizer is not told the storey; the storey itself is the scenario's `storey:`.
+    if (block["storey"] != "auto") read.fail("localizer.storey", "only 'auto' (the storey found from the scans); the simulator's storey is the scenario's `storey:`");
+    out.storey_auto = true;
+  }
+  if (block.contains("prior_rooms")) {
+    // The start was in one of these rooms (what a user knows: "we start in flat B").
+    const auto& v = block["prior_rooms"];
+    const auto list = v.is_string() ? nlohmann::json::array({v}) : v;
+    if (!list.is_array() || list.empty()) read.fail("localizer.prior_rooms", "expected a room name or a list of them");
+    for (const auto& r : list) {
+      if (!r.is_string()) read.fail("localizer.prior_rooms", "expected room names, got " + r.dump());
+      c.pf.prior_rooms.push_back(r.get<std::string>());
+    }
+  }
+  if (block.contains("prior_pose")) {
+    // [x, y, yaw_deg] of the start in the map frame; prior_sigma_m and prior_sigma_yaw_deg widen it.
+    const auto& v = block["prior_pose"];
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+      read.fail("localizer.prior_pose", "expected [x, y, yaw_deg], got " + v.dump());
+    c.pf.prior_pose = Eigen::Vector3d(v[0].get<double>(), v[1].get<double>(), v[2].get<double>() * M_PI / 180.0);
+    if (!c.pf.prior_pose->allFinite()) read.fail("localizer.prior_pose", "not finite");
+  }
+  if (block.contains("planes")) read.section(block["planes"], "localizer.planes", planeFields(c.planes));
+  if (block.contains("pf")) read.section(block["pf"], "localizer.pf", pfFields(c.pf));
+  if (block.contains("sgraph")) read.section(block["sgraph"], "localizer.sgraph", sgraphFields(c.sgraph));
+  return out;
+}
+
+void recordLines(const std::string& prefix, const YAML::Node& node, std::map<std::string, int>& lines) {
+  if (!node.IsMap()) return;
+  for (const auto& kv : node) {
+    if (!kv.first.IsScalar()) continue;
+    const std::string name = prefix + "." + kv.first.Scalar();
+    lines[name] = detail::lineOf(kv.first);
+    recordLines(name, kv.second, lines);
+  }
+}
+
+nlohmann::json loadLocalizerBlock(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) throw ScenarioError(path + ": no such config file");
+  YAML::Node doc;
+  try {
+    doc = YAML::LoadFile(path);
+  } catch (const YAML::ParserException& e) {
+    detail::fail(path, e.mark.line >= 0 ? e.mark.line + 1 : 0, "YAML syntax error: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError(path + ": cannot read the config file");
+  }
+  if (!doc.IsNull() && !doc.IsMap()) detail::fail(path, detail::lineOf(doc), "expected a mapping of localizer keys");
+  std::map<std::string, int> lines;
+  recordLines("localizer", doc, lines);
+  nlohmann::json block = doc.IsNull() ? nlohmann::json::object() : detail::toJson(path, doc);
+  readLocalizerSettings(block, path, lines);
+  return block;
+}
+
+LocalizerSettings loadLocalizerConfig(const std::string& path) { return readLocalizerSettings(loadLocalizerBlock(path), path, {}); }
+
+std::vector<std::pair<std::string, std::string>> localizerKeys(const LocalizerConfig& config) {
+  LocalizerConfig c = config;  // the fields point into this copy
+  std::vector<std::pair<std::string, std::string>> out;
+  const auto add = [&out](const std::string& prefix, const std::vector<Field>& fields) {
+    for (const Field& f : fields) {
+      std::ostringstream v;
+      std::visit([&v](auto* p) { v << std::boolalpha << *p; }, f.target);
+      out.emplace_back(prefix + f.key, v.str());
+    }
+  };
+  add("", topFields(c));
+  add("planes.", planeFields(c.planes));
+  add("pf.", pfFields(c.pf));
+  add("sgraph.", sgraphFields(c.sgraph));
+  out.emplace_back("method", toString(c.method));
+  out.emplace_back("storey", "auto, or told by the caller");
+  out.emplace_back("prior_rooms", "[]");
+  out.emplace_back("prior_pose", "none; [x, y, yaw_deg]");
+  return out;
+}
+
+}  // namespace bimloc::sim
