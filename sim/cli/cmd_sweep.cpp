@@ -29,6 +29,7 @@ struct SweepArgs {
   bool json = false;
   std::string storey;            // "auto": the localizer is not told the storey
   std::string starts = "rooms";  // or "outside"
+  int rooms_per_storey = 0;      // 0: every room
   std::vector<std::string> prior_rooms;
   std::string prior_pose;
 };
@@ -44,22 +45,40 @@ double quantile(std::vector<double> v, double q) {
 
 // One row: a group of runs (a plan's storey, or all of them).
 nlohmann::json summarise(const std::string& plan, const std::string& storey, const std::vector<const ScenarioResult*>& runs) {
-  int localized = 0, false_conv = 0, errors = 0;
-  std::vector<double> times, ates, margins;
+  int localized = 0, false_conv = 0, errors = 0, losses = 0;
+  std::vector<double> times, ates, margins, rpes, map_rmses, paths;
   for (const ScenarioResult* r : runs) {
     localized += r->converged && !r->false_convergence;
     false_conv += r->false_convergence;
     errors += !r->failures.empty() && r->sim_seconds == 0;
     if (r->converged && r->convergence_time_s) times.push_back(*r->convergence_time_s);
     if (r->ate_m) ates.push_back(*r->ate_m);
+    if (r->rpe_m_per_m) rpes.push_back(*r->rpe_m_per_m);
+    if (r->map_rmse_m) map_rmses.push_back(*r->map_rmse_m);
+    paths.push_back(r->path_length_m);
+    losses += r->losses;
     if (r->convergence_margin) margins.push_back(*r->convergence_margin);
   }
   const auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   return {{"plan", plan}, {"storey", storey}, {"runs", runs.size()}, {"localized", localized}, {"false_convergences", false_conv},
           {"errors", errors}, {"median_convergence_s", num(quantile(times, 0.5))}, {"p90_convergence_s", num(quantile(times, 0.9))},
           {"max_convergence_s", num(quantile(times, 1.0))}, {"median_ate_m", num(quantile(ates, 0.5))},
-          {"max_ate_m", num(quantile(ates, 1.0))},
+          {"max_ate_m", num(quantile(ates, 1.0))}, {"median_rpe_m_per_m", num(quantile(rpes, 0.5))},
+          {"median_map_rmse_m", num(quantile(map_rmses, 0.5))}, {"losses", losses},
+          {"median_path_length_m", num(quantile(paths, 0.5))},
           {"min_accepted_margin", num(margins.empty() ? std::nan("") : *std::min_element(margins.begin(), margins.end()))}};
+}
+
+// Start rooms spread over the storey (every k-th room, with all its seeds): long walks explore
+// the whole storey from any start, so a few starts measure it.
+std::vector<Scenario> spread(const std::vector<Scenario>& all, int rooms, int seeds) {
+  const std::size_t per_room = static_cast<std::size_t>(std::max(1, seeds));
+  const std::size_t room_count = all.size() / per_room;
+  const std::size_t step = std::max<std::size_t>(1, room_count / static_cast<std::size_t>(rooms));
+  std::vector<Scenario> out;
+  for (std::size_t r = 0, taken = 0; r < room_count && static_cast<int>(taken) < rooms; r += step, ++taken)
+    for (std::size_t k = 0; k < per_room; ++k) out.push_back(all[r * per_room + k]);
+  return out;
 }
 
 std::string cell(const nlohmann::json& v, int decimals) { return v.is_null() ? "-" : fixed(v.get<double>(), decimals); }
@@ -76,7 +95,9 @@ void run(const SweepArgs& args) {
       RoomScenarioOptions o;
       o.plan = plan, o.storey = std::to_string(s), o.seeds = args.seeds, o.method = args.method, o.duration_s = args.duration_s;
       o.starts = args.starts;
-      for (auto& sc : roomScenarios(world, o)) {
+      auto generated = roomScenarios(world, o);
+      if (args.rooms_per_storey > 0) generated = spread(generated, args.rooms_per_storey, args.seeds);
+      for (auto& sc : generated) {
         // Each run on its true storey; with --storey auto the localizer is not told which.
         if (args.storey == "auto") sc.localizer["storey"] = "auto", sc.name = storeys[s].name + "/" + sc.name;
         scenarios.push_back(std::move(sc));
@@ -113,13 +134,15 @@ void run(const SweepArgs& args) {
               << "\n";
   } else {
     bimloc::cli::Table table({"plan", "storey", "runs", "localized", "false", "median [s]", "p90 [s]", "max [s]",
-                              "median ATE [m]", "max ATE [m]", "min margin"});
+                              "median ATE [m]", "max ATE [m]", "RPE [m/m]", "map RMSE [m]", "lost", "path [m]", "min margin"});
     rows.push_back(total);
     for (const auto& g : rows)
       table.add({g["plan"], g["storey"], std::to_string(g["runs"].get<int>()), std::to_string(g["localized"].get<int>()),
                  g["false_convergences"].get<int>() ? "FALSE " + std::to_string(g["false_convergences"].get<int>()) : "0",
                  cell(g["median_convergence_s"], 1), cell(g["p90_convergence_s"], 1), cell(g["max_convergence_s"], 1),
-                 cell(g["median_ate_m"], 3), cell(g["max_ate_m"], 3), cell(g["min_accepted_margin"], 1)});
+                 cell(g["median_ate_m"], 3), cell(g["max_ate_m"], 3), cell(g["median_rpe_m_per_m"], 3),
+                 cell(g["median_map_rmse_m"], 3), std::to_string(g["losses"].get<int>()), cell(g["median_path_length_m"], 0),
+                 cell(g["min_accepted_margin"], 1)});
     table.print(std::cout);
     std::cout << "\n" << total["localized"].get<int>() << " of " << all.size() << " localized, "
               << total["false_convergences"].get<int>() << " false convergences; " << fixed(wall, 0) << " s\n";
@@ -142,7 +165,12 @@ void addSweepCommand(CLI::App& app) {
   cmd->add_option("plans", args->plans, "IFC plans (or extract folders)")->required();
   cmd->add_option("--seeds", args->seeds, "seeds per room")->check(CLI::Range(1, 1000))->capture_default_str();
   cmd->add_option("--method", args->method, "sgraph (the paper: the filter, then the S-Graph tracks), pf (the filter tracks) or pf-no-rooms (the ablation)")
-      ->check(CLI::IsMember({"pf", "pf-no-rooms"}))
+      ->check(CLI::IsMember({"sgraph", "pf", "pf-no-rooms"}))
+      ->capture_default_str();
+  cmd->add_option("--rooms-per-storey", args->rooms_per_storey,
+                  "start rooms per storey, spread over it (0: every room); long walks (--duration 300) explore the "
+                  "whole storey from any start")
+      ->check(CLI::Range(0, 100000))
       ->capture_default_str();
   cmd->add_option("--duration", args->duration_s, "seconds per run")->check(CLI::Range(1.0, 3600.0))->capture_default_str();
   cmd->add_option("--storey", args->storey,

@@ -53,7 +53,7 @@ nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double
                          {"convergence_time_s", orNull(r.convergence_time_s)}, {"found_room", orNull(r.found_room)},
                          {"true_room", r.true_room}, {"position_error_m", r.position_error_m},
                          {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", orNull(r.ate_m)},
-                         {"rpe_m_per_m", orNull(r.rpe_m_per_m)}, {"losses", r.losses},
+                         {"rpe_m_per_m", orNull(r.rpe_m_per_m)}, {"map_rmse_m", orNull(r.map_rmse_m)}, {"losses", r.losses},
                          {"wall_deviations", wallsJson(r.wall_deviations)},
                          {"false_convergence", r.false_convergence}, {"convergence_margin", orNull(r.convergence_margin)},
                          {"hypotheses", placesJson(r.hypotheses)}, {"storey_auto", r.storey_auto},
@@ -80,7 +80,7 @@ void printRunTable(const std::vector<sim::ScenarioResult>& results, const nlohma
   bool any_auto = false;
   for (const auto& r : results) any_auto = any_auto || r.storey_auto;
   std::vector<std::string> header{"scenario", "method", "converged", "time [s]", "room found / true", "pos err [m]",
-                                  "yaw err [deg]", "ATE [m]", "RPE [m/m]", "lost", "false", "result"};
+                                  "yaw err [deg]", "ATE [m]", "RPE [m/m]", "map RMSE [m]", "lost", "false", "result"};
   if (any_auto) header.insert(header.begin() + 4, "storey found / true");
   Table table(header);
   for (const auto& r : results) {
@@ -88,6 +88,7 @@ void printRunTable(const std::vector<sim::ScenarioResult>& results, const nlohma
                                  r.convergence_time_s ? fixed(*r.convergence_time_s, 1) : "-",
                (r.found_room ? *r.found_room : std::string("-")) + " / " + r.true_room, fixed(r.position_error_m, 3),
                fixed(r.yaw_error_deg, 2), r.ate_m ? fixed(*r.ate_m, 3) : "-", r.rpe_m_per_m ? fixed(*r.rpe_m_per_m, 3) : "-",
+               r.map_rmse_m ? fixed(*r.map_rmse_m, 3) : "-",
                r.losses ? std::to_string(r.losses) : "", r.false_convergence ? "FALSE" : "",
                r.passed ? "pass" : "FAIL"};
     if (any_auto) {

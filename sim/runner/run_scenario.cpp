@@ -1,5 +1,6 @@
 #include "sim/runner/run_scenario.hpp"
 
+#include "sim/metrics/map_error.hpp"
 #include "sim/runner/evaluation.hpp"
 #include "sim/base/outside_rooms.hpp"
 #include "sim/base/room_lookup.hpp"
@@ -16,6 +17,7 @@ namespace bimloc::sim {
 namespace {
 
 constexpr int kClusteringUpdate = 5;  // the snapshot of the clustering particles
+constexpr int kMapErrorEvery = 10;    // turns: the map RMSE measures one scan a second
 
 // The turn's x, y, z; non-finite and out-of-range points are the plane extraction's to drop.
 std::vector<Eigen::Vector3f> scanPoints(const LidarScan& scan) {
@@ -105,6 +107,8 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
   std::size_t verdict_storey = sim.storey();     // ... and the storey it spoke of
   std::optional<pf::StoreyBankReport> last_bank;
   int updates = 0;
+  std::optional<MapError> map_error;  // on the storey the localizer converged on
+  Eigen::Isometry3d previous_truth = Eigen::Isometry3d::Identity();
   const double half_turn = 0.5 * sim.lidar().turnPeriod_s();
   for (std::size_t i = 0; i < sim.turnCount(); ++i) {
     const LidarScan scan = sim.turn(i);
@@ -119,6 +123,9 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     ++updates;
     for (const auto& w : step.warnings) r.warnings.push_back("t=" + std::to_string(t) + ": " + w);
     const Eigen::Isometry3d truth = sim.trajectory().T_map_base(t);
+    if (i > 0) r.path_length_m += (truth.translation() - previous_truth.translation()).head<2>().norm();
+    previous_truth = truth;
+    r.error_series.push_back({t, (step.T_map_base.translation() - truth.translation()).head<2>().norm(), yawErrorDeg(step.T_map_base, truth), step.state});
     if (step.filter) {
       const pf::StoreyBankReport& bank = *step.filter;
       if (r.storey_auto && bank.decided && !(last_bank && last_bank->decided)) r.storey_margin = bank.storey_margin;
@@ -130,6 +137,11 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
       if (report.path_best) last_verdict = report, verdict_storey = bank.leader;
     }
     if (snapshot && updates == kClusteringUpdate && step.state == LocalizationState::Searching) moment("clustering", t, truth);
+    if (step.storey && step.state != LocalizationState::Searching && step.state != LocalizationState::Lost &&
+        updates % kMapErrorEvery == 0) {
+      if (!map_error) map_error.emplace(building.storeys[*step.storey]);
+      map_error->add(scanPoints(scan), step.T_map_base * s.sensor.T_base_lidar);
+    }
     if (score.add(t, step, truth)) {
       if (step.filter) r.convergence_margin = step.filter->filter.path_margin;
       if (snapshot) moment("convergence", t, truth);
@@ -146,6 +158,7 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     moment("end", t_end, sim.trajectory().T_map_base(t_end));
   }
   score.finish(r);
+  if (map_error && map_error->points() > 0) r.map_rmse_m = map_error->rmse_m();
   if (const sgraph::SGraphTracker* tracker = localizer->tracker()) r.wall_deviations = tracker->wallDeviations();
   r.sim_seconds = static_cast<double>(sim.turnCount()) * sim.lidar().turnPeriod_s();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

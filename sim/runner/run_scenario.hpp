@@ -53,6 +53,9 @@ struct ScenarioResult {
   // convergence (m per metre travelled); unset when the robot walked less than that.
   std::optional<double> rpe_m_per_m;
   int losses = 0;                         // losses of track after convergence
+  // The scans after convergence (one a second, every 20th point), placed with the estimate,
+  // against the plan's storey mesh: the paper's "point cloud RMSE", no ground truth needed.
+  std::optional<double> map_rmse_m;
   // The S-Graph's estimate of each plan wall it observed: its offset from the plan position.
   std::vector<sgraph::WallDeviation> wall_deviations;
   bool false_convergence = false;         // converged while > 0.5 m or > 10 deg off, at any time after
@@ -69,6 +72,13 @@ struct ScenarioResult {
   std::vector<std::string> failures;      // why it did not pass
   std::vector<std::string> warnings;
   double sim_seconds = 0, wall_seconds = 0;
+  double path_length_m = 0;  // the robot's true path in the plane
+  // The error of the localizer's estimate at every step (for plots; not in the JSON).
+  struct ErrorSample {
+    double time_s = 0, position_m = 0, yaw_deg = 0;
+    LocalizationState state = LocalizationState::Searching;
+  };
+  std::vector<ErrorSample> error_series;
   // Wall seconds the localizer's steps took in each simulated minute (the last one partial).
   std::vector<double> localizer_seconds_by_minute;
 };
