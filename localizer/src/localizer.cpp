@@ -38,7 +38,7 @@ Eigen::Matrix3d particleCovariance(const pf::ParticleFilter& filter) {
   mean.z() = std::atan2(s, c);
   for (const auto& p : particles) {
     const double w = std::exp(p.log_weight - top) / sum;
-    const Eigen::Vector3d e(p.x - mean.x(), p.y - mean.y(), std::remainder(p.yaw - mean.z(), 2 * M_PI));
+    const Eigen::Vector3d e(p.x - mean.x(), p.y - mean.y(), wrapAngle(p.yaw - mean.z()));
     cov += w * e * e.transpose();
   }
   return cov;

@@ -1,5 +1,6 @@
 #include "sim/base/motion_profile.hpp"
 
+#include <bimloc/geometry/planar_pose.hpp>
 #include <algorithm>
 #include <cmath>
 
@@ -11,7 +12,7 @@ constexpr double kFloorStep_m = 0.25;
 constexpr double kMinTurn_rad = 1e-6;
 constexpr double kMinMove_m = 1e-6;
 
-double wrapAngle(double a) { return std::remainder(a, 2.0 * M_PI); }  // (-pi, pi]
+using bimloc::wrapAngle;
 
 }  // namespace
 

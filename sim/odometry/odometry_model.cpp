@@ -7,7 +7,7 @@
 namespace bimloc::sim {
 namespace {
 
-double wrap(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+double wrap(double a) { return bimloc::wrapAngle(a); }
 
 Eigen::Vector3d planar(const Eigen::Isometry3d& T) {
   const Eigen::Vector3d x = T.linear().col(0);

@@ -21,8 +21,7 @@ std::string trueRoom(const bim::Storey& storey, const Eigen::Isometry3d& truth) 
 }  // namespace
 
 double yawErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  const double d = yawOf(a.linear()) - yawOf(b.linear());
-  return std::abs(std::atan2(std::sin(d), std::cos(d))) * 180.0 / M_PI;
+  return std::abs(wrapAngle(yawOf(a.linear()) - yawOf(b.linear()))) * 180.0 / M_PI;
 }
 
 bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth) {

@@ -22,9 +22,7 @@ namespace bimloc::pf {
 namespace detail {
 
 // The rotation without its yaw: roll and pitch.
-inline Eigen::Matrix3d tiltOf(const Eigen::Matrix3d& R) {
-  return Eigen::AngleAxisd(-yawOf(R), Eigen::Vector3d::UnitZ()).toRotationMatrix() * R;
-}
+using bimloc::tiltOf;  // geometry/planar_pose.hpp
 
 }  // namespace detail
 

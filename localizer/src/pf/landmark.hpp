@@ -2,6 +2,8 @@
 // elevation, d), with its extent along the floor.
 #pragma once
 
+#include <bimloc/geometry/planar_pose.hpp>
+
 #include <bimloc/bim/building.hpp>
 
 #include <Eigen/Core>
@@ -24,17 +26,6 @@ struct Landmark {
 };
 
 Landmark makeLandmark(const bim::WallFace& face, int id = -1);
-// Into [-pi, pi]. The filter's inner loops call it for every particle, observation and
-// landmark: a branch instead of atan2(sin, cos).
-inline double wrapAngle(double a) {
-  if (a > M_PI) {
-    a -= 2.0 * M_PI;
-    if (a > M_PI) a = std::remainder(a, 2.0 * M_PI);
-  } else if (a < -M_PI) {
-    a += 2.0 * M_PI;
-    if (a < -M_PI) a = std::remainder(a, 2.0 * M_PI);
-  }
-  return a;
-}
+using bimloc::wrapAngle;  // geometry/planar_pose.hpp
 
 }  // namespace bimloc::pf::detail

@@ -10,16 +10,6 @@
 
 namespace bimloc::pf::detail {
 
-Pose2 compose(const Pose2& a, const Pose2& b) {
-  const double c = std::cos(a.z()), s = std::sin(a.z());
-  return {a.x() + c * b.x() - s * b.y(), a.y() + s * b.x() + c * b.y(), wrapAngle(a.z() + b.z())};
-}
-
-Pose2 inverse(const Pose2& a) {
-  const double c = std::cos(a.z()), s = std::sin(a.z());
-  return {-c * a.x() - s * a.y(), s * a.x() - c * a.y(), -a.z()};
-}
-
 namespace {
 
 // Farther than this from the best, a candidate is another place: the false-convergence bounds.

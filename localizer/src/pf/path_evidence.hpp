@@ -21,8 +21,8 @@ namespace bimloc::pf::detail {
 // x, y, yaw: a planar pose or transform. The filter works in the plane; tilt and height are
 // the odometry's (see ParticleFilter::poseOf).
 using Pose2 = Eigen::Vector3d;
-Pose2 compose(const Pose2& a, const Pose2& b);  // a (+) b
-Pose2 inverse(const Pose2& a);
+using bimloc::compose;  // geometry/planar_pose.hpp
+using bimloc::inverse;
 // Within `metres` and `radians` of each other.
 bool near(const Pose2& a, const Pose2& b, double metres, double radians);
 // An observation of an earlier scan, seen from the base's frame now: `rel` is that scan's base

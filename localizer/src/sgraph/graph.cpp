@@ -6,21 +6,6 @@
 
 namespace bimloc::sgraph::detail {
 
-Eigen::Vector3d compose(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const double c = std::cos(a.z()), s = std::sin(a.z());
-  return {a.x() + c * b.x() - s * b.y(), a.y() + s * b.x() + c * b.y(), wrapAngle(a.z() + b.z())};
-}
-
-Eigen::Vector3d between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const double c = std::cos(a.z()), s = std::sin(a.z());
-  const double dx = b.x() - a.x(), dy = b.y() - a.y();
-  return {c * dx + s * dy, -s * dx + c * dy, wrapAngle(b.z() - a.z())};
-}
-
-Eigen::Matrix3d tiltOf(const Eigen::Matrix3d& R) {
-  return Eigen::AngleAxisd(-yawOf(R), Eigen::Vector3d::UnitZ()).toRotationMatrix() * R;
-}
-
 Eigen::Isometry3d Keyframe::T_map_base() const {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = Eigen::AngleAxisd(pose[2], Eigen::Vector3d::UnitZ()).toRotationMatrix() * tilt;

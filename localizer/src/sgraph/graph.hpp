@@ -18,11 +18,9 @@
 
 namespace bimloc::sgraph::detail {
 
-// x, y, yaw composition of planar poses.
-Eigen::Vector3d compose(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
-Eigen::Vector3d between(const Eigen::Vector3d& a, const Eigen::Vector3d& b);  // a^-1 * b
-// The rotation without its yaw: roll and pitch.
-Eigen::Matrix3d tiltOf(const Eigen::Matrix3d& R);
+using bimloc::between;  // geometry/planar_pose.hpp
+using bimloc::compose;
+using bimloc::tiltOf;
 
 // One keyframe-plane factor: an observed plane and the face it was associated with.
 struct PlaneMeasurement {

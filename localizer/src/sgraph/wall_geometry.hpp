@@ -15,17 +15,14 @@
 // held at zero.
 #pragma once
 
+#include <bimloc/geometry/planar_pose.hpp>
+
 #include <Eigen/Core>
 #include <cmath>
 
 namespace bimloc::sgraph::detail {
 
-// Into (-pi, pi], for doubles and Ceres jets alike.
-template <typename T>
-T wrapAngle(const T& a) {
-  using std::atan2, std::cos, std::sin;
-  return atan2(sin(a), cos(a));
-}
+using bimloc::wrapAngle;  // doubles and Ceres jets: geometry/planar_pose.hpp
 
 // What one face of a node needs to give its plane: constants of the plan, and which side.
 struct FaceGeometry {
