@@ -114,11 +114,21 @@ TEST(RenderGraph, ARoomNodeAndItsEdgeToAWall) {
   const sim::SnapshotOptions options;
   const sim::Image image = sim::renderSnapshotImage(scene, options);
   const auto want = bytes(sim::render::roomNodeColour());
-  for (const double f : {0.0, 0.5, 0.8, 1.0}) {
+  for (const double f : {0.5, 0.8, 1.0}) {
     const Eigen::Vector2d p = kRoomNode + f * (kRoomWallPoint - kRoomNode);
     expectColour(pixelAt(image, sim::worldToPixel(scene, options, p.x(), p.y())), want, "room edge at " + std::to_string(f));
   }
   EXPECT_GT(pixelAt(image, sim::worldToPixel(scene, options, 6.62, 8.8)).r, 200);  // beside the edge
+  // The node is a ring around its centre (the room's name stays legible inside): going left
+  // from the centre, away from the edge, the white middle, then the ring's colour.
+  const Eigen::Vector2d centre = sim::worldToPixel(scene, options, kRoomNode.x(), kRoomNode.y());
+  EXPECT_GT(pixelAt(image, centre).g, 200);
+  int ring = 0;
+  for (int dx = 1; dx <= 16; ++dx) {
+    const test::Rgb c = pixelAt(image, centre - Eigen::Vector2d(dx, 0));
+    ring += std::abs(c.r - want[0]) <= 10 && std::abs(c.g - want[1]) <= 10 && std::abs(c.b - want[2]) <= 10;
+  }
+  EXPECT_GE(ring, 2) << "no ring of the room node's colour left of its centre";
 }
 
 TEST(RenderGraph, WithoutAPlanTheViewFitsTheKeyframes) {

@@ -6,6 +6,7 @@
 #include "sim/render/error_plot_ticks.hpp"
 #include "sim/render/font.hpp"
 #include "sim/render/gl_context.hpp"
+#include "sim/render/legend.hpp"
 #include "sim/render/png_write.hpp"
 #include "sim/world/atomic_file.hpp"
 
@@ -111,33 +112,34 @@ void convergenceLine(const ErrorPlotData& data, const ErrorPlotPanel& p, double 
   render::segment({x, p.y0}, {x, p.y1}, 1.5 * s, hex(kErrorPlotConvergenceRgb));
 }
 
-// Title on the left; on the right what the shading and the vertical line mean.
+// The title, and under it what the vertical line and the shading mean (a row of their own: a
+// long scenario name would run into them).
 void header(const ErrorPlotData& data, const ErrorPlotLayout& l) {
   const int s = l.text_scale, big = s + 1;
-  const double y = l.pad + 0.5 * s, line = render::kLineHeight * s;
-  double x = l.width - 3 * l.pad;
+  render::drawText(l.position.x0, l.pad, render::fitText(data.title, big, l.position.x1 - l.position.x0), big, kInk);
+  const double y = l.pad * 2 + render::kLineHeight * big, line = render::kLineHeight * s;
+  double x = l.position.x0;
   const auto item = [&](const std::string& label, const auto& symbol) {
-    x -= render::textWidth(label, s);
-    render::drawText(x, y + s, label, s, kInk);
-    x -= 2.6 * line;
-    symbol(render::Rect{x + 0.3 * line, y + 0.5 * s, x + 2.1 * line, y + 1.5 * s + line});
+    symbol(render::Rect{x, y - 0.5 * s, x + 1.8 * line, y + line - 1.5 * s});
+    x += 2.3 * line;
+    render::drawText(x, y, label, s, kInk);
+    x += render::textWidth(label, s) + 2 * line;
   };
-  const auto swatch = [](ErrorPlotState state) {
-    return [state](const render::Rect& r) {
-      render::fillRect(r, stateColour(state));
-      render::strokeRect(r, 1, kGrid);
-    };
-  };
-  item("lost", swatch(ErrorPlotState::Lost));
-  item("tracking", swatch(ErrorPlotState::Tracking));
-  item("searching", swatch(ErrorPlotState::Searching));
   const std::string converged =
       data.convergence_time_s ? "converged at " + format("%.1f s", *data.convergence_time_s) : "not converged";
   item(converged, [&](const render::Rect& r) {
     if (data.convergence_time_s)
       render::segment({0.5 * (r.x0 + r.x1), r.y0}, {0.5 * (r.x0 + r.x1), r.y1}, 1.5 * s, hex(kErrorPlotConvergenceRgb));
   });
-  render::drawText(2 * l.pad, y, data.title, big, kInk);
+  const auto swatch = [](ErrorPlotState state) {
+    return [state](const render::Rect& r) {
+      render::fillRect(r, stateColour(state));
+      render::strokeRect(r, 1, kGrid);
+    };
+  };
+  item("searching", swatch(ErrorPlotState::Searching));
+  item("tracking", swatch(ErrorPlotState::Tracking));
+  item("lost", swatch(ErrorPlotState::Lost));
 }
 
 }  // namespace
@@ -151,8 +153,10 @@ Image renderErrorPlotImage(const ErrorPlotData& data, const ErrorPlotOptions& op
       grid(*p, l.time_ticks, s);
       convergenceLine(data, *p, s);
     }
-    curve(data, l.position, false, hex(kErrorPlotPositionRgb), 2.0 * s);
-    curve(data, l.yaw, true, hex(kErrorPlotYawRgb), 2.0 * s);
+    // At least two pixels: the pixel under a point of the curve is wholly its colour.
+    const double width = std::max(2.0, 1.4 * s);
+    curve(data, l.position, false, hex(kErrorPlotPositionRgb), width);
+    curve(data, l.yaw, true, hex(kErrorPlotYawRgb), width);
     // A curve's end may poke over its panel's edge: the margins are painted after it.
     render::fillRect({0, 0, static_cast<double>(l.width), l.position.y0 - 1}, hex(0xffffff));
     render::fillRect({0, l.position.y1 + 1, static_cast<double>(l.width), l.yaw.y0 - 1}, hex(0xffffff));

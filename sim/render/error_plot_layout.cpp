@@ -81,7 +81,7 @@ ErrorPlotLayout errorPlotLayout(const ErrorPlotData& data, const ErrorPlotOption
     for (const double v : render::decades(panel->value_min, panel->value_max))
       label_w = std::max(label_w, render::textWidth(render::decadeLabel(v), s));
   const double left = label_w + 3 * l.pad, right = l.width - 3 * l.pad;
-  const double header = render::kLineHeight * (s + 1) + 2 * l.pad;
+  const double header = render::kLineHeight * (s + 1) + line + 3 * l.pad;  // title, then the key to the shading
   const double name = line + l.pad;  // a panel's name above it
   const double bottom = 2 * line + 3 * l.pad;
   const double panel_h = std::max(8.0, (l.height - header - 2 * name - 2 * l.pad - bottom) / 2);

@@ -37,6 +37,7 @@ void roomSymbol(const Eigen::Vector2d& c, double w, int s) {
   segment(c, c + Eigen::Vector2d(0.5 * w, 0), 1.0 * s, roomNodeColour());
   fillDisc(c, 4.2 * s, hex(0xffffff));
   fillDisc(c, 3.4 * s, roomNodeColour());
+  fillDisc(c, 1.8 * s, hex(0xffffff));
 }
 
 }  // namespace
@@ -56,8 +57,10 @@ void drawGraphStructure(const SnapshotGraph& graph, const Layout& layout) {
     if (!finite(room.centre)) continue;
     for (const auto& p : room.wall_points)
       if (finite(p)) fillDisc(layout.toPixel(p), 2.2 * s, edge);
-    fillDisc(layout.toPixel(room.centre), 6.0 * s, hex(0xffffff));
-    fillDisc(layout.toPixel(room.centre), 5.0 * s, roomNodeColour());
+    // A ring: the room's name, drawn next, stays legible inside it.
+    fillDisc(layout.toPixel(room.centre), 7.0 * s, hex(0xffffff));
+    fillDisc(layout.toPixel(room.centre), 6.0 * s, roomNodeColour());
+    fillDisc(layout.toPixel(room.centre), 3.5 * s, hex(0xffffff));
   }
 }
 
@@ -78,10 +81,13 @@ void drawKeyframePath(const SnapshotGraph& graph, const Layout& layout) {
 
 void graphLegendSection(Cursor& at, const SnapshotGraph& graph) {
   at.heading("S-Graph");
-  const double symbol_w = 18.0 * at.s;
-  const auto item = [&](const std::string& label, std::size_t count, auto symbol) {
+  const double symbol_w = 22.0 * at.s;
+  // `label`, or `short_label` in a narrow column (below the plan, beside four others).
+  const auto item = [&](const std::string& label, const std::string& short_label, std::size_t count, auto symbol) {
     symbol(Eigen::Vector2d(at.x + 0.4 * symbol_w, at.y + 0.4 * at.line()), 0.7 * symbol_w, at.s);
-    at.text(label + " " + std::to_string(count), legendInk(), symbol_w);
+    const std::string n = " " + std::to_string(count);
+    const bool fits = symbol_w + textWidth(label + n, at.s) <= at.width;
+    at.text((fits ? label : short_label) + n, legendInk(), symbol_w);
     at.y += 0.3 * at.line();
   };
   const auto bar = [](const Colour& colour) {
@@ -89,10 +95,10 @@ void graphLegendSection(Cursor& at, const SnapshotGraph& graph) {
       segment(c - Eigen::Vector2d(0.5 * w, 0), c + Eigen::Vector2d(0.5 * w, 0), 3.0 * s, colour);
     };
   };
-  item("keyframes", graph.keyframes.size(), pathSymbol);
-  item("plan walls", graph.matched_walls.size(), bar(matchedWallColour()));
-  item("new planes", graph.new_planes.size(), bar(newPlaneColour()));
-  item("rooms", graph.rooms.size(), roomSymbol);
+  item("keyframes", "keyframes", graph.keyframes.size(), pathSymbol);
+  item("plan walls", "matched", graph.matched_walls.size(), bar(matchedWallColour()));
+  item("new planes", "new planes", graph.new_planes.size(), bar(newPlaneColour()));
+  item("rooms", "rooms", graph.rooms.size(), roomSymbol);
 }
 
 }  // namespace bimloc::sim::render

@@ -1,5 +1,5 @@
-// The layers of a snapshot, painted back to front: plan, the S-Graph's walls and rooms,
-// particles, its keyframe path, poses, header, legend.
+// The layers of a snapshot, painted back to front: plan, the S-Graph's walls and rooms, room
+// names, particles, its keyframe path, poses, header, legend.
 #pragma once
 
 #include "sim/render/draw.hpp"
@@ -29,7 +29,9 @@ struct WeightRange {
 };
 WeightRange weightRange(const std::vector<SnapshotParticle>& particles);
 
-void drawPlan(const bim::Storey& storey, const Layout& layout);
+void drawPlan(const bim::Storey& storey, const Layout& layout);  // floors and walls
+// The rooms' names, after the graph's room nodes (drawn as rings, so a name stays legible).
+void drawRoomLabels(const bim::Storey& storey, const Layout& layout);
 void drawParticles(const std::vector<SnapshotParticle>& particles, const WeightRange& range, const Layout& layout);
 // A pose marker: a dot at the position and an arrow along the heading (`dir`, pixels).
 void drawPoseMarker(const Eigen::Vector2d& pixel, const Eigen::Vector2d& dir, const Colour& colour, int scale);

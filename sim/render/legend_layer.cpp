@@ -161,22 +161,30 @@ void drawLegend(const SnapshotScene& scene, const WeightRange& range, const Layo
   const Rect& p = layout.panel;
   Rect area = layout.legend_below ? Rect{p.x0 + 2 * pad, p.y0 + pad, p.x1 - 2 * pad, p.y1 - pad}
                                   : Rect{p.x0 + pad, p.y0 + 2 * pad, p.x1 - 2 * pad, p.y1 - 2 * pad};
-  const double plan_x1 = layout.toPixel(layout.world_max).x();
-  if (layout.legend_below && plan_x1 - layout.origin.x() >= 0.6 * area.width()) {  // flush with the plan
-    area.x0 = layout.origin.x();
-    area.x1 = plan_x1;
-  }
-  const double inner_w = area.width() - 4 * pad;
   // Below the plan: columns (weight | pose | scale | graph | extras, those that do not fit as
   // their own column under the scale) of at most a panel's width each; beside it: one column.
-  const auto width_of = [&](int n) { return std::min((inner_w - (n - 1) * 3 * pad) / n, 19.0 * kAdvance * s); };
+  // The box is flush with the plan when its columns fit there, else as wide as the panel.
+  const auto width_of = [&](const Rect& a, int n) {
+    return std::min((a.width() - 4 * pad - (n - 1) * 3 * pad) / n, 19.0 * kAdvance * s);
+  };
+  const auto fits = [&](const Rect& a, int n) { return width_of(a, n) >= 15.0 * kAdvance * s; };
   const int optional_sections = (scene.graph ? 1 : 0) + (scene.legend_extra.empty() ? 0 : 1);
   int own_columns = 0;  // optional sections with a column of their own
-  if (layout.legend_below)
-    for (int k = optional_sections; k > 0 && own_columns == 0; --k)
-      if (width_of(3 + k) >= 15.0 * kAdvance * s) own_columns = k;
+  if (layout.legend_below) {
+    Rect flush = area;
+    flush.x0 = layout.origin.x();
+    flush.x1 = layout.toPixel(layout.world_max).x();
+    const bool can_flush = flush.width() >= 0.6 * area.width();
+    for (int k = optional_sections; k >= 0; --k) {
+      if (can_flush && (k == 0 || fits(flush, 3 + k))) area = flush;
+      if (k == 0 || fits(area, 3 + k)) {
+        own_columns = k;
+        break;
+      }
+    }
+  }
   const int columns = layout.legend_below ? 3 + own_columns : 1;
-  const double column_w = width_of(columns);
+  const double column_w = width_of(area, columns);
   const auto column = [&](int i) {
     return Cursor{area.x0 + 2 * pad + i * (column_w + 3 * pad), area.y0 + 2 * pad, column_w, s};
   };

@@ -16,6 +16,7 @@ Image renderSnapshotImage(const SnapshotScene& scene, const SnapshotOptions& opt
   return render::renderOffscreen(layout.width, layout.height, [&] {
     if (scene.storey) render::drawPlan(*scene.storey, layout);
     if (scene.graph) render::drawGraphStructure(*scene.graph, layout);
+    if (scene.storey) render::drawRoomLabels(*scene.storey, layout);
     render::drawParticles(scene.particles, range, layout);
     if (scene.graph) render::drawKeyframePath(*scene.graph, layout);
     render::drawPoses(scene, layout);
