@@ -86,7 +86,8 @@ void graphLegendSection(Cursor& at, const SnapshotGraph& graph) {
   const auto item = [&](const std::string& label, const std::string& short_label, std::size_t count, auto symbol) {
     symbol(Eigen::Vector2d(at.x + 0.4 * symbol_w, at.y + 0.4 * at.line()), 0.7 * symbol_w, at.s);
     const std::string n = " " + std::to_string(count);
-    const bool fits = symbol_w + textWidth(label + n, at.s) <= at.width;
+    // Room for three digits whatever the count: the same words in every picture of a run.
+    const bool fits = symbol_w + textWidth(label + " 999", at.s) <= at.width;
     at.text((fits ? label : short_label) + n, legendInk(), symbol_w);
     at.y += 0.3 * at.line();
   };
