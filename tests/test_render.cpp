@@ -1,5 +1,6 @@
 // Snapshots of the particle filter: rendered off-screen (OSMesa), checked pixel by pixel
 // against the plan, and written as PNG files read back by libpng.
+#include "render_fixtures.hpp"
 #include "test_support.hpp"
 
 #include "sim/render/colormap.hpp"
@@ -7,12 +8,9 @@
 #include "sim/world/world.hpp"
 
 #include <gtest/gtest.h>
-#include <png.h>
 
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <map>
 #include <random>
 #include <set>
 #include <thread>
@@ -22,15 +20,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const bim::Building& plan(const std::string& name) {
-  static std::map<std::string, sim::World> worlds;  // extracted once for all the tests
-  auto it = worlds.find(name);
-  if (it == worlds.end())
-    it = worlds.emplace(name, sim::World::fromPlan(std::string(BIMLOC_WORLDS_DIR) + "/" + name + ".ifc")).first;
-  return it->second.building();
-}
-
-const bim::Storey& office() { return plan("site_office").storeys.at(0); }
+const bim::Building& plan(const std::string& name) { return test::renderPlan(name); }
+const bim::Storey& office() { return test::officeStorey(); }
 
 sim::SnapshotScene officeScene() {
   sim::SnapshotScene scene;
@@ -41,48 +32,18 @@ sim::SnapshotScene officeScene() {
   return scene;
 }
 
-struct Rgb {
-  int r = 0, g = 0, b = 0;
-};
-
-Rgb pixelAt(const sim::Image& image, const Eigen::Vector2d& px) {
-  const int x = static_cast<int>(std::floor(px.x())), y = static_cast<int>(std::floor(px.y()));
-  EXPECT_TRUE(x >= 0 && y >= 0 && x < image.width && y < image.height) << "pixel " << x << "," << y << " off the image";
-  if (x < 0 || y < 0 || x >= image.width || y >= image.height) return {};
-  const std::uint8_t* p = &image.rgb[(static_cast<std::size_t>(y) * image.width + x) * 3];
-  return {p[0], p[1], p[2]};
-}
+using test::expectColour;
+using test::pixelAt;
+using test::readPng;
+using test::Rgb;
 
 bool wallDark(const Rgb& c) { return c.r < 90 && c.g < 90 && c.b < 90; }
-
-void expectColour(const Rgb& got, const std::array<std::uint8_t, 3>& want, const std::string& what) {
-  EXPECT_NEAR(got.r, want[0], 10) << what;
-  EXPECT_NEAR(got.g, want[1], 10) << what;
-  EXPECT_NEAR(got.b, want[2], 10) << what;
-}
 
 // A point in the room's lower third: inside the room, well away from its name at the centre.
 Eigen::Vector2d awayFromLabel(const bim::Room& room) {
   double lo = room.centre.y(), hi = lo;
   for (const auto& p : room.footprint) lo = std::min(lo, p.y()), hi = std::max(hi, p.y());
   return {room.centre.x(), lo + 0.25 * (hi - lo)};
-}
-
-sim::Image readPng(const std::string& path) {
-  png_image png;
-  std::memset(&png, 0, sizeof png);
-  png.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&png, path.c_str())) {
-    ADD_FAILURE() << path << ": " << png.message;
-    return {};
-  }
-  png.format = PNG_FORMAT_RGB;
-  sim::Image image;
-  image.width = static_cast<int>(png.width);
-  image.height = static_cast<int>(png.height);
-  image.rgb.resize(PNG_IMAGE_SIZE(png));
-  if (!png_image_finish_read(&png, nullptr, image.rgb.data(), 0, nullptr)) ADD_FAILURE() << path << ": " << png.message;
-  return image;
 }
 
 // Particles like the filter's over one run on the office: spread over every room, then in

@@ -59,6 +59,14 @@ TEST(Run, JsonIsTheDocumentedObjectAndJobsDoNotChangeIt) {
   std::size_t pngs = 0;
   for (const auto& e : fs::recursive_directory_iterator(dir + "/snaps")) pngs += e.path().extension() == ".png";
   EXPECT_GE(pngs, 4u);
+  // The S-Graph tracked: each run also has its last picture (the graph) and its error plot.
+  for (const char* name : {"a", "b"}) {
+    const fs::path run = fs::path(dir) / "snaps" / name;
+    EXPECT_TRUE(fs::is_regular_file(run / "errors.png")) << run;
+    bool end = false;
+    for (const auto& e : fs::directory_iterator(run)) end |= e.path().filename().string().find("_end.png") != std::string::npos;
+    EXPECT_TRUE(end) << run << ": no end snapshot";
+  }
 }
 
 TEST(Run, FailingExpectationsGiveANonZeroExit) {

@@ -43,6 +43,7 @@ ScenarioResult runOne(const Scenario& s, WorldCache& worlds, const RunPoolOption
   std::vector<TraceRow>* trace = options.trace.empty() ? nullptr : &rows;
   const auto traced = [&](ScenarioResult r) {
     if (trace) writeTrace(options.trace, s.name, rows);
+    if (!options.snapshots.empty()) writeErrorPlot(options.snapshots, s.name, r);  // next to the snapshots
     return r;
   };
   return traced(runChecked(s, world, room_mode, hook, trace));

@@ -1,7 +1,9 @@
 // The runner's snapshot hook: top-view PNGs of the particle filter at initialization, while
-// the particles cluster, and at convergence, written into OUT/<scenario>/.
+// the particles cluster, and at convergence, with the S-Graph once it tracks, written into
+// OUT/<scenario>/; and the run's error plot next to them.
 #pragma once
 
+#include "sim/render/snapshot.hpp"
 #include "sim/runner/run_scenario.hpp"
 
 #include <string>
@@ -11,6 +13,13 @@ namespace bimloc::cli {
 // The scenario's name as a file or folder name: letters, digits and '-', the rest '_'.
 std::string fileSafe(const std::string& name);
 
+// The tracker's graph as the picture draws it (`storey`: the tracker's, whose walls its
+// indices name).
+sim::SnapshotGraph snapshotGraph(const sgraph::SGraphTracker& tracker, const bim::Storey& storey);
+
 sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& scenario, const std::string& out_dir);
+
+// OUT/<scenario>/errors.png: position and yaw error over the run (nothing for a run with no step).
+void writeErrorPlot(const std::string& out_dir, const std::string& scenario_name, const sim::ScenarioResult& result);
 
 }  // namespace bimloc::cli

@@ -29,7 +29,8 @@ struct Box {
 };
 
 // The storey's rooms and walls; without them (no storey, or a mesh-only world) whatever the
-// scene shows, so a snapshot of the filter alone still frames its particles.
+// scene shows (particles, poses, keyframes), so a snapshot of the filter alone still frames
+// its particles.
 Box contentBox(const SnapshotScene& scene) {
   Box box;
   if (scene.storey) {
@@ -45,6 +46,8 @@ Box contentBox(const SnapshotScene& scene) {
     for (const auto& p : scene.particles) box.add(p.x, p.y);
     if (scene.truth) box.add(scene.truth->x(), scene.truth->y());
     if (scene.estimate) box.add(scene.estimate->x(), scene.estimate->y());
+    if (scene.graph)
+      for (const auto& k : scene.graph->keyframes) box.add(k.x(), k.y());
   }
   if (box.empty()) box.add(0, 0);
   return box;

@@ -2,6 +2,7 @@
 
 #include "sim/render/colormap.hpp"
 #include "sim/render/font.hpp"
+#include "sim/render/legend.hpp"
 
 #include <GL/gl.h>
 
@@ -12,27 +13,14 @@ namespace bimloc::sim::render {
 
 namespace {
 
-const Colour kInk = hex(0x222222);
-const Colour kMuted = hex(0x6b6b6b);
+const Colour kInk = legendInk();
+const Colour kMuted = legendMuted();
 const Colour kRule = hex(0xcfcfcf);
 
 std::string format(const char* fmt, double value) {
   char buf[64];
   std::snprintf(buf, sizeof buf, fmt, value);
   return buf;
-}
-
-// The text cut to max_px, with "..." where it was cut.
-std::string fit(const std::string& text, int scale, double max_px) {
-  if (textWidth(text, scale) <= max_px) return text;
-  const std::size_t keep = static_cast<std::size_t>(std::max(0.0, max_px / (kAdvance * scale) - 3));
-  // Cut after `keep` code points: UTF-8 continuation bytes (10xxxxxx) do not start one.
-  std::size_t end = 0, count = 0;
-  while (end < text.size()) {
-    if ((static_cast<unsigned char>(text[end]) & 0xC0) != 0x80 && count++ == keep) break;
-    ++end;
-  }
-  return text.substr(0, end) + "...";
 }
 
 // The largest round length that fits in max_px at this zoom.
@@ -42,23 +30,6 @@ double scaleBarMetres(double max_px, double px_per_m) {
     if (m * px_per_m <= max_px) best = m;
   return best;
 }
-
-// Lays out the panel's lines from top to bottom.
-struct Cursor {
-  double x, y, width;
-  int s;
-  double line() const { return kLineHeight * s; }
-  void heading(const std::string& text) {
-    drawText(x, y, fit(text, s, width), s, kInk);
-    drawText(x + 1, y, fit(text, s, width), s, kInk);  // a pixel to the right: bold
-    y += line() + 2 * s;
-  }
-  void text(const std::string& text, const Colour& colour = kMuted, double indent = 0) {
-    drawText(x + indent, y, fit(text, s, width - indent), s, colour);
-    y += line();
-  }
-  void gap() { y += 0.9 * line(); }
-};
 
 void weightSection(Cursor& at, const WeightRange& range) {
   at.heading(textWidth("Particle weight", at.s) <= at.width ? "Particle weight" : "Weight");
@@ -125,6 +96,29 @@ void scaleSection(Cursor& at, const Layout& layout) {
 
 }  // namespace
 
+std::string fitText(const std::string& text, int scale, double max_px) {
+  if (textWidth(text, scale) <= max_px) return text;
+  const std::size_t keep = static_cast<std::size_t>(std::max(0.0, max_px / (kAdvance * scale) - 3));
+  // Cut after `keep` code points: UTF-8 continuation bytes (10xxxxxx) do not start one.
+  std::size_t end = 0, count = 0;
+  while (end < text.size()) {
+    if ((static_cast<unsigned char>(text[end]) & 0xC0) != 0x80 && count++ == keep) break;
+    ++end;
+  }
+  return text.substr(0, end) + "...";
+}
+
+void Cursor::heading(const std::string& text) {
+  drawText(x, y, fitText(text, s, width), s, legendInk());
+  drawText(x + 1, y, fitText(text, s, width), s, legendInk());  // a pixel to the right: bold
+  y += line() + 2 * s;
+}
+
+void Cursor::text(const std::string& text, const Colour& colour, double indent) {
+  drawText(x + indent, y, fitText(text, s, width - indent), s, colour);
+  y += line();
+}
+
 void drawHeader(const SnapshotScene& scene, const Layout& layout) {
   const Rect& r = layout.header;
   fillRect(r, hex(0xffffff));
@@ -144,7 +138,7 @@ void drawHeader(const SnapshotScene& scene, const Layout& layout) {
     right = badge.x0;
   }
   const double title_w = right - 4 * layout.pad;
-  drawText(2 * layout.pad, baseline_y, fit(scene.title, big, title_w), big, kInk);
+  drawText(2 * layout.pad, baseline_y, fitText(scene.title, big, title_w), big, kInk);
 }
 
 void extraSection(Cursor& at, const SnapshotScene& scene, double bottom) {
@@ -152,7 +146,7 @@ void extraSection(Cursor& at, const SnapshotScene& scene, double bottom) {
     if (at.y + 2 * at.line() > bottom) break;  // out of room: the panel is not a log
     const std::string k = key.empty() ? "" : key + ": ";
     double indent = k.empty() ? 0 : textWidth(k, at.s) + at.s;  // the space after the colon
-    if (!k.empty()) drawText(at.x, at.y, fit(k, at.s, at.width), at.s, kMuted);
+    if (!k.empty()) drawText(at.x, at.y, fitText(k, at.s, at.width), at.s, kMuted);
     if (indent + textWidth(value, at.s) > at.width) {  // a long value goes on its own line
       at.y += at.line();
       indent = 2 * kAdvance * at.s;
@@ -167,19 +161,30 @@ void drawLegend(const SnapshotScene& scene, const WeightRange& range, const Layo
   const Rect& p = layout.panel;
   Rect area = layout.legend_below ? Rect{p.x0 + 2 * pad, p.y0 + pad, p.x1 - 2 * pad, p.y1 - pad}
                                   : Rect{p.x0 + pad, p.y0 + 2 * pad, p.x1 - 2 * pad, p.y1 - 2 * pad};
-  const double plan_x1 = layout.toPixel(layout.world_max).x();
-  if (layout.legend_below && plan_x1 - layout.origin.x() >= 0.6 * area.width()) {  // flush with the plan
-    area.x0 = layout.origin.x();
-    area.x1 = plan_x1;
+  // Below the plan: columns (weight | pose | scale | graph | extras, those that do not fit as
+  // their own column under the scale) of at most a panel's width each; beside it: one column.
+  // The box is flush with the plan when its columns fit there, else as wide as the panel.
+  const auto width_of = [&](const Rect& a, int n) {
+    return std::min((a.width() - 4 * pad - (n - 1) * 3 * pad) / n, 19.0 * kAdvance * s);
+  };
+  const auto fits = [&](const Rect& a, int n) { return width_of(a, n) >= 15.0 * kAdvance * s; };
+  const int optional_sections = (scene.graph ? 1 : 0) + (scene.legend_extra.empty() ? 0 : 1);
+  int own_columns = 0;  // optional sections with a column of their own
+  if (layout.legend_below) {
+    Rect flush = area;
+    flush.x0 = layout.origin.x();
+    flush.x1 = layout.toPixel(layout.world_max).x();
+    const bool can_flush = flush.width() >= 0.6 * area.width();
+    for (int k = optional_sections; k >= 0; --k) {
+      if (can_flush && (k == 0 || fits(flush, 3 + k))) area = flush;
+      if (k == 0 || fits(area, 3 + k)) {
+        own_columns = k;
+        break;
+      }
+    }
   }
-  const double inner_w = area.width() - 4 * pad;
-  // Below the plan: columns (weight | pose | scale | extras, the extras under the scale when
-  // four would be too narrow) of at most a panel's width each; beside it: one column.
-  const auto width_of = [&](int n) { return std::min((inner_w - (n - 1) * 3 * pad) / n, 19.0 * kAdvance * s); };
-  const bool extra_column =
-      layout.legend_below && !scene.legend_extra.empty() && width_of(4) >= 15.0 * kAdvance * s;
-  const int columns = layout.legend_below ? (extra_column ? 4 : 3) : 1;
-  const double column_w = width_of(columns);
+  const int columns = layout.legend_below ? 3 + own_columns : 1;
+  const double column_w = width_of(area, columns);
   const auto column = [&](int i) {
     return Cursor{area.x0 + 2 * pad + i * (column_w + 3 * pad), area.y0 + 2 * pad, column_w, s};
   };
@@ -188,16 +193,26 @@ void drawLegend(const SnapshotScene& scene, const WeightRange& range, const Layo
   const GLuint list = glGenLists(1);
   glNewList(list, GL_COMPILE);
   Cursor at = column(0);
-  weightSection(at, range);
   double bottom = at.y;
-  if (layout.legend_below) at = column(1); else at.gap();
+  int next_column = 1;
+  const auto next = [&](bool own) {  // the next section: in a new column or under the last
+    bottom = std::max(bottom, at.y);
+    if (own) at = column(next_column++); else at.gap();
+  };
+  weightSection(at, range);
+  next(layout.legend_below);
   poseSection(at, scene);
-  bottom = std::max(bottom, at.y);
-  if (layout.legend_below) at = column(2); else at.gap();
+  next(layout.legend_below);
   scaleSection(at, layout);
-  bottom = std::max(bottom, at.y);
-  if (extra_column) at = column(3); else if (!scene.legend_extra.empty()) at.gap();
-  extraSection(at, scene, area.y1 - pad);
+  int optional_left = own_columns;
+  if (scene.graph) {
+    next(optional_left-- > 0);
+    graphLegendSection(at, *scene.graph);
+  }
+  if (!scene.legend_extra.empty()) {
+    next(optional_left-- > 0);
+    extraSection(at, scene, area.y1 - pad);
+  }
   bottom = std::max(bottom, at.y);
   glEndList();
   const double right =

@@ -99,6 +99,9 @@ void drawPlan(const bim::Storey& storey, const Layout& layout) {
     // At least a hairline, so a thin partition stays visible in a large building.
     strokePolyline(px, hairline, wallColour(), true);
   }
+}
+
+void drawRoomLabels(const bim::Storey& storey, const Layout& layout) {
   for (const auto& room : storey.rooms) drawRoomLabel(room, layout);
 }
 

@@ -15,7 +15,10 @@ Image renderSnapshotImage(const SnapshotScene& scene, const SnapshotOptions& opt
   const render::WeightRange range = render::weightRange(scene.particles);
   return render::renderOffscreen(layout.width, layout.height, [&] {
     if (scene.storey) render::drawPlan(*scene.storey, layout);
+    if (scene.graph) render::drawGraphStructure(*scene.graph, layout);
+    if (scene.storey) render::drawRoomLabels(*scene.storey, layout);
     render::drawParticles(scene.particles, range, layout);
+    if (scene.graph) render::drawKeyframePath(*scene.graph, layout);
     render::drawPoses(scene, layout);
     // Header and legend are opaque and come last: they cover whatever strays off the plan.
     render::drawHeader(scene, layout);

@@ -1,5 +1,6 @@
 // Top-view snapshots of the particle filter over the plan (the paper's particle-filter figure:
-// initialization, clustering, convergence), rendered off-screen with OSMesa: no display needed.
+// initialization, clustering, convergence) and of the S-Graph that tracks after it, rendered
+// off-screen with OSMesa: no display needed.
 #pragma once
 
 #include <bimloc/bim/building.hpp>
@@ -17,6 +18,26 @@ struct SnapshotParticle {
   double x = 0, y = 0, yaw = 0, weight = 0;
 };
 
+// The S-Graph the tracker built (the paper's figure of its layers, seen from above): the
+// robot-tracking layer (keyframes), the metric-semantic layer (walls, plan and new) and the
+// topological layer (rooms linked to their walls). Plain data in the map frame, so the render
+// library knows nothing of the tracker.
+struct SnapshotGraph {
+  std::vector<Eigen::Vector3d> keyframes;  // x, y, yaw, oldest first: drawn as a path
+  struct Segment {
+    Eigen::Vector2d start = Eigen::Vector2d::Zero(), end = Eigen::Vector2d::Zero();
+    double thickness_m = 0;  // 0: a line of fixed pixel width
+  };
+  std::vector<Segment> matched_walls;  // plan walls observed, at their estimated place (axis)
+  std::vector<Segment> new_planes;     // planes not in the plan: their seen extent
+  struct Room {
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // the estimated room node
+    std::vector<Eigen::Vector2d> wall_points;          // where its edges meet its walls
+  };
+  std::vector<Room> rooms;
+  bool empty() const { return keyframes.empty() && matched_walls.empty() && new_planes.empty() && rooms.empty(); }
+};
+
 struct SnapshotScene {
   const bim::Storey* storey = nullptr;      // walls and rooms; the view fits them (or, without
                                             // a storey, the particles and poses)
@@ -27,6 +48,7 @@ struct SnapshotScene {
   double time_s = 0;                        // shown as "t = 12.3 s"
   std::string phase;                        // "initialization" | "clustering" | "convergence"
   std::vector<std::pair<std::string, std::string>> legend_extra;  // "key: value" lines
+  std::optional<SnapshotGraph> graph;  // once the S-Graph tracks: drawn over the plan, in the legend
 };
 
 struct SnapshotOptions {

@@ -97,8 +97,9 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     const auto k = static_cast<std::size_t>(std::llround(t * s.odometry.rate_hz));
     return odometry[std::min(k, odometry.size() - 1)].T_odom_base;
   };
+  std::optional<Eigen::Isometry3d> estimate;  // the last step's, for the snapshots
   const auto moment = [&](const char* phase, double t, const Eigen::Isometry3d& truth) {
-    snapshot({phase, t, &localizer->filter().filter(), localizer->filter().leader(), truth, localizer->tracker()});
+    snapshot({phase, t, &localizer->filter().filter(), localizer->filter().leader(), truth, localizer->tracker(), estimate});
   };
   if (snapshot) moment("initialization", 0.0, sim.trajectory().T_map_base(0.0));
 
@@ -117,6 +118,7 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     const Eigen::Isometry3d T_odom_base = odometryAt(t);
     const auto step_start = std::chrono::steady_clock::now();
     const LocalizationResult step = localizer->step(t, T_odom_base, [&scan] { return scanPoints(scan); });
+    estimate = step.T_map_base;
     const auto minute = static_cast<std::size_t>(t / 60.0);
     if (r.localizer_seconds_by_minute.size() <= minute) r.localizer_seconds_by_minute.resize(minute + 1, 0.0);
     r.localizer_seconds_by_minute[minute] += std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();

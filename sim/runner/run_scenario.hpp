@@ -92,6 +92,9 @@ struct SnapshotMoment {
   std::size_t storey = 0;                      // the filter's storey
   Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
   const sgraph::SGraphTracker* tracker = nullptr;  // once the S-Graph tracks: its graph
+  // The localizer's estimate at its last step (unset before the first): once the S-Graph
+  // tracks, the filter stops and its own estimate goes stale.
+  std::optional<Eigen::Isometry3d> estimate;
 };
 using SnapshotHook = std::function<void(const SnapshotMoment&)>;
 
