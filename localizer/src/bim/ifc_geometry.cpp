@@ -33,6 +33,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -226,7 +227,8 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
 
   const auto t_geometry = Clock::now();
   // References of the wrong type would crash the converter: drop what reaches them first.
-  const ReferenceCheck references(*model, stepReferenceCounts(plan.text));
+  const ReferenceCheck references(*model, scanStep(plan.text));
+  raw.warnings = references.warnings();
   const std::map<int, GeometryDrop> drops = dropUnreadableGeometry(*model, references);
   GeometryConverter converter(model);
   converter.setMessageCallBack(&sink, &MessageSink::collect);
@@ -254,6 +256,14 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
     s.global_id = globalId(storey);
     s.name = label(storey->m_Name);
     if (storey->m_Elevation) s.elevation_m = storey->m_Elevation->m_value * raw.length_unit_m;
+    if (s.elevation_m && !std::isfinite(*s.elevation_m)) {
+      raw.warnings.push_back("IfcBuildingStorey " + s.global_id + " '" + s.name +
+                             "': Elevation is not a finite number: the placement's height is used");
+      s.elevation_m.reset();
+    }
+    if (const auto drop = drops.find(id); drop != drops.end())
+      raw.warnings.push_back("IfcBuildingStorey " + s.global_id + " '" + s.name + "': placement ignored: " +
+                             drop->second.reason);
     s.placement_z_m = profiles.placementOrigin(storey->m_ObjectPlacement).z();
     storey_index[id] = static_cast<int>(raw.storeys.size());
     raw.storeys.push_back(s);
