@@ -28,10 +28,12 @@ std::string tempDir(const std::string& tag) {
 CommandResult runBimloc(const std::string& args) {
   const std::string dir = tempDir("cmd");
   const std::string out = dir + "/out.txt", err = dir + "/err.txt";
-  const std::string cmd = std::string("'") + BIMLOC_EXE + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
+  // exec: the shell becomes bimloc, so that a signal that ends it is seen here, not as 128 + N.
+  const std::string cmd = std::string("exec '") + BIMLOC_EXE + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
   const int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
   const auto slurp = [](const std::string& path) {
     std::ifstream in(path);
     std::stringstream ss;

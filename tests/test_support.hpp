@@ -12,7 +12,8 @@ std::string sharedPlan(const std::string& file_name);
 std::string tempDir(const std::string& tag);
 
 struct CommandResult {
-  int exit_code = -1;
+  int exit_code = -1;  // -1 when a signal ended it
+  int signal = 0;      // the signal that ended it, or 0
   std::string out;
   std::string err;
 };
