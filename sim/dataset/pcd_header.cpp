@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -47,6 +48,12 @@ PcdHeader readPcdHeader(const std::string& path, std::istream& in, std::size_t f
   if (!header["WIDTH"].empty() && !header["HEIGHT"].empty() &&
       count(path, "WIDTH", one("WIDTH")) * count(path, "HEIGHT", one("HEIGHT")) != h.points)
     fail(path, "POINTS " + std::to_string(h.points) + " is not WIDTH x HEIGHT");
+  for (const auto& v : header["VIEWPOINT"]) {  // the sensor's pose: seven finite numbers
+    double value = 0.0;
+    const auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), value);
+    if (ec != std::errc() || ptr != v.data() + v.size() || !std::isfinite(value))
+      fail(path, "VIEWPOINT value '" + v + "' is not a finite number");
+  }
   for (const auto& c : header["COUNT"])
     if (c != "1") fail(path, "COUNT other than 1 is not supported");
   bool found = false;

@@ -85,7 +85,8 @@ class ReferenceCheck {
           what = "#" + std::to_string(ref) + ", which is missing or could not be read";
           break;
         }
-      broken_.emplace(id, "#" + std::to_string(id) + " " + entity->className() + " names " + what);
+      const std::string why = "#" + std::to_string(id) + " " + entity->className() + " names " + what;
+      if (broken_.emplace(id, why).second) report(why);
     }
     if (broken_.empty()) return;
     // Everything that reaches a broken instance, with the first one it reaches (by id order).
