@@ -70,7 +70,9 @@ TEST(HostileIfc, ANegativeExtrusionSkipsTheWallAndNamesIt) {
                                              "#53=IFCEXTRUDEDAREASOLID(#51,#52,#9,-4.);"));
   const auto doc = extractJson(path);
   EXPECT_EQ(wallCount(doc), 9);
-  EXPECT_TRUE(anyWarningHas(doc, kWall, "depth -4, which is not positive")) << doc["warnings"];
+  // The wall named by class, instance id, GlobalId and name; the broken instance by id and line.
+  EXPECT_TRUE(anyWarningHas(doc, "IfcWallStandardCase #61 2OPn9Eo7X5uQL7Jvq1iSyR 'Basic Wall", "depth -4, which is not positive"))
+      << doc["warnings"];
 }
 
 // The wall's body extrusion defined twice, under a negative id, or with an unknown type:
