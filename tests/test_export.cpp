@@ -102,6 +102,18 @@ TEST(Export, MeshLoaderRefusesBrokenMeshes) {
   EXPECT_THROW(sim::loadMesh(dir + "/flat.obj"), std::runtime_error);
   EXPECT_THROW(sim::loadMesh(dir + "/empty.obj"), std::runtime_error);
   EXPECT_THROW(sim::loadMesh(dir + "/missing.ply"), std::runtime_error);
+  // A storey mesh cut short: its faces point past its vertices, which crashed assimp's
+  // post-processing (a segfault) before the loader validated the data.
+  const auto names = sim::exportPlan(bim::readIfc(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc"), dir + "/plan");
+  const std::string ply = dir + "/plan/" + names.back();
+  const std::string whole = slurp(ply);
+  std::ofstream(ply, std::ios::binary | std::ios::trunc) << whole.substr(0, 300);
+  try {
+    sim::loadMesh(ply);
+    ADD_FAILURE() << "a truncated mesh was loaded";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(ply + ": not a readable mesh"), std::string::npos) << e.what();
+  }
 }
 
 // IFC++'s CSG orders faces, and splits them, by heap address: before canonical_mesh.cpp the

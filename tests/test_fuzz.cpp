@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -23,14 +25,28 @@ using namespace bimloc::test;
 
 namespace {
 
-constexpr std::uint32_t kSeed = 20261123;
 constexpr double kTimeoutS = 60.0;
+
+// Fixed by default (CI runs the same cases every time); BIMLOC_FUZZ_SEED and BIMLOC_FUZZ_SCALE
+// (a multiplier of the case counts) explore further by hand.
+std::uint32_t seed(std::uint32_t offset) {
+  const char* value = std::getenv("BIMLOC_FUZZ_SEED");
+  return (value ? static_cast<std::uint32_t>(std::strtoul(value, nullptr, 10)) : 20261123u) + offset;
+}
+
+int cases(int count) {
+  const char* value = std::getenv("BIMLOC_FUZZ_SCALE");
+  return count * (value ? std::max(1, std::atoi(value)) : 1);
+}
 
 struct Tally {
   int cases = 0, accepted = 0, refused = 0, warned = 0;
+  bool counts_warnings = false;  // plans only: the others have no warnings to compare
   void print(const std::string& what) const {
     std::cout << "fuzz " << what << ": " << cases << " cases, " << refused << " refused (exit 1), " << accepted
-              << " accepted (" << warned << " of them with a new warning)" << std::endl;
+              << " accepted";
+    if (counts_warnings) std::cout << " (" << warned << " of them with a new warning)";
+    std::cout << std::endl;
   }
 };
 
@@ -83,6 +99,7 @@ void fuzzPlans(const std::vector<std::string>& names, int count, std::uint32_t s
   std::map<std::string, std::pair<std::string, Baseline>> plans;  // name -> (text, clean result)
   Mutator mutator(seed);
   Tally tally;
+  tally.counts_warnings = true;
   const std::string dir = tempDir("fuzz-ifc");
   const std::string input = dir + "/case.ifc", out = dir + "/out";
   for (int i = 0; i < count; ++i) {
@@ -128,13 +145,13 @@ void fuzzPlans(const std::vector<std::string>& names, int count, std::uint32_t s
 
 // Two small plans take most of the cases; the large ones (0.3-1 s each) a few each.
 TEST(Fuzz, DamagedSmallPlansNeverCrashAndNeverLoseAnElementSilently) {
-  fuzzPlans({"revit_quantities.ifc", "example.ifc"}, 220, kSeed, "small IFC plans");
+  fuzzPlans({"revit_quantities.ifc", "example.ifc"}, cases(220), seed(0), "small IFC plans");
 }
 
 TEST(Fuzz, DamagedLargePlansNeverCrashAndNeverLoseAnElementSilently) {
   fuzzPlans({"AC20-FZK-Haus.ifc", "Duplex_A_20110907.ifc", "ExampleHOM.ifc", "SampleHouse4.ifc", "AC11-FZK-Haus-IFC.ifc",
              "AC90R1-Jasmin-Sun-105-2x3.ifc", "Jesse.1.ifc"},
-            21, kSeed + 3, "large IFC plans");
+            cases(21), seed(3), "large IFC plans");
 }
 
 TEST(Fuzz, DamagedScenariosNeverCrashAndLeaveNoOutput) {
@@ -143,10 +160,10 @@ TEST(Fuzz, DamagedScenariosNeverCrashAndLeaveNoOutput) {
                             "start: {room: R101, yaw_deg: 90}\nmotion: {type: tour, rooms: [C100]}\n"
                             "duration_s: 0.5\nsensor: {rpm: 600, range_noise_sigma_m: 0.008}\n"
                             "odometry: {preset: legged}\nlocalizer: {particles: 500}\nseed: 5\n";
-  Mutator mutator(kSeed + 1);
+  Mutator mutator(seed(1));
   Tally tally;
   const std::string input = dir + "/case.yaml", out = dir + "/out";
-  for (int i = 0; i < 40; ++i) {
+  for (int i = 0; i < cases(40); ++i) {
     const Mutation m = mutator.lines(clean, true);
     const std::string trace = "case " + std::to_string(i) + ": " + damageName(m.damage) + " " + m.where;
     writeFile(dir, "case.yaml", m.text);
@@ -174,9 +191,9 @@ TEST(Fuzz, DamagedDatasetsNeverCrashAndAreRefusedByName) {
   ASSERT_EQ(runBimloc("simulate '" + root + "/s.yaml' --out '" + root + "/clean' --quiet").exit_code, 0);
   const std::vector<std::string> files{"metadata.json", "clouds/index.csv", "odometry.tum", "ground_truth.tum",
                                        "clouds/000004.pcd"};
-  Mutator mutator(kSeed + 2);
+  Mutator mutator(seed(2));
   Tally tally;
-  for (int i = 0; i < 40; ++i) {
+  for (int i = 0; i < cases(40); ++i) {
     const std::string& file = files[mutator.below(files.size())];
     const std::string dir = root + "/case" + std::to_string(i);
     fs::copy(root + "/clean", dir, fs::copy_options::recursive | fs::copy_options::create_hard_links);
@@ -209,4 +226,42 @@ TEST(Fuzz, DamagedDatasetsNeverCrashAndAreRefusedByName) {
     fs::remove_all(dir);
   }
   tally.print("datasets");
+}
+
+// A scenario's world may be a folder `extract --out` wrote: a damaged building.json or storey
+// mesh (a truncated PLY crashed assimp) is refused by name, never a crash.
+TEST(Fuzz, DamagedExtractFoldersNeverCrashAndAreRefusedByName) {
+  const std::string root = tempDir("fuzz-world");
+  ASSERT_EQ(runBimloc(std::string("extract '") + BIMLOC_WORLDS_DIR + "/site_office.ifc' --out '" + root + "/clean'").exit_code, 0);
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(root + "/clean")) files.push_back(e.path().filename().string());
+  std::sort(files.begin(), files.end());
+  Mutator mutator(seed(4));
+  Tally tally;
+  for (int i = 0; i < cases(20); ++i) {
+    const std::string& file = files[mutator.below(files.size())];
+    const std::string dir = root + "/case" + std::to_string(i);
+    fs::create_directories(dir);
+    fs::copy(root + "/clean", dir + "/world", fs::copy_options::recursive | fs::copy_options::create_hard_links);
+    const std::string path = dir + "/world/" + file;
+    const std::string text = slurp(path);
+    const bool ply = file.find(".ply") != std::string::npos;
+    const Mutation m = mutator.lines(text, false, ply ? 12 : 1000000);
+    fs::remove(path);  // a hard link: the clean folder keeps its copy
+    writeFile(dir + "/world", file, m.text);
+    writeFile(dir, "s.yaml", "name: fuzz\nworld: " + dir + "/world\nstart: {room: R101}\nduration_s: 0.3\nseed: 5\n");
+    const std::string trace = "case " + std::to_string(i) + ": " + file + ", " + damageName(m.damage) + " " + m.where;
+    const auto r = runBimloc("simulate '" + dir + "/s.yaml' --out '" + dir + "/out' --quiet", kTimeoutS);
+    ++tally.cases;
+    if (checkRun(r, dir + "/world/", trace)) {
+      ++tally.refused;
+      expectNoOutput(dir, dir + "/out", {"world", "s.yaml"}, trace);
+      // A mesh cut short has faces that point nowhere: never a usable world.
+    } else {
+      ++tally.accepted;
+      EXPECT_FALSE(ply && m.damage == Damage::kTruncation && m.text.size() + 1 < text.size()) << trace << ": accepted";
+    }
+    fs::remove_all(dir);
+  }
+  tally.print("extract folders as worlds");
 }

@@ -47,9 +47,12 @@ void writeMesh(const bim::TriangleMesh& mesh, const std::string& path) {
 
 bim::TriangleMesh loadMesh(const std::string& path) {
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
-  if (!scene || !scene->mRootNode) throw std::runtime_error(path + ": cannot load mesh: " + importer.GetErrorString());
+  // ValidateDataStructure runs first: a truncated or damaged PLY gives faces whose indices point
+  // past the vertices, on which the other steps crash (a segfault in assimp) instead of failing.
+  const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                                     aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  if (!scene || !scene->mRootNode)
+    throw std::runtime_error(path + ": not a readable mesh, damaged or truncated (" + importer.GetErrorString() + ")");
   bim::TriangleMesh out;
   std::size_t degenerate = 0;
   for (unsigned k = 0; k < scene->mNumMeshes; ++k) {
