@@ -32,7 +32,7 @@ std::vector<std::pair<std::size_t, std::size_t>> tokens(const std::string& text,
   bool quoted = false;
   for (; i < line.end; ++i) {
     const char c = text[i];
-    if (c == '\'') quoted = !quoted;
+    if (c == '\'' || c == '"') quoted = !quoted;  // STEP and YAML strings, JSON strings
     if (quoted) continue;
     const unsigned char previous = i > line.begin ? static_cast<unsigned char>(text[i - 1]) : ' ';
     const bool starts_number = std::isdigit(static_cast<unsigned char>(c)) && !std::isalnum(previous) && previous != '#';
