@@ -102,6 +102,26 @@ TEST(Export, MeshLoaderRefusesBrokenMeshes) {
   EXPECT_THROW(sim::loadMesh(dir + "/flat.obj"), std::runtime_error);
   EXPECT_THROW(sim::loadMesh(dir + "/empty.obj"), std::runtime_error);
   EXPECT_THROW(sim::loadMesh(dir + "/missing.ply"), std::runtime_error);
+  // A storey mesh cut short: its faces point past its vertices, which crashed assimp's
+  // post-processing (a segfault) before the loader validated the data.
+  const auto names = sim::exportPlan(bim::readIfc(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc"), dir + "/plan");
+  const std::string ply = dir + "/plan/" + names.back();
+  const std::string whole = slurp(ply);
+  const auto expectRefused = [&](const std::string& bytes, const std::string& problem) {
+    std::ofstream(ply, std::ios::binary | std::ios::trunc) << bytes;
+    try {
+      sim::loadMesh(ply);
+      ADD_FAILURE() << "loaded: " << problem;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(ply + ": " + problem), std::string::npos) << e.what();
+    }
+  };
+  expectRefused(whole.substr(0, 300), "truncated: element vertex");
+  // Without its end_header line, assimp's PLY reader read past its buffer (a segfault too).
+  std::string headless = whole;
+  headless.erase(headless.find("end_header\n"), 11);
+  expectRefused(headless, "not a PLY file (no 'ply' line first, or no end_header line)");
+  expectRefused(whole + "x", "1 bytes after the last element");
 }
 
 // IFC++'s CSG orders faces, and splits them, by heap address: before canonical_mesh.cpp the

@@ -247,6 +247,17 @@ TEST(Scenario, AliasCyclesAndAliasBombsAreRefusedWithTheirLine) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 10.0);
 }
 
+// Found by the fuzz test: a name that is not UTF-8 passed the loader and failed only when
+// metadata.json was written, in nlohmann's words and without the file; 1e999 or .nan in the
+// free-form localizer: section passed on as a string.
+TEST(Scenario, BytesThatAreNotUtf8AndNonFiniteNumbersAreRefusedWithTheirLine) {
+  expectError(head() + "name: caf\xE9\n", 3, "not UTF-8 text: byte 0xE9 in column 10");
+  expectError(head() + "name: \xC0\x80\n", 3, "not UTF-8 text: byte 0xC0");  // an overlong NUL
+  expectError(head() + "localizer: {particles: 1e999}\n", 3, "'1e999' is not a finite number");
+  expectError(head() + "localizer:\n  prior_sigma_m: .nan\n", 4, "'.nan' is not a finite number");
+  EXPECT_NO_THROW(loadScenario(writeScenario(head() + "name: caf\xC3\xA9 \xE2\x82\xAC\n")));  // UTF-8 itself is fine
+}
+
 TEST(Scenario, EmptyAndMissingFiles) {
   EXPECT_THROW(loadScenario(writeScenario("")), ScenarioError);
   EXPECT_THROW(loadScenario(writeScenario("# only a comment\n")), ScenarioError);

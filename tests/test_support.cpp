@@ -1,6 +1,9 @@
 #include "test_support.hpp"
 
 #include <array>
+#include <chrono>
+#include <csignal>
+#include <thread>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -25,13 +28,32 @@ std::string tempDir(const std::string& tag) {
   return p.string();
 }
 
-CommandResult runBimloc(const std::string& args) {
+CommandResult runBimloc(const std::string& args) { return runBimloc(args, 0.0); }
+
+CommandResult runBimloc(const std::string& args, double timeout_s) {
   const std::string dir = tempDir("cmd");
   const std::string out = dir + "/out.txt", err = dir + "/err.txt";
-  const std::string cmd = std::string("'") + BIMLOC_EXE + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
-  const int status = std::system(cmd.c_str());
+  // exec: the shell becomes bimloc, so that a signal that ends it is seen here, not as 128 + N.
+  const std::string cmd = std::string("exec '") + BIMLOC_EXE + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
   CommandResult r;
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  int status = 0;
+  const auto start = std::chrono::steady_clock::now();
+  while (::waitpid(child, &status, timeout_s > 0 ? WNOHANG : 0) == 0) {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeout_s) {
+      ::kill(child, SIGKILL);
+      ::waitpid(child, &status, 0);
+      r.timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
   const auto slurp = [](const std::string& path) {
     std::ifstream in(path);
     std::stringstream ss;

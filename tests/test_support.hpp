@@ -12,12 +12,16 @@ std::string sharedPlan(const std::string& file_name);
 std::string tempDir(const std::string& tag);
 
 struct CommandResult {
-  int exit_code = -1;
+  int exit_code = -1;  // -1 when a signal ended it
+  int signal = 0;      // the signal that ended it, or 0
+  bool timed_out = false;  // killed by runBimloc after its time limit
   std::string out;
   std::string err;
 };
 // Runs the bimloc binary with the given argument string (shell-quoted by the caller).
 CommandResult runBimloc(const std::string& args);
+// The same, killed with SIGKILL after `timeout_s` seconds (then timed_out is set).
+CommandResult runBimloc(const std::string& args, double timeout_s);
 
 }  // namespace bimloc::test
 

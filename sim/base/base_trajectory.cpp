@@ -269,6 +269,10 @@ double BaseTrajectory::distance_m(double t_s) const {
   return impl_->timeline.at(std::clamp(t_s, 0.0, impl_->duration_s)).distance;
 }
 
+double BaseTrajectory::floor_z(double t_s) const {
+  return impl_->timeline.at(std::clamp(t_s, 0.0, impl_->duration_s)).floor_z;
+}
+
 Eigen::Isometry3d BaseTrajectory::T_map_base(double t_s) const {
   const double t = std::clamp(t_s, 0.0, impl_->duration_s);
   const PlanarState s = impl_->timeline.at(t);

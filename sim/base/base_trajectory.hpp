@@ -52,6 +52,8 @@ class BaseTrajectory {
   // The planar path (x, y, yaw) at its corners, for drawing and tests: the start pose, then
   // every corner with the heading the base arrives with (it then turns in place).
   const std::vector<Pose2>& corners() const;
+  // Height of the floor under the body at time t (map z).
+  double floor_z(double t_s) const;
   // Distance walked by time t (metres).
   double distance_m(double t_s) const;
 

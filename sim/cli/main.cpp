@@ -1,9 +1,12 @@
 // bimloc: one binary, git-style subcommands.
 #include "sim/cli/commands.hpp"
+#include "sim/world/interrupt_cleanup.hpp"
 
 #include <iostream>
 
 int main(int argc, char** argv) {
+  // Before any thread starts: SIGINT and SIGTERM remove unfinished output, exit 130 / 143.
+  bimloc::sim::installInterruptCleanup();
   CLI::App app{"bimloc: robot localization from building plans (BIM/IFC), and the simulator that tests it.\n"
                "Run 'bimloc SUBCOMMAND --help' for the options of each subcommand."};
   app.require_subcommand(1);

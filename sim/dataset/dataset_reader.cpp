@@ -1,12 +1,18 @@
 #include "sim/dataset/dataset_reader.hpp"
 
+#include "sim/dataset/dataset_metadata.hpp"
+#include "sim/dataset/pcd_header.hpp"
+#include "sim/world/json_errors.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -15,6 +21,29 @@ namespace fs = std::filesystem;
 namespace {
 
 [[noreturn]] void fail(const std::string& where, const std::string& what) { throw std::runtime_error(where + ": " + what); }
+
+std::string at(const std::string& path, int line) { return path + ":" + std::to_string(line); }
+
+std::string seconds(double s) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.9g", s);
+  return buffer;
+}
+
+// A unit quaternion, as every pose of the dataset must have (a zero one is no rotation).
+Eigen::Quaterniond unitQuaternion(double qx, double qy, double qz, double qw, const std::string& where) {
+  const Eigen::Quaterniond q(qw, qx, qy, qz);
+  if (!std::isfinite(q.norm()) || std::abs(q.norm() - 1.0) > 1e-3)
+    fail(where, "quaternion (" + seconds(qx) + ", " + seconds(qy) + ", " + seconds(qz) + ", " + seconds(qw) +
+                    ") does not have unit norm");
+  return q.normalized();
+}
+
+void requireIncreasing(double stamp, const double* previous, const std::string& where) {
+  if (!std::isfinite(stamp)) fail(where, "stamp is not a finite number");
+  if (previous && !(stamp > *previous))
+    fail(where, "stamp " + seconds(stamp) + " does not follow the previous one (" + seconds(*previous) + ")");
+}
 
 std::vector<StampedPose> readTum(const std::string& path, bool required) {
   std::ifstream in(path);
@@ -28,27 +57,111 @@ std::vector<StampedPose> readTum(const std::string& path, bool required) {
     if (line.empty() || line[0] == '#') continue;
     std::istringstream ss(line);
     double t, x, y, z, qx, qy, qz, qw;
-    if (!(ss >> t >> x >> y >> z >> qx >> qy >> qz >> qw)) fail(path + ":" + std::to_string(n), "expected 'timestamp tx ty tz qx qy qz qw'");
+    if (!(ss >> t >> x >> y >> z >> qx >> qy >> qz >> qw)) fail(at(path, n), "expected 'timestamp tx ty tz qx qy qz qw'");
+    requireIncreasing(t, out.empty() ? nullptr : &out.back().stamp_s, at(path, n));
     StampedPose p;
     p.stamp_s = t;
-    p.pose.linear() = Eigen::Quaterniond(qw, qx, qy, qz).normalized().toRotationMatrix();
+    p.pose.linear() = unitQuaternion(qx, qy, qz, qw, at(path, n)).toRotationMatrix();
     p.pose.translation() = Eigen::Vector3d(x, y, z);
-    if (!p.pose.matrix().allFinite()) fail(path + ":" + std::to_string(n), "non-finite pose");
+    if (!p.pose.matrix().allFinite()) fail(at(path, n), "non-finite pose");
     out.push_back(p);
   }
-  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.stamp_s < b.stamp_s; });
   return out;
 }
 
-Eigen::Isometry3d isometry(const nlohmann::json& j) {
-  const auto& t = j.at("xyz");
-  const auto& q = j.at("quaternion_xyzw");
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(q[3].get<double>(), q[0].get<double>(), q[1].get<double>(), q[2].get<double>())
-                   .normalized()
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(t[0].get<double>(), t[1].get<double>(), t[2].get<double>());
-  return T;
+// The value at `key` of an object, or an error naming the key's path in the file.
+const nlohmann::json& member(const nlohmann::json& j, const std::string& key, const std::string& where,
+                             const std::string& path) {
+  if (!j.is_object() || !j.contains(key)) fail(path, "missing key '" + where + key + "'");
+  return j[key];
+}
+
+std::vector<double> numbers(const nlohmann::json& j, std::size_t n, const std::string& what, const std::string& path) {
+  if (!j.is_array() || j.size() != n) fail(path, "'" + what + "' must be an array of " + std::to_string(n) + " numbers");
+  std::vector<double> v;
+  for (const auto& x : j) {
+    if (!x.is_number() || !std::isfinite(x.get<double>())) fail(path, "'" + what + "' holds a value that is no finite number");
+    v.push_back(x.get<double>());
+  }
+  return v;
+}
+
+void readMetadata(const std::string& path, RecordedDataset& d) {
+  std::ifstream in(path);
+  if (!in) fail(path, "cannot open (is this a folder written by 'bimloc simulate'?)");
+  nlohmann::json meta;
+  try {
+    meta = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    fail(path, jsonProblem(e));
+  }
+  if (!meta.is_object()) fail(path, "not a JSON object");
+  if (meta.contains("format") && meta["format"] != "bimloc.dataset")
+    fail(path, "format " + meta["format"].dump() + " is not bimloc.dataset");
+  const auto& version = member(meta, "version", "", path);
+  if (version != kDatasetFormatVersion)
+    fail(path, "version " + version.dump() + " is not supported (this bimloc reads version " +
+                   std::to_string(kDatasetFormatVersion) + ")");
+  const auto& mount = member(meta, "T_base_lidar", "", path);
+  const auto t = numbers(member(mount, "xyz", "T_base_lidar.", path), 3, "T_base_lidar.xyz", path);
+  const auto q = numbers(member(mount, "quaternion_xyzw", "T_base_lidar.", path), 4, "T_base_lidar.quaternion_xyzw", path);
+  d.T_base_lidar.linear() = unitQuaternion(q[0], q[1], q[2], q[3], path + ": T_base_lidar").toRotationMatrix();
+  d.T_base_lidar.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
+  if (meta.contains("sensor") && meta["sensor"].is_object() && meta["sensor"].contains("rpm")) {
+    const auto& rpm = meta["sensor"]["rpm"];
+    if (!rpm.is_number() || !(rpm.get<double>() > 0) || !std::isfinite(rpm.get<double>()))
+      fail(path, "'sensor.rpm' must be a positive number");
+    d.turn_period_s = 60.0 / rpm.get<double>();
+  }
+  if (meta.contains("storey")) {
+    if (!meta["storey"].is_string()) fail(path, "'storey' must be a string");
+    d.storey = meta["storey"].get<std::string>();
+  }
+}
+
+// clouds/index.csv: file,stamp_s,points; every file checked (present, sound header).
+std::vector<DatasetScan> readIndex(const std::string& dir) {
+  const std::string path = (fs::path(dir) / "clouds" / "index.csv").string();
+  std::ifstream index(path);
+  if (!index) fail(path, "cannot open");
+  std::string line;
+  if (!std::getline(index, line) || line.rfind("file,stamp_s,points", 0) != 0)
+    fail(at(path, 1), "expected the header 'file,stamp_s,points'");
+  std::vector<DatasetScan> scans;
+  for (int n = 2; std::getline(index, line); ++n) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const auto c1 = line.find(','), c2 = c1 == std::string::npos ? c1 : line.find(',', c1 + 1);
+    if (c2 == std::string::npos) fail(at(path, n), "expected 'file,stamp_s,points'");
+    const std::string name = line.substr(0, c1);
+    if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..")
+      fail(at(path, n), "'" + name + "' is not a file name in clouds/");
+    DatasetScan scan;
+    scan.file = (fs::path(dir) / "clouds" / name).string();
+    const char* s = line.data() + c1 + 1;
+    const auto [end_stamp, ec1] = std::from_chars(s, line.data() + c2, scan.stamp_s);
+    if (ec1 != std::errc() || end_stamp != line.data() + c2) fail(at(path, n), "stamp_s is not a number");
+    requireIncreasing(scan.stamp_s, scans.empty() ? nullptr : &scans.back().stamp_s, at(path, n));
+    const auto [end_points, ec2] = std::from_chars(line.data() + c2 + 1, line.data() + line.size(), scan.points);
+    if (ec2 != std::errc() || end_points != line.data() + line.size()) fail(at(path, n), "points is not a count");
+    std::ifstream pcd(scan.file, std::ios::binary);
+    if (!pcd) fail(at(path, n), scan.file + " is missing");
+    std::error_code size_error;
+    const auto size = fs::file_size(scan.file, size_error);
+    const PcdHeader header = readPcdHeader(scan.file, pcd, size_error ? 0 : size);
+    if (header.points != scan.points)
+      fail(at(path, n), "points " + std::to_string(scan.points) + ", but " + scan.file + " holds " +
+                            std::to_string(header.points));
+    scans.push_back(std::move(scan));
+  }
+  if (scans.empty()) fail(path, "no scans");
+  return scans;
+}
+
+void requireOverlap(double a0, double a1, const std::string& a, double b0, double b1, const std::string& b,
+                    const std::string& dir) {
+  if (a0 <= b1 && b0 <= a1) return;
+  fail(dir, a + " (" + seconds(a0) + " to " + seconds(a1) + " s) and " + b + " (" + seconds(b0) + " to " + seconds(b1) +
+                " s) never overlap in time");
 }
 
 }  // namespace
@@ -63,76 +176,40 @@ const StampedPose& nearest(const std::vector<StampedPose>& samples, double t) {
 RecordedDataset readDataset(const std::string& dir) {
   RecordedDataset d;
   d.dir = dir;
-  const std::string meta_path = (fs::path(dir) / "metadata.json").string();
-  std::ifstream meta_in(meta_path);
-  if (!meta_in) fail(meta_path, "cannot open (is this a folder written by 'bimloc simulate'?)");
-  try {
-    const auto meta = nlohmann::json::parse(meta_in);
-    d.T_base_lidar = isometry(meta.at("T_base_lidar"));
-    if (meta.contains("sensor") && meta["sensor"].contains("rpm")) d.turn_period_s = 60.0 / meta["sensor"]["rpm"].get<double>();
-    d.storey = meta.value("storey", "");
-  } catch (const std::exception& e) {
-    fail(meta_path, e.what());
-  }
-  const std::string index_path = (fs::path(dir) / "clouds" / "index.csv").string();
-  std::ifstream index(index_path);
-  if (!index) fail(index_path, "cannot open");
-  std::string line;
-  std::getline(index, line);  // header
-  for (int n = 2; std::getline(index, line); ++n) {
-    const auto c1 = line.find(','), c2 = line.find(',', c1 + 1);
-    if (c1 == std::string::npos || c2 == std::string::npos) fail(index_path + ":" + std::to_string(n), "expected 'file,stamp_s,points'");
-    d.scans.push_back({(fs::path(dir) / "clouds" / line.substr(0, c1)).string(), std::stod(line.substr(c1 + 1, c2 - c1 - 1))});
-  }
-  d.odometry = readTum((fs::path(dir) / "odometry.tum").string(), true);
-  if (d.odometry.empty()) fail((fs::path(dir) / "odometry.tum").string(), "no poses");
+  if (!fs::is_directory(dir)) fail(dir, "not a folder (a dataset is a folder written by 'bimloc simulate')");
+  readMetadata((fs::path(dir) / "metadata.json").string(), d);
+  d.scans = readIndex(dir);
+  const std::string odometry = (fs::path(dir) / "odometry.tum").string();
+  d.odometry = readTum(odometry, true);
+  if (d.odometry.empty()) fail(odometry, "no poses");
   d.ground_truth = readTum((fs::path(dir) / "ground_truth.tum").string(), false);
+  const double s0 = d.scans.front().stamp_s, s1 = d.scans.back().stamp_s;
+  requireOverlap(s0, s1, "the clouds", d.odometry.front().stamp_s, d.odometry.back().stamp_s, "odometry.tum", dir);
+  if (!d.ground_truth.empty())
+    requireOverlap(s0, s1, "the clouds", d.ground_truth.front().stamp_s, d.ground_truth.back().stamp_s,
+                   "ground_truth.tum", dir);
   return d;
 }
 
 std::vector<Eigen::Vector3f> readPcdPoints(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open");
-  std::map<std::string, std::vector<std::string>> header;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream ss(line);
-    std::string key, value;
-    ss >> key;
-    while (ss >> value) header[key].push_back(value);
-    if (key == "DATA") break;
-  }
-  const auto& fields = header["FIELDS"];
-  const auto& sizes = header["SIZE"];
-  if (fields.empty() || sizes.size() != fields.size() || header["POINTS"].empty() || header["DATA"].empty())
-    fail(path, "not a PCD file (missing FIELDS, SIZE, POINTS or DATA)");
-  std::size_t offset = 0, stride = 0;
-  int x = -1;
-  std::vector<std::size_t> offsets;
-  for (std::size_t i = 0; i < fields.size(); ++i) {
-    offsets.push_back(stride);
-    stride += std::stoul(sizes[i]);
-    if (fields[i] == "x") x = static_cast<int>(i);
-  }
-  if (x < 0 || x + 2 >= static_cast<int>(fields.size()) || fields[x + 1] != "y" || fields[x + 2] != "z")
-    fail(path, "no consecutive x y z fields");
-  offset = offsets[static_cast<std::size_t>(x)];
-  const std::size_t n = std::stoul(header["POINTS"][0]);
-  std::vector<Eigen::Vector3f> points(n);
-  if (header["DATA"][0] == "binary") {
-    std::vector<char> buffer(n * stride);
-    if (!in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()))) fail(path, "truncated point data");
-    for (std::size_t i = 0; i < n; ++i) std::memcpy(points[i].data(), buffer.data() + i * stride + offset, 3 * sizeof(float));
-  } else if (header["DATA"][0] == "ascii") {
-    for (std::size_t i = 0; i < n; ++i) {
-      std::vector<float> values(fields.size());
+  std::error_code size_error;
+  const auto size = fs::file_size(path, size_error);
+  const PcdHeader h = readPcdHeader(path, in, size_error ? 0 : size);
+  std::vector<Eigen::Vector3f> points(h.points);
+  if (h.binary) {
+    std::vector<char> data(h.points * h.stride);
+    if (!in.read(data.data(), static_cast<std::streamsize>(data.size()))) fail(path, "truncated point data");
+    for (std::size_t i = 0; i < h.points; ++i)
+      std::memcpy(points[i].data(), data.data() + i * h.stride + h.x_offset, 3 * sizeof(float));
+  } else {
+    std::vector<float> values(h.fields.size());
+    for (std::size_t i = 0; i < h.points; ++i) {
       for (auto& v : values)
         if (!(in >> v)) fail(path, "truncated point data at point " + std::to_string(i));
-      points[i] = {values[static_cast<std::size_t>(x)], values[static_cast<std::size_t>(x) + 1], values[static_cast<std::size_t>(x) + 2]};
+      points[i] = {values[h.x_index], values[h.x_index + 1], values[h.x_index + 2]};
     }
-  } else {
-    fail(path, "unsupported DATA '" + header["DATA"][0] + "'");
   }
   return points;
 }

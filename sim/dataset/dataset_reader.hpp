@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@ struct StampedPose {
 struct DatasetScan {
   std::string file;  // path of the PCD
   double stamp_s = 0;
+  std::size_t points = 0;  // as clouds/index.csv and the PCD's header say
 };
 
 struct RecordedDataset {
@@ -30,7 +32,12 @@ struct RecordedDataset {
   std::vector<StampedPose> ground_truth;  // map -> base_link, empty when not recorded
 };
 
-// Throws std::runtime_error naming the file and the line for anything malformed.
+// Reads and checks the whole dataset before any of it is used: metadata.json of a supported
+// version with a unit-quaternion mount, every indexed PCD present with a sound header that
+// agrees with its size and with the index, finite and strictly increasing stamps in the index
+// and in the TUM files, unit quaternions, clouds and odometry (and ground truth, when
+// recorded) overlapping in time. Throws std::runtime_error "FILE[:LINE]: problem" for the
+// first thing wrong.
 RecordedDataset readDataset(const std::string& dir);
 // x, y, z of every point of a PCD (v0.7, binary or ascii, float x y z fields).
 std::vector<Eigen::Vector3f> readPcdPoints(const std::string& path);

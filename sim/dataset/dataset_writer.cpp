@@ -26,18 +26,6 @@ const char* const kCloudDir = "clouds";
 const char* const kCloudIndexFile = "clouds/index.csv";
 const char* const kMetadataFile = "metadata.json";
 
-// A dataset must never mix with the files of an earlier one (a shorter run would leave the
-// old run's extra PCDs behind), so out_dir has to be absent or empty.
-void requireFreshOutput(const std::string& out_dir) {
-  if (out_dir.empty()) throw std::runtime_error("dataset: empty output directory name");
-  std::error_code ec;
-  const fs::file_status status = fs::status(out_dir, ec);
-  if (!fs::exists(status)) return;
-  if (!fs::is_directory(status)) throw std::runtime_error(out_dir + ": exists and is not a directory");
-  if (!fs::is_empty(out_dir, ec) || ec)
-    throw std::runtime_error(out_dir + ": already exists and is not empty (remove it to write a new dataset)");
-}
-
 std::string cloudFileName(std::size_t index) {
   char name[32];
   std::snprintf(name, sizeof name, "%06zu.pcd", index);
@@ -87,7 +75,7 @@ struct DatasetWriter::Impl {
   Impl(const std::string& dir, DatasetInfo dataset_info)
       : out_dir(dir),
         info(std::move(dataset_info)),
-        staging(dir),
+        staging(dir, {kMetadataFile, "bimloc.dataset"}),
         bag(staging.file(kBagFile), info),
         odometry(staging.file(kOdometryFile),
                  tumComment("T_odom_base, base_link in odom (the wheel odometry of /odom)")),
@@ -126,7 +114,7 @@ DatasetWriter::DatasetWriter(const std::string& out_dir, DatasetInfo info) {
     throw std::invalid_argument("dataset: DatasetInfo::metadata must be a JSON object");
   if (info.metadata.is_null()) info.metadata = nlohmann::json::object();
   if (!info.T_base_lidar.matrix().allFinite()) throw std::invalid_argument("dataset: non-finite T_base_lidar");
-  requireFreshOutput(out_dir);
+  if (out_dir.empty()) throw std::runtime_error("dataset: empty output directory name");
   impl_ = std::make_unique<Impl>(out_dir, std::move(info));
 }
 
@@ -181,7 +169,6 @@ std::vector<std::string> DatasetWriter::commit() {
   files.insert(files.end(), impl_->cloud_files.begin(), impl_->cloud_files.end());
   writeFileAtomically(impl_->staging.file(kMetadataFile), impl_->metadata(files).dump(1) + "\n");
 
-  requireFreshOutput(impl_->out_dir);  // again: something may have appeared during the run
   impl_->staging.commit();
   return files;
 }

@@ -47,8 +47,9 @@ struct DatasetInfo {
 // std::runtime_error (naming the path) on an I/O failure.
 class DatasetWriter {
  public:
-  // Stages in a temporary directory next to out_dir; out_dir must not exist or be empty,
-  // so that a dataset never mixes with the files of an earlier one.
+  // Stages in a temporary directory next to out_dir; out_dir must be absent, empty or an
+  // earlier dataset, which commit() replaces whole: a dataset never mixes with the files of
+  // another (a shorter run would leave the old run's extra PCDs behind).
   DatasetWriter(const std::string& out_dir, DatasetInfo info);
   ~DatasetWriter();  // without commit(): removes the staging directory, out_dir untouched
   DatasetWriter(const DatasetWriter&) = delete;
@@ -58,7 +59,8 @@ class DatasetWriter {
   void addOdometry(const OdometrySample& odom);
   void addGroundTruth(const GroundTruthSample& truth);
 
-  // Finishes every file and moves them into out_dir, all or nothing. Returns the file names
+  // Finishes every file and puts the folder in place as out_dir with one rename (or one
+  // exchange with an earlier dataset), all or nothing. Returns the file names
   // relative to out_dir (dataset.bag, metadata.json, ..., clouds/000000.pcd, ...).
   std::vector<std::string> commit();
 

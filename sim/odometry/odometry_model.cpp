@@ -23,7 +23,8 @@ Eigen::Isometry3d fromPlanar(const Eigen::Vector3d& p, double z) {
 
 }  // namespace
 
-NoisyOdometry::NoisyOdometry(const OdometryConfig& config, std::uint64_t seed) : config_(config), rng_(seed) {
+NoisyOdometry::NoisyOdometry(const OdometryConfig& config, std::uint64_t seed, double floor_z)
+    : config_(config), rng_(seed), floor_z_(floor_z) {
   std::normal_distribution<double> n(0.0, 1.0);
   scale_bias_ = config_.scale_bias_sigma * n(rng_);
   yaw_bias_ = config_.yaw_bias_sigma_rad_per_m * n(rng_);
@@ -32,8 +33,8 @@ NoisyOdometry::NoisyOdometry(const OdometryConfig& config, std::uint64_t seed) :
 OdometrySample NoisyOdometry::step(double t_s, const Eigen::Isometry3d& T_map_base) {
   const Eigen::Vector3d now = planar(T_map_base);
   if (!last_true_) {
-    // The odom frame: the base's start pose, dropped to the floor plane of the map.
-    T_map_odom_ = fromPlanar(now, 0.0);
+    // The odom frame: the base's start pose, dropped to the floor it stands on.
+    T_map_odom_ = fromPlanar(now, floor_z_);
     last_true_ = now;
     last_t_ = t_s;
   }

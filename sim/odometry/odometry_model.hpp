@@ -15,7 +15,10 @@ namespace bimloc::sim {
 
 class NoisyOdometry {
  public:
-  NoisyOdometry(const OdometryConfig& config, std::uint64_t seed);
+  // The odom frame is the base's start pose dropped to the floor it stands on, at map height
+  // `floor_z` (REP 105: odom starts where the robot does; a robot knows its height above its
+  // own floor, not the storey's elevation in the plan).
+  NoisyOdometry(const OdometryConfig& config, std::uint64_t seed, double floor_z = 0.0);
 
   // The reading at time t for the true pose T_map_base (call with increasing t).
   OdometrySample step(double t_s, const Eigen::Isometry3d& T_map_base);
@@ -30,6 +33,7 @@ class NoisyOdometry {
   std::optional<Eigen::Vector3d> last_true_;  // x, y, yaw of the previous call
   Eigen::Vector3d estimate_ = Eigen::Vector3d::Zero();  // x, y, yaw in odom
   double last_t_ = 0.0;
+  double floor_z_ = 0.0;
   double scale_bias_ = 0.0;
   double yaw_bias_ = 0.0;
   std::optional<OdometrySample> last_sample_;

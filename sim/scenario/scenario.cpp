@@ -6,7 +6,9 @@
 #include "sim/scenario/yaml_mapping.hpp"
 
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 namespace bimloc::sim {
 namespace {
@@ -15,8 +17,35 @@ namespace fs = std::filesystem;
 using detail::Mapping;
 using detail::Range;
 
+// YAML is Unicode text; yaml-cpp passes any byte on, and a name that is not UTF-8 would fail
+// far away (writing metadata.json) without the file's name. Refused here, with the line.
+void requireUtf8(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    for (std::size_t i = 0; i < line.size();) {
+      const auto byte = static_cast<unsigned char>(line[i]);
+      const std::size_t length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xE ? 3 : (byte >> 3) == 0x1E ? 4 : 0;
+      bool valid = length > 0 && i + length <= line.size() && (byte >= 0x20 || byte == '\t' || byte == '\r');
+      for (std::size_t k = 1; valid && k < length; ++k) valid = (static_cast<unsigned char>(line[i + k]) >> 6) == 0x2;
+      if (valid && length > 1) {  // no overlong forms, surrogates or code points past U+10FFFF
+        const auto second = static_cast<unsigned char>(line[i + 1]);
+        valid = !(byte < 0xC2 || (byte == 0xE0 && second < 0xA0) || (byte == 0xED && second >= 0xA0) ||
+                  (byte == 0xF0 && second < 0x90) || (byte == 0xF4 && second >= 0x90) || byte > 0xF4);
+      }
+      if (!valid) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "0x%02X", byte);
+        detail::fail(path, n, std::string("not UTF-8 text: byte ") + hex + " in column " + std::to_string(i + 1));
+      }
+      i += length;
+    }
+  }
+}
+
 YAML::Node parseFile(const std::string& path) {
   if (!fs::is_regular_file(path)) throw ScenarioError(path + ": no such scenario file");
+  requireUtf8(path);
   try {
     return YAML::LoadFile(path);
   } catch (const YAML::BadFile&) {

@@ -50,6 +50,20 @@ bool parseNumber(const YAML::Node& node, double& out) {
   return true;
 }
 
+// A plain scalar that reads as NaN or infinity: YAML's .nan and .inf, C's nan and inf, or a
+// literal too large for a double.
+bool isNonFiniteNumber(const YAML::Node& node) {
+  if (!node.IsScalar() || node.Tag() == "!") return false;
+  std::string s = node.Scalar();
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (!s.empty() && (s[0] == '+' || s[0] == '-')) s.erase(0, 1);
+  if (s == ".nan" || s == ".inf" || s == "nan" || s == "inf" || s == "infinity") return true;
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(node.Scalar().c_str(), &end);
+  return !node.Scalar().empty() && *end == '\0' && (errno == ERANGE || !std::isfinite(v)) && std::abs(v) > 1.0;
+}
+
 bool parseBool(const YAML::Node& node, bool& out) {
   if (!node.IsScalar() || node.Tag() == "!") return false;
   std::string s = node.Scalar();
@@ -131,6 +145,9 @@ nlohmann::json toJsonBounded(const std::string& file, const YAML::Node& node, in
   bool b = false;
   if (parseBool(node, b)) return b;
   double v = 0.0;
+  // No setting means anything by NaN or infinity (1e999 overflows to it): refused here, where
+  // the line is known, rather than passed on as a string to each consumer of the section.
+  if (isNonFiniteNumber(node)) fail(file, lineOf(node), "'" + node.Scalar() + "' is not a finite number");
   if (parseNumber(node, v)) {
     const std::string& s = node.Scalar();
     const bool integral = s.find_first_of(".eE") == std::string::npos && std::abs(v) < 9e15;

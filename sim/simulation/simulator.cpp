@@ -60,7 +60,7 @@ void Simulator::castTurns(int threads, const std::function<void(LidarScan&&)>& s
 }
 
 std::vector<OdometrySample> Simulator::odometry() const {
-  NoisyOdometry model(scenario_.odometry, streamSeed(scenario_.seed, kOdometryStream));
+  NoisyOdometry model(scenario_.odometry, streamSeed(scenario_.seed, kOdometryStream), trajectory_.floor_z(0.0));
   std::vector<OdometrySample> out;
   const double dt = 1.0 / scenario_.odometry.rate_hz;
   for (std::size_t k = 0; k * dt <= scenario_.duration_s + 1e-9; ++k)
@@ -76,7 +76,7 @@ std::vector<GroundTruthSample> Simulator::groundTruth() const {
 }
 
 Eigen::Isometry3d Simulator::T_map_odom_true() const {
-  NoisyOdometry model(scenario_.odometry, 0);
+  NoisyOdometry model(scenario_.odometry, 0, trajectory_.floor_z(0.0));
   model.step(0.0, trajectory_.T_map_base(0.0));
   return model.T_map_odom_true();
 }

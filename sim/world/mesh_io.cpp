@@ -1,6 +1,7 @@
 #include "sim/world/mesh_io.hpp"
 
 #include "sim/world/atomic_file.hpp"
+#include "sim/world/ply_check.hpp"
 
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
@@ -8,10 +9,12 @@
 #include <assimp/scene.h>
 
 #include <Eigen/Geometry>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
 namespace bimloc::sim {
+namespace fs = std::filesystem;
 
 void writeMesh(const bim::TriangleMesh& mesh, const std::string& path) {
   if (mesh.empty()) throw std::runtime_error(path + ": refusing to write an empty mesh");
@@ -46,10 +49,14 @@ void writeMesh(const bim::TriangleMesh& mesh, const std::string& path) {
 }
 
 bim::TriangleMesh loadMesh(const std::string& path) {
+  if (fs::path(path).extension() == kMeshExtension && fs::exists(path)) checkPly(path);
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
-  if (!scene || !scene->mRootNode) throw std::runtime_error(path + ": cannot load mesh: " + importer.GetErrorString());
+  // ValidateDataStructure runs first: a truncated or damaged PLY gives faces whose indices point
+  // past the vertices, on which the other steps crash (a segfault in assimp) instead of failing.
+  const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                                     aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  if (!scene || !scene->mRootNode)
+    throw std::runtime_error(path + ": not a readable mesh, damaged or truncated (" + importer.GetErrorString() + ")");
   bim::TriangleMesh out;
   std::size_t degenerate = 0;
   for (unsigned k = 0; k < scene->mNumMeshes; ++k) {

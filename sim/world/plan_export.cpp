@@ -36,7 +36,7 @@ std::string wallsCsv(const bim::Building& building) {
 }
 
 std::vector<std::string> exportPlan(const bim::Building& building, const std::string& dir) {
-  StagingDirectory staging(dir);
+  StagingDirectory staging(dir, {"building.json", "bimloc.building"});
   std::vector<std::string> names{"building.json", "walls.csv"};
   nlohmann::json doc = bim::toJson(building);
   for (std::size_t s = 0; s < building.storeys.size(); ++s) {

@@ -1,5 +1,6 @@
 #include "sim/world/world.hpp"
 
+#include "sim/world/json_errors.hpp"
 #include "sim/world/mesh_io.hpp"
 
 #include <bimloc/bim/building_json.hpp>
@@ -131,14 +132,14 @@ World World::fromExtractDir(const std::string& dir) {
   try {
     doc = nlohmann::json::parse(in);
   } catch (const std::exception& e) {
-    throw std::runtime_error(json_path + ": " + e.what());
+    throw std::runtime_error(json_path + ": " + jsonProblem(e));
   }
   auto impl = std::make_unique<Impl>();
   impl->source = dir;
   try {
     impl->building = bim::buildingFromJson(doc);
   } catch (const std::exception& e) {
-    throw std::runtime_error(json_path + ": " + e.what());
+    throw std::runtime_error(json_path + ": " + jsonProblem(e));
   }
   for (std::size_t s = 0; s < impl->building.storeys.size(); ++s) {
     const auto& mesh = doc["storeys"][s]["mesh"];

@@ -33,6 +33,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -185,10 +186,6 @@ TriangleMesh worldMesh(ProductShapeData& shape) {
   return std::move(mesh);
 }
 
-std::string describe(const RawProduct& p) {
-  return p.ifc_class + " " + p.global_id + (p.name.empty() ? "" : " '" + p.name + "'");
-}
-
 RawProduct makeProduct(const shared_ptr<IfcProduct>& product, ProductShapeData& shape, int storey) {
   RawProduct raw;
   raw.entity_id = product->m_entity_id;
@@ -226,7 +223,8 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
 
   const auto t_geometry = Clock::now();
   // References of the wrong type would crash the converter: drop what reaches them first.
-  const ReferenceCheck references(*model, stepReferenceCounts(plan.text));
+  const ReferenceCheck references(*model, scanStep(plan.text));
+  raw.warnings = references.warnings();
   const std::map<int, GeometryDrop> drops = dropUnreadableGeometry(*model, references);
   GeometryConverter converter(model);
   converter.setMessageCallBack(&sink, &MessageSink::collect);
@@ -254,6 +252,14 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
     s.global_id = globalId(storey);
     s.name = label(storey->m_Name);
     if (storey->m_Elevation) s.elevation_m = storey->m_Elevation->m_value * raw.length_unit_m;
+    if (s.elevation_m && !std::isfinite(*s.elevation_m)) {
+      raw.warnings.push_back("IfcBuildingStorey #" + std::to_string(id) + " " + s.global_id + " '" + s.name +
+                             "': Elevation is not a finite number: the placement's height is used");
+      s.elevation_m.reset();
+    }
+    if (const auto drop = drops.find(id); drop != drops.end())
+      raw.warnings.push_back("IfcBuildingStorey #" + std::to_string(id) + " " + s.global_id + " '" + s.name + "': placement ignored: " +
+                             drop->second.reason);
     s.placement_z_m = profiles.placementOrigin(storey->m_ObjectPlacement).z();
     storey_index[id] = static_cast<int>(raw.storeys.size());
     raw.storeys.push_back(s);
@@ -272,7 +278,7 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
     RawProduct p = makeProduct(product, *shape, storeyOf(id, parent, storey_index));
     const auto drop = drops.find(id);
     if (drop != drops.end() && (drop->second.all ? !is_wall && !is_space : true))
-      raw.warnings.push_back(describe(p) + (drop->second.all ? ": geometry skipped: " : ": ignored ") +
+      raw.warnings.push_back(describeProduct(p) + (drop->second.all ? ": geometry skipped: " : ": ignored ") +
                              drop->second.reason);
     if (drop != drops.end() && drop->second.all) {
       p.geometry_problem = "geometry cannot be read: " + drop->second.reason;

@@ -21,10 +21,6 @@ namespace {
 using detail::RawModel;
 using detail::RawProduct;
 
-std::string describe(const RawProduct& p) {
-  return p.ifc_class + " " + p.global_id + (p.name.empty() ? "" : " '" + p.name + "'");
-}
-
 double minZ(const RawProduct& p) {
   double z = std::numeric_limits<double>::infinity();
   for (const auto& v : p.mesh.vertices) z = std::min(z, double(v.z()));
@@ -166,10 +162,10 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     auto wall = detail::wallFromGeometry(p, problem);
     const int s = storeyFor(p, new_index, building.storeys);
     if (!wall || s < 0) {
-      building.warnings.push_back(describe(p) + ": wall skipped: " + (problem.empty() ? "no storey" : problem));
+      building.warnings.push_back(describeProduct(p) + ": wall skipped: " + (problem.empty() ? "no storey" : problem));
       continue;
     }
-    if (!problem.empty()) building.warnings.push_back(describe(p) + ": " + problem);
+    if (!problem.empty()) building.warnings.push_back(describeProduct(p) + ": " + problem);
     if (wall->approximated) shapes[wall->id] = footprintShape(p);
     building.storeys[static_cast<std::size_t>(s)].walls.push_back(std::move(*wall));
   }
@@ -181,7 +177,7 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     auto room = detail::roomFromGeometry(p, problem);
     const int s = storeyFor(p, new_index, building.storeys);
     if (!room || s < 0) {
-      building.warnings.push_back(describe(p) + ": room skipped: " + (problem.empty() ? "no storey" : problem));
+      building.warnings.push_back(describeProduct(p) + ": room skipped: " + (problem.empty() ? "no storey" : problem));
       continue;
     }
     building.storeys[static_cast<std::size_t>(s)].rooms.push_back(std::move(*room));

@@ -35,6 +35,12 @@ struct RawProduct {
   std::string geometry_problem;  // why there is neither mesh nor extrusion
 };
 
+// How a warning names a product: its class, its instance id in the file, its GlobalId and name
+// ("IfcWallStandardCase #361 2OPn9Eo7X5uQL7Jvq1iSyR 'Basic Wall'"), enough to find it in any viewer.
+inline std::string describeProduct(const RawProduct& p) {
+  return p.ifc_class + " #" + std::to_string(p.entity_id) + " " + p.global_id + (p.name.empty() ? "" : " '" + p.name + "'");
+}
+
 struct RawStorey {
   int entity_id = 0;
   std::string global_id;

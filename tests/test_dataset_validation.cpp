@@ -1,0 +1,178 @@
+// A damaged dataset is refused as a whole before `localize` uses any of it (issue 10, items 9
+// and 10). The truth is the damage each test does to a dataset `bimloc simulate` wrote: the
+// error names the damaged file (and line) and what is wrong with it, in words of our own.
+#include "plan_mutation.hpp"
+#include "test_support.hpp"
+
+#include "sim/dataset/dataset_reader.hpp"
+#include "sim/world/json_errors.hpp"
+#include "sim/world/world.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <regex>
+
+namespace fs = std::filesystem;
+using namespace bimloc;
+using namespace bimloc::test;
+
+namespace {
+
+// One short dataset for every test of the file: 1 s, 10 scans.
+const std::string& cleanDataset() {
+  static const std::string dir = [] {
+    const std::string root = tempDir("validation");
+    const std::string scenario = root + "/s.yaml";
+    std::ofstream(scenario) << "name: short\nworld: " << BIMLOC_WORLDS_DIR << "/site_office.ifc\n"
+                            << "start: {room: R101, yaw_deg: 90}\nmotion: {type: tour, rooms: [C100]}\n"
+                            << "duration_s: 1\nodometry: {preset: legged}\nseed: 5\n";
+    const auto r = runBimloc("simulate '" + scenario + "' --out '" + root + "/data' --quiet");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return root + "/data";
+  }();
+  return dir;
+}
+
+// A copy of the clean dataset with one file edited; returns its folder.
+std::string damaged(const std::string& file, const std::function<std::string(const std::string&)>& edit) {
+  const std::string dir = tempDir("damaged") + "/data";
+  fs::copy(cleanDataset(), dir, fs::copy_options::recursive);
+  const std::string path = dir + "/" + file;
+  const std::string text = edit(slurp(path));
+  fs::remove(path);
+  if (!text.empty()) writeFile(dir, file, text);
+  return dir;
+}
+
+std::string replaceRegex(const std::string& text, const std::string& pattern, const std::string& by) {
+  const std::string out = std::regex_replace(text, std::regex(pattern), by, std::regex_constants::format_first_only);
+  EXPECT_NE(out, text) << pattern;
+  return out;
+}
+
+// readDataset must throw, naming `where` and saying `problem`.
+void expectRefused(const std::string& dir, const std::string& where, const std::string& problem) {
+  try {
+    sim::readDataset(dir);
+    ADD_FAILURE() << "accepted: " << where << " " << problem;
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(dir + "/" + where + ": "), std::string::npos) << what;
+    EXPECT_NE(what.find(problem), std::string::npos) << what;
+    EXPECT_EQ(what.find("json.exception"), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+
+TEST(DatasetValidation, TheCleanDatasetReadsWhole) {
+  const auto d = sim::readDataset(cleanDataset());
+  ASSERT_EQ(d.scans.size(), 10u);
+  for (const auto& scan : d.scans) EXPECT_EQ(sim::readPcdPoints(scan.file).size(), scan.points);
+  EXPECT_GT(d.odometry.size(), 10u);
+}
+
+TEST(DatasetValidation, IndexRowsMustPointAtSoundPcdFiles) {
+  expectRefused(damaged("clouds/000003.pcd", [](auto) { return std::string(); }), "clouds/index.csv:5",
+                "clouds/000003.pcd is missing");
+  expectRefused(damaged("clouds/000004.pcd", [](const std::string& t) { return t.substr(0, t.size() - 22); }),
+                "clouds/000004.pcd", "bytes of data, the file has");
+  expectRefused(damaged("clouds/000004.pcd", [](const std::string& t) { return replaceRegex(t, "POINTS ", "POINTS 1"); }),
+                "clouds/000004.pcd", "is not WIDTH x HEIGHT");
+  expectRefused(damaged("clouds/index.csv", [](const std::string& t) { return replaceRegex(t, "\n000001.pcd,", "\n../x,"); }),
+                "clouds/index.csv:3", "'../x' is not a file name in clouds/");
+}
+
+TEST(DatasetValidation, StampsMustBeFiniteAndIncreasing) {
+  expectRefused(damaged("clouds/index.csv", [](const std::string& t) { return replaceRegex(t, ",1000\\.1[0-9]*,", ",nan,"); }),
+                "clouds/index.csv:3", "stamp is not a finite number");
+  expectRefused(damaged("clouds/index.csv", [](const std::string& t) { return replaceRegex(t, ",1000\\.2[0-9]*,", ",999,"); }),
+                "clouds/index.csv:4", "does not follow the previous one");
+  expectRefused(damaged("odometry.tum", [](const std::string& t) { return replaceRegex(t, "\n1000\\.0[0-9]* ", "\nnan "); }),
+                "odometry.tum:2", "expected 'timestamp tx ty tz qx qy qz qw'");
+}
+
+TEST(DatasetValidation, CloudsAndOdometryMustOverlapInTime) {
+  // Every odometry stamp 100 s later: still increasing, never beside a cloud.
+  const std::string dir = damaged("odometry.tum", [](const std::string& t) {
+    std::string out;
+    std::istringstream in(t);
+    for (std::string line; std::getline(in, line);) {
+      if (line.empty() || line[0] == '#') {
+        out += line + "\n";
+        continue;
+      }
+      const auto blank = line.find(' ');
+      out += std::to_string(std::stod(line.substr(0, blank)) + 100.0) + line.substr(blank) + "\n";
+    }
+    return out;
+  });
+  try {
+    sim::readDataset(dir);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("the clouds (1000 to 1000.9 s) and odometry.tum (1100"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("never overlap in time"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DatasetValidation, QuaternionsMustHaveUnitNorm) {
+  expectRefused(damaged("odometry.tum", [](const std::string& t) {
+                  return replaceRegex(t, "\n(1000\\.0[0-9]* \\S+ \\S+ \\S+) \\S+ \\S+ \\S+ \\S+\n", "\n$1 0 0 0 0\n");
+                }),
+                "odometry.tum:2", "quaternion (0, 0, 0, 0) does not have unit norm");
+  expectRefused(damaged("metadata.json", [](const std::string& t) {
+                  auto doc = nlohmann::json::parse(t);
+                  doc["T_base_lidar"]["quaternion_xyzw"] = {0, 0, 0, 0};
+                  return doc.dump();
+                }),
+                "metadata.json", "does not have unit norm");
+}
+
+TEST(DatasetValidation, MetadataMustBeOfASupportedVersionAndSaySoInOurWords) {
+  const auto edit = [](const std::function<void(nlohmann::json&)>& f) {
+    return [f](const std::string& t) {
+      auto doc = nlohmann::json::parse(t);
+      f(doc);
+      return doc.dump();
+    };
+  };
+  expectRefused(damaged("metadata.json", edit([](auto& d) { d["version"] = 99; })), "metadata.json",
+                "version 99 is not supported (this bimloc reads version 1)");
+  expectRefused(damaged("metadata.json", edit([](auto& d) { d.erase("T_base_lidar"); })), "metadata.json",
+                "missing key 'T_base_lidar'");
+  expectRefused(damaged("metadata.json", edit([](auto& d) { d["T_base_lidar"].erase("xyz"); })), "metadata.json",
+                "missing key 'T_base_lidar.xyz'");
+  expectRefused(damaged("metadata.json", [](auto) { return std::string("{\"version\": 1,"); }), "metadata.json",
+                "not valid JSON: parse error at line 1");
+}
+
+// Through the binary: one line naming the file, exit 1.
+TEST(DatasetValidation, LocalizeRefusesADamagedDatasetWithExitOne) {
+  const std::string dir = damaged("clouds/000007.pcd", [](auto) { return std::string(); });
+  const auto r = runBimloc("localize '" + dir + "' --plan '" + BIMLOC_WORLDS_DIR + "/site_office.ifc'");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(dir + "/clouds/index.csv:9: " + dir + "/clouds/000007.pcd is missing"), std::string::npos) << r.err;
+}
+
+// nlohmann's own words never reach the user (issue 10, item 10), wherever JSON is read.
+TEST(JsonErrors, LibraryTextBecomesOurs) {
+  try {
+    (void)nlohmann::json::object().at("T_base_lidar");
+  } catch (const std::exception& e) {
+    EXPECT_EQ(sim::jsonProblem(e), "missing key 'T_base_lidar'");
+  }
+  const std::string dir = tempDir("json");
+  writeFile(dir, "building.json", R"({"format": "bimloc.building", "version": 1})");
+  try {
+    (void)sim::World::fromExtractDir(dir);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()).find("json.exception"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(dir + "/building.json: "), std::string::npos) << e.what();
+  }
+}
