@@ -2,6 +2,7 @@
 
 #include "window_solver.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 
@@ -23,9 +24,12 @@ std::string keyframeDoubt(const Graph& g, const Keyframe& kf, const std::vector<
   for (int k = 0; k < 2; ++k)
     if (matched[k] < c.min_plan_fraction * seen[k])
       return std::to_string(matched[k]) + " of " + std::to_string(seen[k]) + (k == 0 ? " x" : " y") + " walls matched the plan";
-  const double residual2 = meanPlaneResidual2(g, kf);
-  if (residual2 > c.loss_mahalanobis2) {
-    std::snprintf(text, sizeof text, "planes' mean squared residual %.1f", residual2);
+  // The planes that disagree with the optimized keyframe: one wall built off its plan or one
+  // wrong association (both held by the robust kernels) is not a lost robot; most of them is.
+  const std::vector<double> residuals2 = planeResiduals2(g, kf);
+  const auto disagree = std::count_if(residuals2.begin(), residuals2.end(), [&](double r2) { return r2 > c.loss_mahalanobis2; });
+  if (!residuals2.empty() && 2 * disagree > static_cast<long>(residuals2.size())) {
+    std::snprintf(text, sizeof text, "%ld of %zu planes disagree after the optimization", static_cast<long>(disagree), residuals2.size());
     return text;
   }
   const double correction = (kf.planar() - kf.predicted).head<2>().norm();

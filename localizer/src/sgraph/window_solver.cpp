@@ -62,17 +62,16 @@ ceres::CostFunction* planeCost(const Graph& g, const Keyframe& kf, const PlaneMe
   return PlaneFactor::create(node.face[m.face], kf.A, kf.b, m.minimal, m.sqrt_information);
 }
 
-double meanPlaneResidual2(const Graph& g, const Keyframe& kf) {
-  if (kf.planes.empty()) return 0;
-  double sum = 0;
+std::vector<double> planeResiduals2(const Graph& g, const Keyframe& kf) {
+  std::vector<double> out;
   for (const PlaneMeasurement& m : kf.planes) {
     const WallNode& node = g.nodes[static_cast<std::size_t>(m.node)];
     const PlaneFactor factor(node.face[m.face], kf.A, kf.b, m.minimal, m.sqrt_information);
     double r[3];
     factor(kf.pose.data(), node.params.data(), r);
-    sum += r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    out.push_back(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
   }
-  return sum / static_cast<double>(kf.planes.size());
+  return out;
 }
 
 SolveReport optimizeWindow(Graph& g, const SGraphConfig& c) {

@@ -29,8 +29,8 @@ Eigen::Vector3d odometrySigma(const Keyframe& a, const Keyframe& b, const SGraph
 ceres::CostFunction* odometryCost(const Keyframe& a, const Keyframe& b, const SGraphConfig& config);
 ceres::CostFunction* planeCost(const Graph& g, const Keyframe& kf, const PlaneMeasurement& m);
 
-// Mean squared Mahalanobis residual of the keyframe's plane measurements at the current
-// estimate (no robust kernel); 0 without measurements.
-double meanPlaneResidual2(const Graph& g, const Keyframe& kf);
+// Squared Mahalanobis residual of each of the keyframe's plane measurements at the current
+// estimate (no robust kernel).
+std::vector<double> planeResiduals2(const Graph& g, const Keyframe& kf);
 
 }  // namespace bimloc::sgraph::detail

@@ -98,13 +98,15 @@ struct SGraphConfig {
 
   // Loss of track: a keyframe is bad when it matches fewer plan walls than this, or fewer than
   // min_plan_fraction of the x (or of the y) walls it sees (a robot metres off along a
-  // corridor still matches the corridor's walls, not those across it), when its planes' mean squared
-  // Mahalanobis residual after optimization exceeds loss_mahalanobis2, or when the optimization
-  // moved it more than loss_correction_m from its odometry prediction.
+  // corridor still matches the corridor's walls, not those across it), when more than half of
+  // its planes disagree after the optimization (squared Mahalanobis residual above
+  // loss_mahalanobis2: chi-square, 3 DoF, 99 %; one outlier the robust kernels hold is not a
+  // lost robot), or when the optimization moved it more than loss_correction_m from its
+  // odometry prediction.
   // This many bad keyframes in a row -> lost; recover_after_keyframes good ones -> tracking.
   int min_plan_associations = 2;
   double min_plan_fraction = 0.5;
-  double loss_mahalanobis2 = 9.0;
+  double loss_mahalanobis2 = 11.34;
   double loss_correction_m = 0.5;
   int lost_after_keyframes = 5;
   int recover_after_keyframes = 3;
