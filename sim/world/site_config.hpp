@@ -1,0 +1,77 @@
+// How the simulated site differs from its plan: walls off their drawn place or not built yet,
+// temporary partitions, glass the lidar sees through, doors open, shut or ajar. Only the
+// simulator's world changes; the localizer always gets the plan. Every draw comes from the
+// scenario's seed (World::withSite), and what was drawn is the SiteTruth.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bimloc::sim {
+
+// One wall changed by hand: its GlobalId or name, and what to do to it.
+struct WallEdit {
+  std::string id;                   // GlobalId or name
+  std::optional<double> offset_m;   // along the wall's faces[0] normal (as in building.json)
+  std::optional<double> angle_deg;  // about the wall's vertical centre line, counter-clockwise
+  bool missing = false;             // not built yet
+  int line = 0;                     // where the scenario gave it, for messages
+};
+
+struct SiteWalls {
+  double fraction = 0.0;       // of the walls shifted and turned (each by a uniform draw)
+  double max_offset_m = 0.0;   // shift along faces[0]'s normal, uniform in [-max, max]
+  double max_angle_deg = 0.0;  // turn about the vertical centre line, uniform in [-max, max]
+  double missing_fraction = 0.0;  // of the walls not built yet
+  // Temporary partitions: free-standing boards in rooms, kept clear of every wall, doorway and
+  // other partition by `partition_clearance_m` so they never cut a room or a path in two.
+  int partitions_per_storey = 0;
+  double partition_min_length_m = 1.0;
+  double partition_max_length_m = 3.0;
+  double partition_thickness_m = 0.1;
+  double partition_height_m = 2.0;
+  double partition_clearance_m = 1.0;  // > the base's 0.6 m diameter plus the planner's margins
+  std::vector<WallEdit> edits;         // applied after the draws, they win
+};
+
+// Fraction of the rays that pass an element of each glazed IFC class (IfcWindow, IfcCurtainWall,
+// IfcPlate); 0 (or absent) = opaque, as in the plan's world. The robot never passes glass.
+struct SiteGlass {
+  std::map<std::string, double> pass_fraction;
+};
+
+enum class DoorState { Open, Shut, Ajar };
+const char* toString(DoorState state);
+
+struct DoorEdit {
+  std::string id;  // GlobalId or name of the IfcDoor
+  DoorState state = DoorState::Open;
+  int line = 0;
+};
+
+// Door leaves: open (left out, as in the plan's world: swung back against the wall), shut (a
+// leaf closing the doorway: the planner finds no way through), or ajar (the leaf turned
+// `ajar_angle_deg` about its hinge jamb). Each door draws its state from the fractions.
+struct SiteDoors {
+  double shut_fraction = 0.0;
+  double ajar_fraction = 0.0;
+  double ajar_angle_deg = 30.0;
+  double leaf_thickness_m = 0.04;
+  std::vector<DoorEdit> edits;
+};
+
+struct SiteConfig {
+  std::string preset = "exact";  // the preset it started from (the keys given override it)
+  SiteWalls walls;
+  SiteGlass glass;
+  SiteDoors doors;
+  bool exact() const;  // nothing differs from the plan
+};
+
+// exact, as_built, construction, heavy (README.md, "Sites"); std::invalid_argument otherwise.
+SiteConfig sitePreset(const std::string& name);
+const std::vector<std::string>& sitePresetNames();
+
+}  // namespace bimloc::sim
