@@ -56,14 +56,18 @@ Eigen::Affine3d wallMotion(const bim::Wall& wall, const WallTruth& truth) {
          Eigen::Translation3d(-c);
 }
 
-int hostWall(const bim::Storey& storey, const PlanStorey& plan, const bim::MeshPart& part) {
-  if (part.vertex_count == 0) return -1;
+Eigen::Vector2d partCentre(const PlanStorey& plan, const bim::MeshPart& part) {
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::uint32_t v = part.first_vertex; v < part.first_vertex + part.vertex_count; ++v) {
     lo = lo.cwiseMin(plan.mesh.vertices[v].head<2>().cast<double>());
     hi = hi.cwiseMax(plan.mesh.vertices[v].head<2>().cast<double>());
   }
-  const Eigen::Vector2d centre = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+int hostWall(const bim::Storey& storey, const PlanStorey& plan, const bim::MeshPart& part) {
+  if (part.vertex_count == 0) return -1;
+  const Eigen::Vector2d centre = partCentre(plan, part);
   int best = -1;
   double best_across = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < storey.walls.size(); ++i) {
@@ -112,7 +116,7 @@ SiteTruth drawSite(const bim::Building& building, const std::vector<PlanStorey>&
     for (const auto& p : plan[s].parts) {
       if (!isDoorPart(p)) continue;
       const double u = door_random.uniform();
-      DoorTruth d{p.id, p.name, s, DoorState::Open, ""};
+      DoorTruth d{p.id, p.name, s, DoorState::Open, "", partCentre(plan[s], p)};
       d.state = u < doors.shut_fraction                          ? DoorState::Shut
                 : u < doors.shut_fraction + doors.ajar_fraction ? DoorState::Ajar
                                                                  : DoorState::Open;

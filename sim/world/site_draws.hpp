@@ -28,6 +28,7 @@ Eigen::Affine3d wallMotion(const bim::Wall& wall, const WallTruth& truth);
 
 // The wall of the storey that hosts an element (door, window) whose part this is: the wall
 // whose body holds the centre of the part's bounding box; -1 when none.
+Eigen::Vector2d partCentre(const PlanStorey& plan, const bim::MeshPart& part);  // of its XY bounding box
 int hostWall(const bim::Storey& storey, const PlanStorey& plan, const bim::MeshPart& part);
 
 }  // namespace bimloc::sim

@@ -18,7 +18,8 @@ nlohmann::json siteTruthJson(const SiteTruth& t) {
     partitions.push_back({{"storey", p.storey}, {"room", p.room}, {"start", {p.start.x(), p.start.y()}},
                           {"end", {p.end.x(), p.end.y()}}, {"thickness_m", p.thickness_m}, {"height_m", p.height_m}});
   for (const auto& d : t.doors)
-    doors.push_back({{"id", d.id}, {"name", d.name}, {"storey", d.storey}, {"state", toString(d.state)}, {"wall_id", d.wall_id}});
+    doors.push_back({{"id", d.id}, {"name", d.name}, {"storey", d.storey}, {"state", toString(d.state)}, {"wall_id", d.wall_id},
+                     {"centre", {d.centre.x(), d.centre.y()}}});
   for (const auto& g : t.glass)
     glass.push_back({{"ifc_class", g.ifc_class}, {"pass_fraction", g.pass_fraction}, {"elements", g.elements}});
   return {{"preset", t.preset},   {"seed", t.seed},   {"walls", walls},         {"partitions", partitions},

@@ -38,6 +38,7 @@ struct DoorTruth {
   std::size_t storey = 0;
   DoorState state = DoorState::Open;
   std::string wall_id;  // the wall it stands in (its leaf follows that wall's shift)
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // of the door's plan outline (bounding box), XY
 };
 
 struct GlassTruth {
