@@ -19,7 +19,7 @@ bool SiteConfig::exact() const {
   const bool walls_moved = this->walls.fraction > 0.0 && (this->walls.max_offset_m > 0.0 || this->walls.max_angle_deg > 0.0);
   return !walls_moved && this->walls.missing_fraction == 0.0 && this->walls.partitions_per_storey == 0 &&
          this->walls.edits.empty() && !glass && doors.shut_fraction == 0.0 && doors.ajar_fraction == 0.0 &&
-         doors.edits.empty();
+         doors.edits.empty() && clutter.density_per_m2 == 0.0;
 }
 
 const std::vector<std::string>& sitePresetNames() {
@@ -46,6 +46,7 @@ SiteConfig sitePreset(const std::string& name) {
   c.glass.pass_fraction = {{"IfcWindow", 0.9}, {"IfcCurtainWall", 0.9}, {"IfcPlate", 0.9}};
   c.doors.shut_fraction = 0.2;
   c.doors.ajar_fraction = 0.3;
+  c.clutter.density_per_m2 = 0.2;
   if (name == "construction") return c;
   if (name == "heavy") {
     c.walls.max_offset_m = 0.20;
@@ -55,6 +56,7 @@ SiteConfig sitePreset(const std::string& name) {
     c.glass.pass_fraction = {{"IfcWindow", 1.0}, {"IfcCurtainWall", 1.0}, {"IfcPlate", 1.0}};
     c.doors.shut_fraction = 0.3;
     c.doors.ajar_fraction = 0.4;
+    c.clutter.density_per_m2 = 0.4;
     return c;
   }
   std::string names;

@@ -64,11 +64,25 @@ struct SiteDoors {
   std::vector<DoorEdit> edits;
 };
 
+// Clutter: boxes (material stacks, pallets, scaffold towers as their bounding boxes) in the
+// rooms, `density_per_m2` of room area. A box stands against one edge of its room (a fraction
+// `against_walls` of them) or free, and keeps `clearance_m` from everything else (other edges,
+// walls, doors plus 1 m, partitions, other boxes), so it never closes a passage: every tour
+// the plan allows stays possible, and the planner (which plans on the site) goes round it.
+struct SiteClutter {
+  double density_per_m2 = 0.0;
+  double min_size_m[3] = {0.4, 0.4, 0.3};  // along, across, up
+  double max_size_m[3] = {1.2, 1.0, 1.5};
+  double against_walls = 0.7;
+  double clearance_m = 1.0;
+};
+
 struct SiteConfig {
   std::string preset = "exact";  // the preset it started from (the keys given override it)
   SiteWalls walls;
   SiteGlass glass;
   SiteDoors doors;
+  SiteClutter clutter;
   bool exact() const;  // nothing differs from the plan
 };
 

@@ -33,6 +33,16 @@ struct PartitionTruth {
   double thickness_m = 0.0, height_m = 0.0;
 };
 
+// A clutter box: centre of its base, heading of its first side, size (along, across, up).
+struct ClutterTruth {
+  std::size_t storey = 0;
+  std::string room;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double yaw_deg = 0.0;
+  Eigen::Vector3d size_m = Eigen::Vector3d::Zero();
+  bool against_wall = false;
+};
+
 struct DoorTruth {
   std::string id, name;  // of the IfcDoor
   std::size_t storey = 0;
@@ -54,6 +64,7 @@ struct SiteTruth {
   std::vector<PartitionTruth> partitions;
   std::vector<DoorTruth> doors;
   std::vector<GlassTruth> glass;
+  std::vector<ClutterTruth> clutter;
   std::vector<std::string> warnings;  // what was asked and could not be done (a partition with no room for it, ...)
 
   const WallTruth* findWall(const std::string& id) const;

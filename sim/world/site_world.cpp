@@ -1,6 +1,7 @@
 // World::withSite: the plan's world as a site. The draws (site_draws), then per storey the
 // plan's elements kept, dropped, moved with their wall or glazed (site_mesh), door leaves and
 // partitions added, and the Embree scenes and Bullet worlds built from the result.
+#include "sim/world/site_clutter.hpp"
 #include "sim/world/site_draws.hpp"
 #include "sim/world/site_mesh.hpp"
 #include "sim/world/site_partitions.hpp"
@@ -141,6 +142,7 @@ World World::withSite(const SiteConfig& config, std::uint64_t seed) const {
       appendDoorLeaf(composed, plan[s], plan[s].parts[leaf.part], storey.walls[static_cast<std::size_t>(leaf.host)],
                      motions[static_cast<std::size_t>(leaf.host)], leaf.state, config.doors);
     placePartitions(storey, s, config.walls, motions, door_centres, seed, composed, truth);
+    placeClutter(storey, s, config.clutter, motions, door_centres, seed, composed, truth);
     composed.glass.seed = seed;
     impl->building.storeys[s].mesh = std::move(composed.mesh);
     impl->building.storeys[s].mesh_parts = std::move(composed.parts);
