@@ -4,6 +4,7 @@
 // the truth in metadata.json; bad site input gets FILE:LINE errors and nothing written.
 #include "sim/base/free_space.hpp"
 #include "sim/scenario/scenario.hpp"
+#include "sim/simulation/simulator.hpp"
 #include "sim/world/world.hpp"
 #include "sim_fixtures.hpp"
 #include "test_support.hpp"
@@ -186,6 +187,51 @@ TEST(SiteSimulate, BadSiteInputGetsFileLineErrorsAndNothingIsWritten) {
   expectSimulateError("site:\n  walls:\n    edit:\n      - {id: " + name + "X, offset_m: 0.1}\n", 9,
                       "no wall '" + name + "X' (GlobalId or name) in the plan (did you mean '" + name + "'?)");
   expectSimulateError("site:\n  walls:\n    edit:\n      - {id: " + name + ", offset_m: 3}\n", 9, "offset_m must be in [-1, 1]");
+}
+
+}  // namespace
+}  // namespace bimloc::sim
+
+namespace bimloc::sim {
+namespace {
+
+// Distance from p to the box (its footprint rectangle), 0 inside.
+double distanceToBox(const Eigen::Vector2d& p, const ClutterTruth& c) {
+  const double yaw = c.yaw_deg * M_PI / 180.0;
+  const Eigen::Vector2d u(std::cos(yaw), std::sin(yaw)), n(-u.y(), u.x());
+  const Eigen::Vector2d d = p - c.centre.head<2>();
+  const double along = std::max(0.0, std::abs(d.dot(u)) - 0.5 * c.size_m.x());
+  const double across = std::max(0.0, std::abs(d.dot(n)) - 0.5 * c.size_m.y());
+  return std::hypot(along, across);
+}
+
+TEST(SiteClutter, BoxesStandWhereTheTruthSaysAndTheRobotsPathStaysClear) {
+  const Scenario s = loadScenario(std::string(BIMLOC_SCENARIOS_DIR) + "/site_office_R101_construction.yaml");
+  const World plan = World::load(s.world);
+  const Simulator sim(s, plan);
+  const SiteTruth& truth = sim.world().siteTruth();
+  ASSERT_GT(truth.clutter.size(), 5u);
+  for (const auto& c : truth.clutter) {
+    if (c.against_wall) continue;  // its back may stand in a moved wall: look at the free ones
+    // A ray at the box's side, 0.5 m out, level with its middle, meets the side (a plan ray does not).
+    const double yaw = c.yaw_deg * M_PI / 180.0;
+    const Eigen::Vector2d n(-std::sin(yaw), std::cos(yaw));
+    const Eigen::Vector2d o2 = c.centre.head<2>() + (0.5 * c.size_m.y() + 0.5) * n;
+    const Eigen::Vector3f o(float(o2.x()), float(o2.y()), float(c.centre.z() + 0.5 * c.size_m.z()));
+    const Eigen::Vector3f dir(float(-n.x()), float(-n.y()), 0.0f);
+    const RayHit hit = sim.world().castRay(0, o, dir, 0.0f, 3.0f);
+    ASSERT_TRUE(hit.hit());
+    EXPECT_NEAR(hit.range_m, 0.5, 1e-4);
+    EXPECT_FALSE(plan.castRay(0, o, dir, 0.0f, 0.55f).hit());
+  }
+  // The body (a circle of body_radius_m) never touches a box, all along the trajectory.
+  const double radius = s.motion.body_radius_m;
+  double closest = 1e9;
+  for (double t = 0.0; t <= s.duration_s; t += 0.05) {
+    const Eigen::Vector2d p = sim.trajectory().T_map_base(t).translation().head<2>();
+    for (const auto& c : truth.clutter) closest = std::min(closest, distanceToBox(p, c));
+  }
+  EXPECT_GE(closest, radius);
 }
 
 }  // namespace
