@@ -211,6 +211,7 @@ TEST(SiteClutter, BoxesStandWhereTheTruthSaysAndTheRobotsPathStaysClear) {
   const Simulator sim(s, plan);
   const SiteTruth& truth = sim.world().siteTruth();
   ASSERT_GT(truth.clutter.size(), 5u);
+  std::size_t free_standing = 0;
   for (const auto& c : truth.clutter) {
     if (c.against_wall) continue;  // its back may stand in a moved wall: look at the free ones
     // A ray at the box's side, 0.5 m out, level with its middle, meets the side (a plan ray does not).
@@ -223,7 +224,9 @@ TEST(SiteClutter, BoxesStandWhereTheTruthSaysAndTheRobotsPathStaysClear) {
     ASSERT_TRUE(hit.hit());
     EXPECT_NEAR(hit.range_m, 0.5, 1e-4);
     EXPECT_FALSE(plan.castRay(0, o, dir, 0.0f, 0.55f).hit());
+    ++free_standing;
   }
+  EXPECT_GT(free_standing, 0u) << "no free-standing box to look at";
   // The body (a circle of body_radius_m) never touches a box, all along the trajectory.
   const double radius = s.motion.body_radius_m;
   double closest = 1e9;
