@@ -180,6 +180,9 @@ TEST(SiteSimulate, BadSiteInputGetsFileLineErrorsAndNothingIsWritten) {
   expectSimulateError("site:\n  walls:\n    partitions: {count: 2.5}\n", 8, "whole number");
   expectSimulateError("site:\n  glass: {IfcWindow: 2}\n", 7, "site.glass.IfcWindow must be in [0, 1]");
   expectSimulateError("site:\n  doors: {shut_fraction: 0.7, ajar_fraction: 0.5}\n", 7, "must not exceed 1");
+  expectSimulateError("site:\n  clutter: {density_per_m2: 3}\n", 7, "site.clutter.density_per_m2 must be in [0, 2]");
+  expectSimulateError("site:\n  clutter: {min_size_m: [1, 1, 1], max_size_m: [2, 0.5, 2]}\n", 7, "must not exceed max_size_m");
+  expectSimulateError("site:\n  cluter: {density_per_m2: 0.1}\n", 7, "did you mean 'clutter'?");
   expectSimulateError("site:\n  doors:\n    edit:\n      - {id: nope, state: shut}\n", 9, "no door 'nope'");
   expectSimulateError("site:\n  doors:\n    edit:\n      - {id: nope, state: shot}\n", 9, "did you mean 'shut'?");
   // A wall id with a typo: the suggestion is the real one.

@@ -86,6 +86,24 @@ void readDoors(const Mapping& site, SiteDoors& doors) {
   }
 }
 
+void readClutter(const Mapping& site, SiteClutter& clutter) {
+  const Mapping m = site.mapping("clutter", {"density_per_m2", "min_size_m", "max_size_m", "against_walls", "clearance_m"});
+  m.read("density_per_m2", clutter.density_per_m2, Range::closed(0.0, 2.0));
+  for (const char* key : {"min_size_m", "max_size_m"}) {
+    if (!m.has(key)) continue;
+    const auto v = m.numbers(m.value(key), m.name(key), m.line(key), 3, 3, Range::positive(5.0));
+    double* out = std::string(key) == "min_size_m" ? clutter.min_size_m : clutter.max_size_m;
+    for (int a = 0; a < 3; ++a) out[a] = v[static_cast<std::size_t>(a)];
+  }
+  for (int a = 0; a < 3; ++a)
+    if (clutter.min_size_m[a] > clutter.max_size_m[a])
+      m.fail(m.has("max_size_m") ? "max_size_m" : "min_size_m",
+             "site.clutter.min_size_m must not exceed max_size_m, axis by axis ([along, across, up])");
+  m.read("against_walls", clutter.against_walls, kFraction);
+  // Below the base's diameter and the planner's margins, two boxes could close a passage.
+  m.read("clearance_m", clutter.clearance_m, Range::closed(0.8, 5.0));
+}
+
 }  // namespace
 
 SiteConfig readSite(const Mapping& top, std::map<std::string, int>& lines) {
@@ -99,7 +117,7 @@ SiteConfig readSite(const Mapping& top, std::map<std::string, int>& lines) {
     top.fail("site", "site must be a preset (exact, as_built, construction, heavy) or a mapping, got '" + node.Scalar() +
                          "'" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)"));
   }
-  const Mapping m = top.mapping("site", {"preset", "walls", "glass", "doors"});
+  const Mapping m = top.mapping("site", {"preset", "walls", "glass", "doors", "clutter"});
   std::string preset = "exact";
   m.readChoice("preset", preset, sitePresetNames());
   SiteConfig site = sitePreset(preset);
@@ -107,6 +125,7 @@ SiteConfig readSite(const Mapping& top, std::map<std::string, int>& lines) {
   const Mapping glass = m.mapping("glass", {"IfcWindow", "IfcCurtainWall", "IfcPlate"});
   for (const auto& key : glass.given()) glass.read(key, site.glass.pass_fraction[key], kFraction);
   readDoors(m, site.doors);
+  readClutter(m, site.clutter);
   return site;
 }
 
