@@ -8,7 +8,7 @@
 
 namespace bimloc::sim {
 
-enum class RandomStream : std::uint64_t { Gait = 1, Walk = 2, Start = 3 };
+enum class RandomStream : std::uint64_t { Gait = 1, Walk = 2, Start = 3, SiteWalls = 4, SiteDoors = 5, SitePartitions = 6, SiteClutter = 7 };
 
 class SeededRandom {
  public:

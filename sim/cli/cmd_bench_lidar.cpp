@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <optional>
 #include <chrono>
 #include <iostream>
 #include <thread>
@@ -26,6 +27,7 @@ struct LidarBenchArgs {
   int turns = 20;
   int rounds = 5;
   bool json = false;
+  std::string site;  // also time the model on this site of the plan (sim/world/site_config.hpp)
 };
 
 // The base walks a slow circle around the largest room's centre while turning: every firing
@@ -89,30 +91,40 @@ void run(const LidarBenchArgs& args) {
     });
   };
   // The model, with packets (the default) and with single rays.
-  const auto model_time = [&](bool packets) {
+  // The site's world (same plan, same poses): partitions, door leaves, glass filters.
+  const std::optional<World> site =
+      args.site.empty() ? std::nullopt : std::optional<World>(world.withSite(sitePreset(args.site), 1));
+  const auto model_time = [&](bool packets, const World* on) {
     Vlp16Config c = config;
     c.use_packets = packets;
     const Vlp16 lidar(c);
+    const World& w = on ? *on : world;
     return timed(args.threads, args.turns, [&](int i) {
-      lidar.scan(world, storey, base, i * lidar.turnPeriod_s(), 1, static_cast<std::uint64_t>(i));
+      lidar.scan(w, storey, base, i * lidar.turnPeriod_s(), 1, static_cast<std::uint64_t>(i));
     });
   };
   // Interleaved rounds, best of each: the machine is shared, and whatever else runs slows
   // every variant of a round alike; the fastest round is the least disturbed one.
-  double plain_s = 1e30, model_s = 1e30, single_s = 1e30;
+  double plain_s = 1e30, model_s = 1e30, single_s = 1e30, site_s = 1e30;
   for (int round = 0; round < args.rounds; ++round) {
     plain_s = std::min(plain_s, plain_time());
-    model_s = std::min(model_s, model_time(true));
-    single_s = std::min(single_s, model_time(false));
+    model_s = std::min(model_s, model_time(true, nullptr));
+    single_s = std::min(single_s, model_time(false, nullptr));
+    if (site) site_s = std::min(site_s, model_time(true, &*site));
   }
   const double total_rays = double(n_rays) * args.turns;
-  const nlohmann::json result = {
+  nlohmann::json result = {
       {"plan", args.plan}, {"storey", world.building().storeys[storey].name}, {"threads", args.threads},
       {"triangles", world.triangleCount(storey)}, {"rays", n_rays}, {"turns", args.turns}, {"rounds", args.rounds},
       {"plain_rays_per_s", total_rays / plain_s}, {"model_rays_per_s", total_rays / model_s},
       {"ratio", plain_s / model_s}, {"turns_per_s", args.turns / model_s},
       {"model_single_ray_rays_per_s", total_rays / single_s}, {"ratio_single_ray", plain_s / single_s},
       {"hit_fraction", double(hits) / total_rays}};
+  if (site) {
+    result["site"] = args.site;
+    result["site_model_rays_per_s"] = total_rays / site_s;
+    result["site_vs_exact"] = model_s / site_s;  // the issue asks for >= 0.8
+  }
   if (args.json) {
     std::cout << result.dump() << "\n";
     return;
@@ -124,6 +136,9 @@ void run(const LidarBenchArgs& args) {
              fixed(args.turns / model_s, 1)});
   table.add({"VLP-16 model, single rays", fixed(total_rays / single_s / 1e6, 2), fixed(plain_s / single_s, 2),
              fixed(args.turns / single_s, 1)});
+  if (site)
+    table.add({"VLP-16 model, packets, site " + args.site, fixed(total_rays / site_s / 1e6, 2), fixed(plain_s / site_s, 2),
+               fixed(args.turns / site_s, 1)});
   std::cout << args.plan << ", storey '" << world.building().storeys[storey].name << "': " << world.triangleCount(storey)
             << " triangles, " << n_rays << " rays a turn, " << args.turns << " turns, " << args.threads << " thread(s)\n\n";
   table.print(std::cout);
@@ -142,5 +157,9 @@ void addBenchLidarCommand(CLI::App& bench) {
   cmd->add_option("--turns", args->turns, "turns per measurement")->check(CLI::Range(1, 100000));
   cmd->add_option("--rounds", args->rounds, "interleaved rounds; the best of each variant is reported")->check(CLI::Range(1, 100));
   cmd->add_flag("--json", args->json, "print one JSON object");
+  cmd->add_option("--site", args->site,
+                  "also time the model on this site of the plan (as_built, construction, heavy; seed 1), interleaved "
+                  "with the others: site_vs_exact is its speed over the plan's world's")
+      ->check(CLI::IsMember(sitePresetNames()));
   cmd->callback([args] { run(*args); });
 }

@@ -72,7 +72,8 @@ void run(const LocalizeArgs& args) {
   } else {
     score.finish(r);
   }
-  if (const auto* tracker = localizer.tracker()) r.wall_deviations = tracker->wallDeviations();
+  if (const auto* tracker = localizer.tracker())
+    for (const auto& w : tracker->wallDeviations()) r.wall_deviations.push_back({w, std::nullopt, std::nullopt});
   if (map_error && map_error->points() > 0) r.map_rmse_m = map_error->rmse_m();
   r.sim_seconds = data.scans.empty() ? 0.0 : data.scans.back().stamp_s - data.scans.front().stamp_s + data.turn_period_s;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -3,7 +3,9 @@
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
 #include "sim/runner/room_scenarios.hpp"
+#include "sim/scenario/yaml_mapping.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 
@@ -27,6 +29,7 @@ struct RunArgs {
   int jobs = 1;
   std::vector<std::string> rooms, prior_rooms;
   std::string prior_pose;
+  std::string site;  // --site PRESET: every scenario's site (sim/world/site_config.hpp)
 };
 
 void run(const RunArgs& args) {
@@ -46,6 +49,8 @@ void run(const RunArgs& args) {
   if (scenarios.empty()) throw std::runtime_error("nothing to run: give scenario files, or --plan PLAN --all-rooms");
   bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
   if (!args.config.empty()) bimloc::cli::applyConfig(scenarios, args.config);
+  if (!args.site.empty())
+    for (auto& s : scenarios) s.site = sitePreset(args.site);
 
   // Scenarios in parallel, results in input order: the same output whatever --jobs.
   const auto start = std::chrono::steady_clock::now();
@@ -117,6 +122,16 @@ void addRunCommand(CLI::App& app) {
                   "YAML file of localizer settings (the keys of a scenario's `localizer:`, e.g. `pf: {particles: 8000}`), "
                   "over every scenario's own")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--site", args->site,
+                  "simulate every scenario on a site that is not its plan: exact, as_built, construction or heavy "
+                  "(replaces the scenarios' site: sections; the localizer still gets only the plan)")
+      ->check([](const std::string& v) {  // a typo gets the nearest preset, as in scenario files
+        const auto& names = sitePresetNames();
+        if (std::find(names.begin(), names.end(), v) != names.end()) return std::string();
+        const std::string guess = bimloc::sim::detail::nearestWord(v, names);
+        return "no site preset '" + v + "' (exact, as_built, construction, heavy)" +
+               (guess.empty() ? std::string() : "; did you mean '" + guess + "'?");
+      });
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->callback([args] { run(*args); });
 }

@@ -32,7 +32,9 @@ nlohmann::json metadata(const Simulator& sim, const std::string& scenario_path) 
                       {"range_noise_sigma_m", c.range_noise_sigma_m}, {"dropout_probability", c.dropout_probability},
                       {"motion_distortion", c.motion_distortion}, {"mount_T_base_lidar", poseJson(c.T_base_lidar)}}},
           {"odometry", {{"preset", s.odometry.preset}, {"rate_hz", s.odometry.rate_hz}}},
-          {"T_map_odom_true", poseJson(sim.T_map_odom_true())}};
+          {"T_map_odom_true", poseJson(sim.T_map_odom_true())},
+          // The truth of how the simulated site differs from the plan the localizer gets.
+          {"site", siteTruthJson(sim.world().siteTruth())}};
 }
 
 void run(const SimulateArgs& args) {

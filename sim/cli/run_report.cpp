@@ -27,11 +27,12 @@ nlohmann::json storeysJson(const std::vector<sim::ScenarioResult::StoreyOption>&
   return out;
 }
 
-nlohmann::json wallsJson(const std::vector<sgraph::WallDeviation>& walls) {
+nlohmann::json wallsJson(const std::vector<sim::ScenarioResult::WallEstimate>& walls) {
   nlohmann::json out = nlohmann::json::array();
-  for (const auto& w : walls)
+  for (const auto& [w, true_offset, true_angle] : walls)
     out.push_back({{"wall", w.wall_id}, {"offset_m", w.offset_m}, {"angle_deg", w.angle_deg},
-                   {"thickness_change_m", w.thickness_change_m}, {"observations", w.observations}});
+                   {"thickness_change_m", w.thickness_change_m}, {"observations", w.observations},
+                   {"true_offset_m", orNull(true_offset)}, {"true_angle_deg", orNull(true_angle)}});
   return out;
 }
 
@@ -54,7 +55,8 @@ nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double
                          {"true_room", r.true_room}, {"position_error_m", r.position_error_m},
                          {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", orNull(r.ate_m)},
                          {"rpe_m_per_m", orNull(r.rpe_m_per_m)}, {"map_rmse_m", orNull(r.map_rmse_m)}, {"losses", r.losses},
-                         {"wall_deviations", wallsJson(r.wall_deviations)},
+                         {"wall_deviations", wallsJson(r.wall_deviations)}, {"site", r.site},
+                         {"wall_offset_error_m", orNull(r.wall_offset_error_m)},
                          {"false_convergence", r.false_convergence}, {"convergence_margin", orNull(r.convergence_margin)},
                          {"hypotheses", placesJson(r.hypotheses)}, {"storey_auto", r.storey_auto},
                          {"found_storey", orNull(r.found_storey)}, {"storey_margin", orNull(r.storey_margin)},
@@ -82,6 +84,10 @@ void printRunTable(const std::vector<sim::ScenarioResult>& results, const nlohma
   std::vector<std::string> header{"scenario", "method", "converged", "time [s]", "room found / true", "pos err [m]",
                                   "yaw err [deg]", "ATE [m]", "RPE [m/m]", "map RMSE [m]", "lost", "false", "result"};
   if (any_auto) header.insert(header.begin() + 4, "storey found / true");
+  // On a site that is not its plan, which one, and how well the S-Graph estimated its walls.
+  bool any_site = false;
+  for (const auto& r : results) any_site = any_site || r.site != "exact";
+  if (any_site) header.insert(header.begin() + 2, "site"), header.insert(header.end() - 2, "wall err [m]");
   Table table(header);
   for (const auto& r : results) {
     std::vector<std::string> row{r.name, r.method, r.converged ? "yes" : "no",
@@ -100,6 +106,8 @@ void printRunTable(const std::vector<sim::ScenarioResult>& results, const nlohma
       }
       row.insert(row.begin() + 4, found + " / " + r.storey);
     }
+    if (any_site)
+      row.insert(row.begin() + 2, r.site), row.insert(row.end() - 2, r.wall_offset_error_m ? fixed(*r.wall_offset_error_m, 3) : "-");
     table.add(row);
   }
   table.print(out);

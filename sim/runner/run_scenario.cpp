@@ -60,6 +60,20 @@ void judge(const Scenario& s, ScenarioResult& r) {
 
 }  // namespace
 
+// The S-Graph's wall estimates against the site's truth (how each wall was built).
+static void scoreWalls(const std::vector<sgraph::WallDeviation>& estimates, const SiteTruth& truth, ScenarioResult& r) {
+  constexpr int kWellSeen = 5;  // keyframe-plane factors: fewer, and the offset is barely estimated
+  for (const auto& e : estimates) {
+    ScenarioResult::WallEstimate w{e, std::nullopt, std::nullopt};
+    if (const WallTruth* t = truth.findWall(e.wall_id); t && !t->missing) {
+      w.true_offset_m = t->offset_m, w.true_angle_deg = t->angle_deg;
+      if (e.observations >= kWellSeen && t->offset_m != 0.0)
+        r.wall_offset_error_m = std::max(r.wall_offset_error_m.value_or(0.0), std::abs(e.offset_m - t->offset_m));
+    }
+    r.wall_deviations.push_back(w);
+  }
+}
+
 std::string storeyKey(const bim::Building& building, std::size_t index) {
   const std::string& id = building.storeys.at(index).id;
   const auto same = std::count_if(building.storeys.begin(), building.storeys.end(), [&](const bim::Storey& s) { return s.id == id; });
@@ -161,7 +175,8 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
   }
   score.finish(r);
   if (map_error && map_error->points() > 0) r.map_rmse_m = map_error->rmse_m();
-  if (const sgraph::SGraphTracker* tracker = localizer->tracker()) r.wall_deviations = tracker->wallDeviations();
+  r.site = s.site.preset;
+  if (const sgraph::SGraphTracker* tracker = localizer->tracker()) scoreWalls(tracker->wallDeviations(), sim.world().siteTruth(), r);
   r.sim_seconds = static_cast<double>(sim.turnCount()) * sim.lidar().turnPeriod_s();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   judge(s, r);

@@ -56,8 +56,17 @@ struct ScenarioResult {
   // The scans after convergence (one a second, every 20th point), placed with the estimate,
   // against the plan's storey mesh: the paper's "point cloud RMSE", no ground truth needed.
   std::optional<double> map_rmse_m;
-  // The S-Graph's estimate of each plan wall it observed: its offset from the plan position.
-  std::vector<sgraph::WallDeviation> wall_deviations;
+  // The S-Graph's estimate of each plan wall it observed (its offset from the plan position),
+  // with the site's truth for that wall when the world is a site (`site:`).
+  struct WallEstimate {
+    sgraph::WallDeviation estimate;
+    std::optional<double> true_offset_m, true_angle_deg;
+  };
+  std::vector<WallEstimate> wall_deviations;
+  std::string site = "exact";  // the site preset (or "custom")
+  // Largest |estimated - true| offset over the walls the site shifted and the S-Graph saw at
+  // least kWellSeen times (a wall seen once or twice is barely estimated).
+  std::optional<double> wall_offset_error_m;
   bool false_convergence = false;         // converged while > 0.5 m or > 10 deg off, at any time after
   // The path evidence's margin at the update that declared convergence (per distinct face).
   std::optional<double> convergence_margin;

@@ -94,7 +94,7 @@ Scenario loadScenario(const std::string& path) {
     throw ScenarioError(path + ":1: empty scenario (it needs at least 'world' and 'start')");
   const Mapping top(path, doc, "", 1,
                     {"name", "world", "storey", "start", "motion", "duration_s", "sensor", "odometry", "localizer",
-                     "seed", "expect"});
+                     "seed", "site", "expect"});
   Scenario s;
   s.file = path;
   s.name = fs::path(path).stem().string();
@@ -118,6 +118,7 @@ Scenario loadScenario(const std::string& path) {
   // `storey: auto`: the localizer is not told which storey (the simulator still needs it).
   if (s.storey == "auto" && !s.localizer.contains("storey")) s.localizer["storey"] = "auto";
   s.seed = readSeed(top);
+  s.site = detail::readSite(top, s.lines);
   s.expect = detail::readExpect(top);
   for (const auto& key : top.given()) s.lines.emplace(key, top.line(key));
   readLocalizerSettings(s.localizer, path, s.lines);  // a key the localizer would reject fails here, at its line

@@ -6,6 +6,7 @@
 #include "sim/base/motion_config.hpp"
 #include "sim/lidar/vlp16_config.hpp"
 #include "sim/odometry/odometry_config.hpp"
+#include "sim/world/site_config.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -57,6 +58,9 @@ struct Scenario {
   OdometryConfig odometry;
   nlohmann::json localizer = nlohmann::json::object();  // settings for the localizer (next issues)
   std::uint64_t seed = 0;
+  // How the simulated site differs from the plan (walls, glass, doors); the localizer still
+  // gets only the plan. Drawn from `seed`.
+  SiteConfig site;
   Expectations expect;
   // Line of each key as given, by dotted name ("storey", "motion.rooms.1", "motion.waypoints.0"),
   // for the messages of checks made later (checkScenarioAgainstWorld).

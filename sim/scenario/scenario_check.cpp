@@ -5,6 +5,7 @@
 #include "sim/base/outside_rooms.hpp"
 #include "sim/base/room_lookup.hpp"
 #include "sim/base/seeded_random.hpp"
+#include "sim/scenario/scenario_sections.hpp"
 #include "sim/scenario/yaml_mapping.hpp"
 #include "sim/world/world.hpp"
 
@@ -92,6 +93,7 @@ bool storeyGiven(const Scenario& s) {
 
 void checkScenarioAgainstWorld(const Scenario& s, const World& world) {
   const bim::Storey& storey = world.building().storeys.at(scenarioStorey(s, world));
+  detail::checkSiteAgainstWorld(s, world);
   const bim::Polygon2 hull = outline(storey);
   if (s.start.kind == StartConfig::Kind::Pose)
     checkInside(s, storey, hull, s.start.pose.head<2>(), "start.pose", s.start.line);

@@ -15,11 +15,24 @@ std::uint64_t streamSeed(std::uint64_t seed, std::uint64_t stream) { return seed
 constexpr std::uint64_t kOdometryStream = 2;
 constexpr std::uint64_t kLidarStream = 3;
 
+// The scenario's site world, or none when the site is the plan.
+std::unique_ptr<const World> siteWorld(const Scenario& scenario, const World& world) {
+  if (scenario.site.exact()) return nullptr;
+  try {
+    return std::make_unique<const World>(world.withSite(scenario.site, scenario.seed));
+  } catch (const std::invalid_argument& e) {
+    const auto it = scenario.lines.find("site");
+    throw ScenarioError(scenario.file + (it != scenario.lines.end() ? ":" + std::to_string(it->second) : std::string()) +
+                        ": " + e.what());
+  }
+}
+
 }  // namespace
 
 Simulator::Simulator(const Scenario& scenario, const World& world)
     : scenario_(scenario),
-      world_(world),
+      site_(siteWorld(scenario, world)),
+      world_(site_ ? *site_ : world),
       storey_(scenarioStorey(scenario, world)),
       start_(startPose(scenario, world)),
       trajectory_(planTrajectory(scenario, world)),

@@ -11,6 +11,7 @@
 #include "sim/world/world.hpp"
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace bimloc::sim {
@@ -18,9 +19,12 @@ namespace bimloc::sim {
 class Simulator {
  public:
   // Resolves the storey and the start, and plans the base's motion: ScenarioError on failure.
+  // `world` is the plan's; with a scenario's site (Scenario::site, not exact) the simulator
+  // builds its own site world from it, and everything it simulates happens there.
   Simulator(const Scenario& scenario, const World& world);
 
   const Scenario& scenario() const { return scenario_; }
+  // The world simulated: the site's (world().siteTruth() says how it differs from the plan).
   const World& world() const { return world_; }
   std::size_t storey() const { return storey_; }
   const Pose2& start() const { return start_; }
@@ -44,6 +48,7 @@ class Simulator {
 
  private:
   const Scenario& scenario_;
+  std::unique_ptr<const World> site_;  // the site's world, when it differs from the plan
   const World& world_;
   std::size_t storey_ = 0;
   Pose2 start_;

@@ -2,6 +2,8 @@
 
 #include "sim/world/json_errors.hpp"
 #include "sim/world/mesh_io.hpp"
+#include "sim/world/site_mesh.hpp"
+#include "sim/world/world_impl.hpp"
 
 #include <bimloc/bim/building_json.hpp>
 #include <bimloc/bim/ifc_reader.hpp>
@@ -22,23 +24,6 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// One storey's Bullet collision world. Bullet keeps raw pointers between these objects, so
-// they live together, in this order, and are never moved.
-struct BulletStorey {
-  std::unique_ptr<btTriangleIndexVertexArray> arrays;
-  std::unique_ptr<btBvhTriangleMeshShape> shape;
-  std::unique_ptr<btDefaultCollisionConfiguration> config;
-  std::unique_ptr<btCollisionDispatcher> dispatcher;
-  std::unique_ptr<btDbvtBroadphase> broadphase;
-  std::unique_ptr<btCollisionWorld> world;
-  std::unique_ptr<btCollisionObject> object;
-  // Queries from parallel runs (`--jobs`) share the world, and Bullet's queries are not
-  // thread-safe: contactTest allocates its collision algorithm from the dispatcher's pool, and
-  // the broadphase's ray and sweep tests share one traversal stack. Unserialized, two runs
-  // planning at once crashed in libBulletCollision.
-  mutable std::mutex mutex;
-};
-
 Eigen::Vector3f normalFacing(const Eigen::Vector3f& ng, const Eigen::Vector3f& dir) {
   const Eigen::Vector3f n = ng.normalized();
   return n.dot(dir) > 0 ? -n : n;
@@ -48,66 +33,67 @@ Eigen::Vector3f normalFacing(const Eigen::Vector3f& ng, const Eigen::Vector3f& d
 
 bool RayHit::hit() const { return range_m < kInf; }
 
-struct World::Impl {
-  std::string source;
-  bim::Building building;
-  RTCDevice device = nullptr;
-  std::vector<RTCScene> scenes;
-  std::vector<std::unique_ptr<BulletStorey>> bullet;
-
-  ~Impl() {
-    for (RTCScene s : scenes) rtcReleaseScene(s);
-    if (device) rtcReleaseDevice(device);
-  }
-
-  void build() {
-    device = rtcNewDevice(nullptr);
-    if (!device) throw std::runtime_error(source + ": cannot create an Embree device");
-    for (auto& storey : building.storeys) {
-      const auto& mesh = storey.mesh;
-      RTCScene scene = rtcNewScene(device);
-      // Robust: rays graze wall corners and door jambs all the time.
-      rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
-      if (!mesh.empty()) {
-        RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                              3 * sizeof(float), mesh.vertices.size()));
-        for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-          for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.vertices[i][k];
-        auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(unsigned), mesh.triangles.size()));
-        for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-          for (int k = 0; k < 3; ++k) t[3 * i + k] = mesh.triangles[i][k];
-        rtcCommitGeometry(geometry);
-        rtcAttachGeometry(scene, geometry);
-        rtcReleaseGeometry(geometry);
-      }
-      rtcCommitScene(scene);
-      scenes.push_back(scene);
-      bullet.push_back(makeBullet(storey.mesh));
+void World::Impl::build() {
+  device = rtcNewDevice(nullptr);
+  if (!device) throw std::runtime_error(source + ": cannot create an Embree device");
+  glass.resize(building.storeys.size());
+  for (std::size_t s = 0; s < building.storeys.size(); ++s) {
+    const auto& mesh = building.storeys[s].mesh;
+    RTCScene scene = rtcNewScene(device);
+    // Robust: rays graze wall corners and door jambs all the time.
+    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+    if (!mesh.empty()) {
+      RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                            3 * sizeof(float), mesh.vertices.size()));
+      for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+        for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.vertices[i][k];
+      auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(unsigned), mesh.triangles.size()));
+      for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+        for (int k = 0; k < 3; ++k) t[3 * i + k] = mesh.triangles[i][k];
+      rtcCommitGeometry(geometry);
+      rtcAttachGeometry(scene, geometry);
+      rtcReleaseGeometry(geometry);
     }
+    if (!glass[s]) glass[s] = std::make_unique<GlassLayer>();
+    attachGlass(device, scene, *glass[s]);
+    rtcCommitScene(scene);
+    scenes.push_back(scene);
+    // The robot never walks through glass: Bullet has the glazing as solid as the rest.
+    bullet.push_back(makeBullet({&building.storeys[s].mesh, &glass[s]->mesh}));
   }
+}
 
-  static std::unique_ptr<BulletStorey> makeBullet(bim::TriangleMesh& mesh) {
-    auto b = std::make_unique<BulletStorey>();
-    b->config = std::make_unique<btDefaultCollisionConfiguration>();
-    b->dispatcher = std::make_unique<btCollisionDispatcher>(b->config.get());
-    b->broadphase = std::make_unique<btDbvtBroadphase>();
-    b->world = std::make_unique<btCollisionWorld>(b->dispatcher.get(), b->broadphase.get(), b->config.get());
-    if (mesh.empty()) return b;
+std::unique_ptr<BulletStorey> World::Impl::makeBullet(const std::vector<bim::TriangleMesh*>& meshes) {
+  auto b = std::make_unique<BulletStorey>();
+  b->config = std::make_unique<btDefaultCollisionConfiguration>();
+  b->dispatcher = std::make_unique<btCollisionDispatcher>(b->config.get());
+  b->broadphase = std::make_unique<btDbvtBroadphase>();
+  b->world = std::make_unique<btCollisionWorld>(b->dispatcher.get(), b->broadphase.get(), b->config.get());
+  for (bim::TriangleMesh* mesh : meshes) {
+    if (mesh->empty()) continue;
     // Bullet reads the mesh in place: vertices as float triples, indices as int triples.
     static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "packed vertices");
-    b->arrays = std::make_unique<btTriangleIndexVertexArray>(
-        static_cast<int>(mesh.triangles.size()), reinterpret_cast<int*>(mesh.triangles.data()), 3 * sizeof(int),
-        static_cast<int>(mesh.vertices.size()), reinterpret_cast<btScalar*>(mesh.vertices.data()), 3 * sizeof(float));
-    b->shape = std::make_unique<btBvhTriangleMeshShape>(b->arrays.get(), true);
-    b->object = std::make_unique<btCollisionObject>();
-    b->object->setCollisionShape(b->shape.get());
-    b->world->addCollisionObject(b->object.get());
-    b->world->updateAabbs();
-    return b;
+    auto& body = b->bodies.emplace_back();
+    body.arrays = std::make_unique<btTriangleIndexVertexArray>(
+        static_cast<int>(mesh->triangles.size()), reinterpret_cast<int*>(mesh->triangles.data()), 3 * sizeof(int),
+        static_cast<int>(mesh->vertices.size()), reinterpret_cast<btScalar*>(mesh->vertices.data()), 3 * sizeof(float));
+    body.shape = std::make_unique<btBvhTriangleMeshShape>(body.arrays.get(), true);
+    body.object = std::make_unique<btCollisionObject>();
+    body.object->setCollisionShape(body.shape.get());
+    b->world->addCollisionObject(body.object.get());
   }
-};
+  b->world->updateAabbs();
+  return b;
+}
+
+World::Impl::~Impl() {
+  // Bullet's objects first (they point into the meshes), then Embree's scenes.
+  bullet.clear();
+  for (RTCScene s : scenes) rtcReleaseScene(s);
+  if (device) rtcReleaseDevice(device);
+}
 
 World::World(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 World::World(World&&) noexcept = default;
@@ -117,9 +103,19 @@ World::~World() = default;
 World World::fromPlan(const std::string& ifc_path) {
   auto impl = std::make_unique<Impl>();
   impl->source = ifc_path;
-  bim::ExtractOptions options;
-  options.door_leaves = false;  // doorways, not doors: see ExtractOptions::door_leaves
-  impl->building = bim::readIfc(ifc_path, options);
+  // With the doors, by element: a site may hang them (withSite); the plan's own world leaves
+  // them out, doorways not doors (see ExtractOptions::door_leaves), and is then exactly the
+  // mesh an extraction without door leaves makes.
+  impl->building = bim::readIfc(ifc_path);
+  auto plan = std::make_shared<std::vector<PlanStorey>>();
+  for (auto& storey : impl->building.storeys) {
+    plan->push_back({std::move(storey.mesh), std::move(storey.mesh_parts)});
+    ComposedStorey exact = exactStorey(plan->back());
+    storey.mesh = std::move(exact.mesh);
+    storey.mesh_parts = std::move(exact.parts);
+  }
+  impl->plan = plan;
+  impl->truth = exactSiteTruth(impl->building, plan.get());
   impl->build();
   return World(std::move(impl));
 }
@@ -145,6 +141,7 @@ World World::fromExtractDir(const std::string& dir) {
     const auto& mesh = doc["storeys"][s]["mesh"];
     if (mesh.is_string()) impl->building.storeys[s].mesh = loadMesh((fs::path(dir) / mesh.get<std::string>()).string());
   }
+  impl->truth = exactSiteTruth(impl->building, nullptr);
   impl->build();
   return World(std::move(impl));
 }
@@ -157,6 +154,7 @@ World World::fromMesh(const std::string& mesh_path) {
   storey.mesh = loadMesh(mesh_path);
   impl->building.file = mesh_path;
   impl->building.storeys.push_back(std::move(storey));
+  impl->truth = exactSiteTruth(impl->building, nullptr);
   impl->build();
   return World(std::move(impl));
 }
@@ -258,7 +256,7 @@ RayHit World::bulletRay(std::size_t storey, const Eigen::Vector3d& from, const E
 bool World::sweepClear(std::size_t storey, const Eigen::Vector3d& from, const Eigen::Vector3d& to, double radius_m,
                        Eigen::Vector3d* contact) const {
   const auto& b = *impl_->bullet.at(storey);
-  if (!b.object) return true;
+  if (b.bodies.empty()) return true;
   btSphereShape sphere{static_cast<btScalar>(radius_m)};
   btTransform start, end;
   start.setIdentity(), end.setIdentity();
@@ -293,7 +291,7 @@ struct FirstContact : btCollisionWorld::ContactResultCallback {
 bool World::sphereClear(std::size_t storey, const Eigen::Vector3d& centre, double radius_m,
                         Eigen::Vector3d* contact) const {
   const auto& b = *impl_->bullet.at(storey);
-  if (!b.object) return true;
+  if (b.bodies.empty()) return true;
   btSphereShape sphere{static_cast<btScalar>(radius_m)};
   btCollisionObject body;
   body.setCollisionShape(&sphere);

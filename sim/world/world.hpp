@@ -3,6 +3,9 @@
 // extraction), from the output folder of `bimloc extract`, or from a single mesh file.
 #pragma once
 
+#include "sim/world/site_config.hpp"
+#include "sim/world/site_truth.hpp"
+
 #include <bimloc/bim/building.hpp>
 
 #include <Eigen/Core>
@@ -19,8 +22,8 @@ struct RayHit {
 
 class World {
  public:
-  // An IFC plan: extraction, then the storey meshes, without door leaves (doorways are open,
-  // as on a site before the doors are hung).
+  // An IFC plan: extraction, then the storey meshes, without doors (doorways are open, as on a
+  // site before the doors are hung).
   static World fromPlan(const std::string& ifc_path);
   // A folder written by `bimloc extract --out` (building.json + storey meshes).
   static World fromExtractDir(const std::string& dir);
@@ -28,6 +31,16 @@ class World {
   static World fromMesh(const std::string& mesh_path);
   // Any of the three, by what the path is.
   static World load(const std::string& path);
+
+  // The same plan built as a site (sim/world/site_config.hpp): walls shifted, turned or not
+  // built, temporary partitions, glass passing rays, door leaves shut or ajar, all drawn from
+  // `seed` (the same seed gives the same world, bit for bit). building() stays the plan; only
+  // what the lidar and the base meet differs. Needs a world read from an IFC plan;
+  // std::invalid_argument otherwise, and for an edit naming no wall or door of the plan.
+  World withSite(const SiteConfig& config, std::uint64_t seed) const;
+  // What this world is against its plan: every wall's offset, angle and whether it is built,
+  // partitions, doors, glass (all zero / open for a plan's own world).
+  const SiteTruth& siteTruth() const;
 
   World(World&&) noexcept;
   World& operator=(World&&) noexcept;

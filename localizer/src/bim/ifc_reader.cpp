@@ -79,7 +79,13 @@ void buildStoreyMeshes(const RawModel& raw, const std::vector<int>& new_index, b
         const bool own = in == static_cast<int>(s);
         const bool floor_or_ceiling = !own && isSlab(p) && maxZ(p) > floor - 0.6 && minZ(p) < top + 0.6 &&
                                       (std::abs(maxZ(p) - floor) < 0.6 || std::abs(minZ(p) - top) < 0.6);
-        if (own || floor_or_ceiling) detail::appendMesh(mesh, bodyMesh(p, rebuilt));
+        if (!own && !floor_or_ceiling) continue;
+        MeshPart part{p.global_id, p.name, p.ifc_class, static_cast<std::uint32_t>(mesh.vertices.size()), 0,
+                      static_cast<std::uint32_t>(mesh.triangles.size()), 0};
+        detail::appendMesh(mesh, bodyMesh(p, rebuilt));
+        part.vertex_count = static_cast<std::uint32_t>(mesh.vertices.size()) - part.first_vertex;
+        part.triangle_count = static_cast<std::uint32_t>(mesh.triangles.size()) - part.first_triangle;
+        storeys[s].mesh_parts.push_back(std::move(part));
       }
     }
   }

@@ -75,6 +75,17 @@ struct TriangleMesh {
   bool empty() const { return triangles.empty(); }
 };
 
+// One physical element's share of a storey mesh: its vertices and triangles are contiguous
+// there (the simulator moves, drops or re-materials single elements to make a site differ
+// from its plan). Only plans read from IFC have them; a mesh file has none.
+struct MeshPart {
+  std::string id;         // IFC GlobalId
+  std::string name;
+  std::string ifc_class;  // IfcWall, IfcDoor, IfcWindow, IfcSlab, ...
+  std::uint32_t first_vertex = 0, vertex_count = 0;
+  std::uint32_t first_triangle = 0, triangle_count = 0;
+};
+
 struct Storey {
   std::string id;  // IFC GlobalId
   std::string name;
@@ -83,6 +94,7 @@ struct Storey {
   std::vector<Room> rooms;
   std::vector<Wall> walls;
   TriangleMesh mesh;  // every physical element, floor below and ceiling above; no spaces
+  std::vector<MeshPart> mesh_parts;  // the elements `mesh` is made of, in mesh order
 
   const Wall* findWall(const std::string& wall_id) const;
   const Room* findRoom(const std::string& name_or_id) const;
