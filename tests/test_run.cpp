@@ -103,3 +103,37 @@ TEST(Run, TraceWritesARowPerWeighingEndingConverged) {
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir + "/trace")) ++files;
   EXPECT_EQ(files, 1u);
 }
+
+TEST(Run, TheSGraphEstimatesAWallBuiltOffItsPlan) {
+  // The default world with one corridor wall built 10 cm and another 20 cm off the plan, one
+  // wall missing and a partition: the S-Graph tracks within 0.1 m and estimates both walls
+  // within 4 cm of how they were built (site truth). A regression bound for this run; the
+  // issue's 3 cm for every wall is not met in general (README, "A site that is not its plan").
+  const std::string dir = tempDir("run");
+  const std::string path = dir + "/site.yaml";
+  std::ofstream(path) << "world: " << BIMLOC_WORLDS_DIR << "/site_office.ifc\n"
+                      << "start: {random_in_room: S100}\n"
+                      << "motion: {type: tour, rooms: [C100, R105, C100, R102, C100, R108]}\n"
+                      << "odometry: {preset: legged}\nduration_s: 120\nseed: 3\n"
+                      << "site:\n  walls:\n    partitions: {count: 1}\n    edit:\n"
+                      << "      - {id: \"10NJeiAkbO1Jh_iurmjac0\", offset_m: 0.10}\n"
+                      << "      - {id: \"1UodGUbwlAzlED$Ch6Qvl7\", offset_m: 0.20}\n"
+                      << "      - {id: \"0EmB8zWLG5W42W5JgZy2Sj\", missing: true}\n"
+                      << "expect: {converge: true, max_convergence_time_s: 120, max_ate_m: 0.1}\n";
+  const auto r = runBimloc("run '" + path + "' --json");
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& s = j["scenarios"][0];
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(s["site"], "exact");  // the preset the site started from; the edits are its own
+  ASSERT_TRUE(s["converged"]) << r.err;
+  EXPECT_LT(s["ate_m"].get<double>(), 0.1);
+  int checked = 0;
+  for (const auto& w : s["wall_deviations"]) {
+    if (w["true_offset_m"].is_null() || w["true_offset_m"].get<double>() == 0.0) continue;
+    EXPECT_NEAR(w["offset_m"].get<double>(), w["true_offset_m"].get<double>(), 0.04) << w["wall"];
+    ++checked;
+  }
+  EXPECT_EQ(checked, 2);
+  ASSERT_FALSE(s["wall_offset_error_m"].is_null());
+  EXPECT_LT(s["wall_offset_error_m"].get<double>(), 0.04);
+}

@@ -1,0 +1,65 @@
+// The scorer (sim/runner/evaluation.hpp) against analytic truths: synthetic localizer results
+// along a straight walk, with an estimate whose error is known in closed form.
+#include "sim/runner/evaluation.hpp"
+#include "sim_fixtures.hpp"
+#include "sim/world/world.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace bimloc;
+
+namespace {
+
+LocalizationResult tracking(const Eigen::Isometry3d& estimate) {
+  LocalizationResult r;
+  r.state = LocalizationState::Tracking;
+  r.storey = 0;
+  r.T_map_base = estimate;
+  return r;
+}
+
+}  // namespace
+
+TEST(Evaluation, RpeOfAScaleErrorIsTheScaleAndAnOffsetHasNone) {
+  // Walking along x at 0.1 m per step: an estimate stretched by 2 % drifts 0.02 m per metre
+  // (RPE 0.02 m/m); one shifted by a constant 0.3 m has ATE 0.3 m and no relative error.
+  const auto& building = test::officeWorld().building();
+  sim::RunScore scaled(building, 0), shifted(building, 0);
+  for (int k = 0; k <= 100; ++k) {
+    const double x = 0.1 * k;
+    const Eigen::Isometry3d truth = test::pose(1.0 + x, 6.1, 0.0);
+    EXPECT_EQ(scaled.add(0.1 * k, tracking(test::pose(1.0 + 1.02 * x, 6.1, 0.0)), truth), k == 0);
+    shifted.add(0.1 * k, tracking(test::pose(1.0 + x, 6.4, 0.0)), truth);
+  }
+  sim::ScenarioResult a, b;
+  scaled.finish(a);
+  shifted.finish(b);
+  ASSERT_TRUE(a.rpe_m_per_m && b.rpe_m_per_m);
+  EXPECT_NEAR(*a.rpe_m_per_m, 0.02, 1e-9);
+  EXPECT_NEAR(*b.rpe_m_per_m, 0.0, 1e-9);
+  EXPECT_NEAR(*b.ate_m, 0.3, 1e-9);
+  EXPECT_FALSE(b.false_convergence);  // 0.3 m is within the 0.5 m bound
+}
+
+TEST(Evaluation, LostStepsAreNotScoredAndSearchingIsNotConverged) {
+  // A localizer that says it is lost is not wrong with confidence: a pose 2 m off while lost
+  // is neither a false convergence nor part of the ATE; a search never converges.
+  const auto& building = test::officeWorld().building();
+  sim::RunScore score(building, 0);
+  LocalizationResult searching = tracking(test::pose(9, 9, 0));
+  searching.state = LocalizationState::Searching;
+  EXPECT_FALSE(score.add(0.0, searching, test::pose(1, 6, 0)));
+  EXPECT_FALSE(score.converged());
+  EXPECT_TRUE(score.add(0.1, tracking(test::pose(1.1, 6, 0)), test::pose(1, 6, 0)));
+  LocalizationResult lost = tracking(test::pose(3, 6, 0));
+  lost.state = LocalizationState::Lost;
+  lost.losses = 1;
+  score.add(0.2, lost, test::pose(1, 6, 0));
+  sim::ScenarioResult r;
+  score.finish(r);
+  EXPECT_TRUE(r.converged);
+  EXPECT_FALSE(r.false_convergence);
+  EXPECT_NEAR(*r.ate_m, 0.1, 1e-9);
+  EXPECT_EQ(r.losses, 1);
+  EXPECT_FALSE(r.rpe_m_per_m.has_value()) << "less than 1 m walked";
+}
