@@ -2,6 +2,9 @@
 // IFC, the walls a lidar sees computed from the true poses (with noise, fixed seeds), legged
 // odometry drifting 1-2 %. Truth is the trajectory and the walls the observations came from.
 #include "sgraph_fixtures.hpp"
+#include "sgraph/graph.hpp"
+#include "sgraph/loss_monitor.hpp"
+#include "sgraph/plan_layers.hpp"
 #include "sim_fixtures.hpp"
 
 #include "sim/base/base_trajectory.hpp"
@@ -434,4 +437,47 @@ TEST(SGraphTracker, WithTwoParallelWallsInViewTheRobotsHistorySaysWhichIsOff) {
               rms(o.error_m, 2), *std::max_element(o.error_m.begin() + 2, o.error_m.end()));
   EXPECT_NEAR(deviation->offset_m, 0.10, 0.03);
   EXPECT_LT(rms(o.error_m, 2), 0.03);
+}
+
+TEST(SGraphLoss, PlanesInAPlanWallsPlaneDoNotCountAgainstTheTrackPlanesOffEveryPlaneDo) {
+  // Two box walls along y = 0 and y = 4 (faces at y = ±0.05, 3.95 / 4.05), 10 m long. A keyframe
+  // matches the south wall's north face; it also sees two y planes unmatched to the plan:
+  //  - in line with that face but beyond the wall's ends (x = 14, x = -4): elements the plan's walls do
+  //    not cover, agreeing with the plan along y: not a contradiction;
+  //  - 1.5 m off every plan plane (y = 1.55): what a robot off along a corridor sees: counts.
+  bim::Storey storey;
+  storey.walls = {test::boxWall("S", {0, 0}, {10, 0}, 0.1), test::boxWall("N", {0, 4}, {10, 4}, 0.1)};
+  sgraph::detail::Graph g;
+  std::vector<std::string> warnings;
+  sgraph::detail::buildPlanLayers(storey, g, warnings);
+  sgraph::detail::Keyframe kf;
+  kf.pose = {5.0, 2.0, 0.0};
+  const auto observation = [](int index, double x, double y) {
+    sgraph::detail::ScanObservation o;
+    o.index = index;
+    o.normal_map = Eigen::Vector2d(0, 1);  // looking north: towards the robot at y = 2
+    o.centroid_map = Eigen::Vector2d(x, y);
+    o.axis = bim::WallAxis::Y;
+    o.extent_m = 2.0;
+    return o;
+  };
+  // The match: observation 0 on the south wall's face that looks north.
+  int south_node = -1, face = -1;
+  for (std::size_t n = 0; n < g.nodes.size(); ++n)
+    for (int f = 0; f < 2; ++f)
+      if (g.nodes[n].kind == sgraph::detail::WallNode::Kind::Plan && g.nodes[n].normal(f).y() > 0.9 && g.nodes[n].d(f) > -0.5)
+        south_node = static_cast<int>(n), face = f;
+  ASSERT_GE(south_node, 0);
+  sgraph::detail::PlaneMeasurement m;
+  m.node = south_node, m.face = face, m.observation = 0;
+  kf.planes.push_back(m);
+  kf.plan_walls = 1;
+  sgraph::SGraphConfig config;
+  config.min_plan_associations = 1;
+  // (With them counted, 1 of 3 would be matched: the keyframe would be bad.)
+  const std::string in_line =
+      sgraph::detail::keyframeDoubt(g, kf, {observation(0, 5, 0.05), observation(1, 14, 0.07), observation(2, -4, 0.02)}, true, config);
+  EXPECT_EQ(in_line.find("walls matched the plan"), std::string::npos) << in_line;
+  const std::string off = sgraph::detail::keyframeDoubt(g, kf, {observation(0, 5, 0.05), observation(1, 5, 1.55), observation(2, 7, 1.55)}, true, config);
+  EXPECT_NE(off.find("1 of 3 y walls matched the plan"), std::string::npos) << off;
 }

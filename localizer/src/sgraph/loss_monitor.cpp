@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 
 namespace bimloc::sgraph::detail {
@@ -15,8 +16,29 @@ std::string keyframeDoubt(const Graph& g, const Keyframe& kf, const std::vector<
   if (kf.plan_walls < c.min_plan_associations) return std::to_string(kf.plan_walls) + " plan walls matched";
   // Walls seen and walls matched to the plan, per class: a robot metres off along a corridor
   // still matches the corridor's walls, but not the walls across it.
+  // A plane not matched to a plan wall that lies in the plane of a plan wall's face (within the
+  // association gate in angle and offset), beyond the face's ends, is some element the plan's
+  // walls do not cover (Jesse.1 level 0: planes in line with a wall, 1-9 cm off its plane, which
+  // the graph then keeps as new planes): it agrees with the plan along the normal it
+  // constrains, so it can neither confirm nor contradict the track. A robot metres off along a
+  // corridor sees the walls across it metres off every plan plane: those still count.
+  const double gate = std::sqrt(c.association_gate_mahalanobis2);
+  const double cos_tol = std::cos(gate * c.association_sigma_azimuth_deg * M_PI / 180.0), d_tol = gate * c.association_sigma_d_m;
+  const auto inPlanPlane = [&](const ScanObservation& o) {
+    for (const auto& node : g.nodes) {
+      if (node.kind != WallNode::Kind::Plan || !node.active) continue;
+      for (int f = 0; f < 2; ++f)
+        if (node.normal(f).dot(o.normal_map) > cos_tol && std::abs(node.normal(f).dot(o.centroid_map) + node.d(f)) < d_tol) return true;
+    }
+    return false;
+  };
   std::array<int, 2> seen{}, matched{};
-  for (const auto& o : observed) ++seen[o.axis == bim::WallAxis::X ? 0 : 1];
+  for (const auto& o : observed) {
+    bool on_plan_wall = false;  // matched to a plan wall (a match to a new plane does not count)
+    for (const auto& p : kf.planes)
+      on_plan_wall = on_plan_wall || (p.observation == o.index && g.nodes[static_cast<std::size_t>(p.node)].kind == WallNode::Kind::Plan);
+    if (on_plan_wall || !inPlanPlane(o)) ++seen[o.axis == bim::WallAxis::X ? 0 : 1];
+  }
   for (const auto& p : kf.planes) {
     const auto& node = g.nodes[static_cast<std::size_t>(p.node)];
     if (node.kind == WallNode::Kind::Plan) ++matched[node.axis(p.face) == bim::WallAxis::X ? 0 : 1];
