@@ -30,6 +30,7 @@ struct SweepArgs {
   std::string storey;            // "auto": the localizer is not told the storey
   std::string starts = "rooms";  // or "outside"
   int rooms_per_storey = 0;      // 0: every room
+  std::string site;              // --site PRESET: the simulated site of every run
   std::vector<std::string> prior_rooms;
   std::string prior_pose;
 };
@@ -107,6 +108,8 @@ void run(const SweepArgs& args) {
   }
   if (scenarios.empty()) throw std::runtime_error("no storey with rooms and walls in the given plans");
   bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
+  if (!args.site.empty())
+    for (auto& s : scenarios) s.site = sitePreset(args.site);
   const auto start = std::chrono::steady_clock::now();
   bimloc::cli::RunPoolOptions pool;
   pool.jobs = args.jobs, pool.progress_label = "sweeping " + std::to_string(scenarios.size()) + " runs";
@@ -128,6 +131,7 @@ void run(const SweepArgs& args) {
   for (const auto& r : runs) results.push_back(r.result);
   if (args.json) {
     std::cout << nlohmann::json{{"method", args.method}, {"seeds", args.seeds}, {"duration_s", args.duration_s},
+                                {"site", args.site.empty() ? std::string("exact") : args.site},
                                 {"groups", rows}, {"summary", total},
                                 {"scenarios", bimloc::cli::runReport(results, wall)["scenarios"]}}
                      .dump()
@@ -172,6 +176,10 @@ void addSweepCommand(CLI::App& app) {
                   "whole storey from any start")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
+  cmd->add_option("--site", args->site,
+                  "every run on a site that is not its plan: exact, as_built, construction or heavy (the localizer "
+                  "still gets only the plan); one sweep per preset gives the robustness table")
+      ->check(CLI::IsMember(sitePresetNames()));
   cmd->add_option("--duration", args->duration_s, "seconds per run")->check(CLI::Range(1.0, 3600.0))->capture_default_str();
   cmd->add_option("--storey", args->storey,
                   "auto: the localizer is not told the storey (every storey with walls and rooms is a candidate); rows "
