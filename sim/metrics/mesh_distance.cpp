@@ -1,5 +1,7 @@
 #include "sim/metrics/mesh_distance.hpp"
 
+#include "sim/world/embree_mesh.hpp"
+
 #include <embree3/rtcore.h>
 
 #include <cmath>
@@ -59,15 +61,7 @@ MeshDistance::MeshDistance(const bim::TriangleMesh& mesh) : impl_(std::make_uniq
   if (mesh.empty()) return;
   m.device = rtcNewDevice("threads=1");
   m.scene = rtcNewScene(m.device);
-  RTCGeometry geometry = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(
-      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-    for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.vertices[i][k];
-  auto* t = static_cast<unsigned*>(
-      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-    for (int k = 0; k < 3; ++k) t[3 * i + k] = mesh.triangles[i][k];
+  RTCGeometry geometry = newTriangleGeometry(m.device, mesh);
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(m.scene, geometry);
   rtcReleaseGeometry(geometry);

@@ -1,5 +1,7 @@
 #include "sim/world/glass_layer.hpp"
 
+#include "sim/world/embree_mesh.hpp"
+
 #include <embree3/rtcore.h>
 
 #include <cstring>
@@ -50,15 +52,7 @@ void attachGlass(void* device_handle, void* scene_handle, const GlassLayer& laye
   if (!rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED))
     throw std::runtime_error("this Embree was built without filter functions: glass cannot pass rays");
   const auto& mesh = layer.mesh;
-  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        3 * sizeof(float), mesh.vertices.size()));
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-    for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.vertices[i][k];
-  auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                           3 * sizeof(unsigned), mesh.triangles.size()));
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-    for (int k = 0; k < 3; ++k) t[3 * i + k] = mesh.triangles[i][k];
+  RTCGeometry geometry = newTriangleGeometry(device, mesh);
   rtcSetGeometryUserData(geometry, const_cast<GlassLayer*>(&layer));
   rtcSetGeometryIntersectFilterFunction(geometry, glassFilter);
   rtcCommitGeometry(geometry);

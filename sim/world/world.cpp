@@ -1,5 +1,6 @@
 #include "sim/world/world.hpp"
 
+#include "sim/world/embree_mesh.hpp"
 #include "sim/world/json_errors.hpp"
 #include "sim/world/mesh_io.hpp"
 #include "sim/world/site_mesh.hpp"
@@ -43,15 +44,7 @@ void World::Impl::build() {
     // Robust: rays graze wall corners and door jambs all the time.
     rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
     if (!mesh.empty()) {
-      RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                            3 * sizeof(float), mesh.vertices.size()));
-      for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-        for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.vertices[i][k];
-      auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                               3 * sizeof(unsigned), mesh.triangles.size()));
-      for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-        for (int k = 0; k < 3; ++k) t[3 * i + k] = mesh.triangles[i][k];
+      RTCGeometry geometry = newTriangleGeometry(device, mesh);
       rtcCommitGeometry(geometry);
       rtcAttachGeometry(scene, geometry);
       rtcReleaseGeometry(geometry);
