@@ -1,6 +1,5 @@
 #include <bimloc/localizer.hpp>
 
-#include <bimloc/bim/geometry2d.hpp>
 #include <bimloc/geometry/planar_pose.hpp>
 
 #include <cmath>
@@ -42,12 +41,6 @@ Eigen::Matrix3d particleCovariance(const pf::ParticleFilter& filter) {
     cov += w * e * e.transpose();
   }
   return cov;
-}
-
-int roomOf(const bim::Storey& storey, const Eigen::Vector2d& p) {
-  for (std::size_t i = 0; i < storey.rooms.size(); ++i)
-    if (bim::pointInPolygon(storey.rooms[i].footprint, p)) return static_cast<int>(i);
-  return -1;
 }
 
 }  // namespace
@@ -224,8 +217,9 @@ void Localizer::Impl::describe(LocalizationResult& r) const {
   }
   if (converged_now && r.state == LocalizationState::Tracking) r.state = LocalizationState::Converged;
   const bim::Storey& storey = building.storeys.at(r.leading_storey);
-  r.room = roomOf(storey, r.T_map_base.translation().head<2>());
-  r.room_name = r.room < 0 ? std::string() : storey.rooms[static_cast<std::size_t>(r.room)].name;
+  const bim::Room* room = storey.roomAt(r.T_map_base.translation().head<2>());
+  r.room = room ? static_cast<int>(room - storey.rooms.data()) : -1;
+  r.room_name = room ? room->name : std::string();
 }
 
 const LocalizerConfig& Localizer::config() const { return impl_->config; }

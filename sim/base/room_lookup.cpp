@@ -35,11 +35,7 @@ std::string roomList(const bim::Storey& storey) {
   return out.empty() ? "none" : out;
 }
 
-const bim::Room* roomAt(const bim::Storey& storey, const Eigen::Vector2d& p) {
-  for (const auto& r : storey.rooms)
-    if (bim::pointInPolygon(r.footprint, p)) return &r;
-  return nullptr;
-}
+const bim::Room* roomAt(const bim::Storey& storey, const Eigen::Vector2d& p) { return storey.roomAt(p); }
 
 namespace {
 

@@ -1,5 +1,7 @@
 #include <bimloc/bim/building.hpp>
 
+#include <bimloc/bim/geometry2d.hpp>
+
 #include <cstdlib>
 
 namespace bimloc::bim {
@@ -9,6 +11,12 @@ const char* toString(WallAxis axis) { return axis == WallAxis::X ? "x" : "y"; }
 const Wall* Storey::findWall(const std::string& wall_id) const {
   for (const auto& w : walls)
     if (w.id == wall_id) return &w;
+  return nullptr;
+}
+
+const Room* Storey::roomAt(const Eigen::Vector2d& p) const {
+  for (const auto& r : rooms)
+    if (pointInPolygon(r.footprint, p)) return &r;
   return nullptr;
 }
 

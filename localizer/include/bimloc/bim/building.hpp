@@ -98,6 +98,8 @@ struct Storey {
 
   const Wall* findWall(const std::string& wall_id) const;
   const Room* findRoom(const std::string& name_or_id) const;
+  // The first room (in this order) whose footprint holds p, or null: where a pose is.
+  const Room* roomAt(const Eigen::Vector2d& p) const;
   std::size_t wallPlaneCount() const { return 2 * walls.size(); }
 };
 
