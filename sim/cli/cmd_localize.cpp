@@ -50,19 +50,14 @@ void run(const LocalizeArgs& args) {
   r.storey_auto = config.storey.empty();
   r.start_room = "(unknown)";
   std::optional<bimloc::LocalizationResult> last;
-  std::optional<MapError> map_error;  // the scans placed with the estimate against the plan's mesh
-  int steps = 0;
+  MapErrorSampler map_error(building);  // the scans placed with the estimate against the plan's mesh
   for (const auto& scan : data.scans) {
     const double t = scan.stamp_s + 0.5 * data.turn_period_s;  // mid-turn, as the runner
     // The scan's file is read only when the localizer looks at it, as the runner extracts planes.
     last = localizer.step(t, nearest(data.odometry, t).pose, [&scan] { return readPcdPoints(scan.file); });
     if (last->filter && last->filter->decided && !r.storey_margin && r.storey_auto) r.storey_margin = last->filter->storey_margin;
     for (const auto& w : last->warnings) r.warnings.push_back(scan.file + ": " + w);
-    if (last->storey && (last->state == bimloc::LocalizationState::Converged || last->state == bimloc::LocalizationState::Tracking) &&
-        ++steps % 10 == 0) {  // one scan a second, as the runner
-      if (!map_error) map_error.emplace(building.storeys[*last->storey]);
-      map_error->add(readPcdPoints(scan.file), last->T_map_base * data.T_base_lidar);
-    }
+    map_error.step(*last, data.T_base_lidar, [&scan] { return readPcdPoints(scan.file); });
     if (!data.ground_truth.empty()) score.add(t - data.scans.front().stamp_s, *last, nearest(data.ground_truth, t).pose);
   }
   if (data.ground_truth.empty()) {
@@ -74,7 +69,7 @@ void run(const LocalizeArgs& args) {
   }
   if (const auto* tracker = localizer.tracker())
     for (const auto& w : tracker->wallDeviations()) r.wall_deviations.push_back({w, std::nullopt, std::nullopt});
-  if (map_error && map_error->points() > 0) r.map_rmse_m = map_error->rmse_m();
+  r.map_rmse_m = map_error.rmse_m();
   r.sim_seconds = data.scans.empty() ? 0.0 : data.scans.back().stamp_s - data.scans.front().stamp_s + data.turn_period_s;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.passed = r.converged && !r.false_convergence;

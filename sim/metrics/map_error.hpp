@@ -5,7 +5,11 @@
 
 #include "sim/metrics/mesh_distance.hpp"
 
+#include <bimloc/localizer.hpp>
+
 #include <Eigen/Geometry>
+#include <functional>
+#include <optional>
 #include <vector>
 
 namespace bimloc::sim {
@@ -24,6 +28,25 @@ class MapError {
   int stride_;
   std::size_t n_ = 0;
   double sum_sq_ = 0;
+};
+
+// A run's map RMSE, the same for `bimloc run` and `bimloc localize`: one scan every
+// `every_steps` localizer steps (a second at 10 Hz), once converged and while not lost, on the
+// storey the localizer is on.
+class MapErrorSampler {
+ public:
+  explicit MapErrorSampler(const bim::Building& building, int every_steps = 10) : building_(building), every_(every_steps) {}
+
+  // After each step; `points_lidar` is called only for the scans measured.
+  void step(const LocalizationResult& r, const Eigen::Isometry3d& T_base_lidar,
+            const std::function<std::vector<Eigen::Vector3f>()>& points_lidar);
+  std::optional<double> rmse_m() const;  // unset before the first point
+
+ private:
+  const bim::Building& building_;
+  int every_;
+  long steps_ = 0;
+  std::optional<MapError> error_;
 };
 
 }  // namespace bimloc::sim

@@ -17,7 +17,6 @@ namespace bimloc::sim {
 namespace {
 
 constexpr int kClusteringUpdate = 5;  // the snapshot of the clustering particles
-constexpr int kMapErrorEvery = 10;    // turns: the map RMSE measures one scan a second
 
 // The turn's x, y, z; non-finite and out-of-range points are the plane extraction's to drop.
 std::vector<Eigen::Vector3f> scanPoints(const LidarScan& scan) {
@@ -122,7 +121,7 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
   std::size_t verdict_storey = sim.storey();     // ... and the storey it spoke of
   std::optional<pf::StoreyBankReport> last_bank;
   int updates = 0;
-  std::optional<MapError> map_error;  // on the storey the localizer converged on
+  MapErrorSampler map_error(building);
   Eigen::Isometry3d previous_truth = Eigen::Isometry3d::Identity();
   const double half_turn = 0.5 * sim.lidar().turnPeriod_s();
   for (std::size_t i = 0; i < sim.turnCount(); ++i) {
@@ -153,11 +152,7 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
       if (report.path_best) last_verdict = report, verdict_storey = bank.leader;
     }
     if (snapshot && updates == kClusteringUpdate && step.state == LocalizationState::Searching) moment("clustering", t, truth);
-    if (step.storey && step.state != LocalizationState::Searching && step.state != LocalizationState::Lost &&
-        updates % kMapErrorEvery == 0) {
-      if (!map_error) map_error.emplace(building.storeys[*step.storey]);
-      map_error->add(scanPoints(scan), step.T_map_base * s.sensor.T_base_lidar);
-    }
+    map_error.step(step, s.sensor.T_base_lidar, [&scan] { return scanPoints(scan); });
     if (score.add(t, step, truth)) {
       if (step.filter) r.convergence_margin = step.filter->filter.path_margin;
       if (snapshot) moment("convergence", t, truth);
@@ -174,7 +169,7 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     moment("end", t_end, sim.trajectory().T_map_base(t_end));
   }
   score.finish(r);
-  if (map_error && map_error->points() > 0) r.map_rmse_m = map_error->rmse_m();
+  r.map_rmse_m = map_error.rmse_m();
   r.site = s.site.preset;
   if (const sgraph::SGraphTracker* tracker = localizer->tracker()) scoreWalls(tracker->wallDeviations(), sim.world().siteTruth(), r);
   r.sim_seconds = static_cast<double>(sim.turnCount()) * sim.lidar().turnPeriod_s();
