@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 #include <variant>
 
 namespace bimloc::sim {
@@ -125,17 +126,25 @@ std::vector<Field> sgraphFields(sgraph::SGraphConfig& c) {
           {"recover_after_keyframes", &c.recover_after_keyframes, closed(1, 1000)}};
 }
 
+// The field named `key` of `fields`, under another name (an alias keeps its field's range).
+Field alias(const std::string& name, const std::vector<Field>& fields, const std::string& key) {
+  for (const Field& f : fields)
+    if (f.key == key) return {name, f.target, f.range};
+  throw std::logic_error("no localizer field " + key);
+}
+
 std::vector<Field> topFields(LocalizerConfig& c) {
+  const auto pf = pfFields(c.pf);
   return {{"relocalize_sigma_m", &c.relocalize_sigma_m, positive(1e4)},
           {"relocalize_sigma_yaw_deg", &c.relocalize_sigma_yaw_deg, positive(180)},
-          {"prior_sigma_m", &c.pf.prior_sigma_m, closed(1e-3, 1e4)},
-          {"prior_sigma_yaw_deg", &c.pf.prior_sigma_yaw_deg, closed(0.01, 180)},
+          alias("prior_sigma_m", pf, "prior_sigma_m"),
+          alias("prior_sigma_yaw_deg", pf, "prior_sigma_yaw_deg"),
           // The flat keys of the first scenarios, kept.
-          {"particles", &c.pf.particles, closed(10, 1e6)},
-          {"sigma_d_m", &c.pf.sigma_d_m, closed(1e-3, 10)},
-          {"sigma_azimuth_deg", &c.pf.sigma_azimuth_deg, closed(0.01, 90)},
-          {"converged_updates", &c.pf.converged_updates, closed(1, 1000)},
-          {"voxel_size_m", &c.planes.voxel_size_m, closed(0.01, 1)}};
+          alias("particles", pf, "particles"),
+          alias("sigma_d_m", pf, "sigma_d_m"),
+          alias("sigma_azimuth_deg", pf, "sigma_azimuth_deg"),
+          alias("converged_updates", pf, "converged_updates"),
+          alias("voxel_size_m", planeFields(c.planes), "voxel_size_m")};
 }
 
 const std::vector<std::string> kOtherTopKeys{"method", "storey", "prior_rooms", "prior_pose", "planes", "pf", "sgraph"};
