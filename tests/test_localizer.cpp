@@ -125,7 +125,9 @@ TEST(Localizer, SameSeedSameBytesAndThePfMethodNeverStartsATracker) {
     EXPECT_FALSE(pf[i].result.sgraph.has_value());
     EXPECT_NE(pf[i].result.state, LocalizationState::Lost);
     // The filter is the same until convergence, whichever stage tracks after it.
-    if (a[i].result.state == LocalizationState::Searching) EXPECT_TRUE(pf[i].result.T_map_base.matrix() == a[i].result.T_map_base.matrix());
+    if (a[i].result.state == LocalizationState::Searching) {
+      EXPECT_TRUE(pf[i].result.T_map_base.matrix() == a[i].result.T_map_base.matrix());
+    }
     tracked = tracked || pf[i].result.state == LocalizationState::Tracking;
   }
   EXPECT_TRUE(tracked);
@@ -144,7 +146,9 @@ TEST(Localizer, BlindForLongTheTrackerSaysLostThenTheSearchFindsThePlanAgain) {
   bool lost = false, back = false;
   for (const auto& s : steps) {
     const auto& r = s.result;
-    if (r.stamp_s < from) EXPECT_NE(r.state, LocalizationState::Lost);
+    if (r.stamp_s < from) {
+      EXPECT_NE(r.state, LocalizationState::Lost);
+    }
     if (r.state == LocalizationState::Lost) {
       lost = true;
       EXPECT_TRUE(r.T_map_odom.has_value()) << "dead reckoning goes on while lost";

@@ -2,6 +2,8 @@
 
 #include <bimloc/geometry/planar_pose.hpp>
 
+#include "peers/peer.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -50,6 +52,8 @@ const char* toString(LocalizerMethod method) {
     case LocalizerMethod::SGraph: return "sgraph";
     case LocalizerMethod::Pf: return "pf";
     case LocalizerMethod::PfNoRooms: return "pf-no-rooms";
+    case LocalizerMethod::Amcl: return "amcl";
+    case LocalizerMethod::Ndt: return "ndt";
   }
   return "?";
 }
@@ -58,8 +62,12 @@ std::optional<LocalizerMethod> methodFromString(const std::string& name) {
   if (name == "sgraph") return LocalizerMethod::SGraph;
   if (name == "pf") return LocalizerMethod::Pf;
   if (name == "pf-no-rooms") return LocalizerMethod::PfNoRooms;
+  if (name == "amcl") return LocalizerMethod::Amcl;
+  if (name == "ndt") return LocalizerMethod::Ndt;
   return std::nullopt;
 }
+
+bool isPeer(LocalizerMethod method) { return method == LocalizerMethod::Amcl || method == LocalizerMethod::Ndt; }
 
 const char* toString(LocalizationState state) {
   switch (state) {
@@ -76,7 +84,10 @@ struct Localizer::Impl {
   Eigen::Isometry3d T_base_lidar;
   LocalizerConfig config;
   std::vector<std::size_t> storeys;  // the candidates of the first search
-  std::unique_ptr<pf::StoreyBank> bank;            // the current (or last) search
+  std::unique_ptr<pf::StoreyBank> bank;            // the current (or last) search (not for peers)
+  std::unique_ptr<peers::PeerLocalizer> peer;      // methods Amcl, Ndt
+  std::optional<Eigen::Isometry3d> peer_T_map_odom;  // the peer's, since it converged
+  bool peer_converged = false;
   bool filter_active = true;                       // the filter runs on this step
   std::unique_ptr<sgraph::SGraphTracker> tracker;  // since the first hand-over
   std::optional<sgraph::SGraphResult> last_track;  // the tracker's last answer
@@ -97,6 +108,7 @@ struct Localizer::Impl {
   void handOver(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
   void searchAgain(LocalizationResult& r);
   void describe(LocalizationResult& r) const;
+  void stepPeer(const Eigen::Isometry3d& T_odom_base, const PointSource& points_lidar, LocalizationResult& r);
 };
 
 Localizer::Localizer(const bim::Building& building, const Eigen::Isometry3d& T_base_lidar, const LocalizerConfig& config)
@@ -105,10 +117,20 @@ Localizer::Localizer(const bim::Building& building, const Eigen::Isometry3d& T_b
   if (config.storey.empty()) {
     m.storeys = pf::StoreyBank::candidateStoreys(building);
     if (m.storeys.empty()) throw std::invalid_argument("no storey of the plan has both walls and rooms");
+    if (isPeer(config.method) && m.storeys.size() > 1)
+      throw std::invalid_argument(std::string(toString(config.method)) + " localizes on one storey's map: give the storey (" +
+                                  std::to_string(m.storeys.size()) + " storeys could hold the robot)");
   } else {
     const bim::Storey* storey = building.findStorey(config.storey);
     if (!storey) throw std::invalid_argument("no storey '" + config.storey + "' in the plan");
     m.storeys = {static_cast<std::size_t>(storey - building.storeys.data())};
+  }
+  if (isPeer(config.method)) {
+    const bim::Storey& storey = building.storeys.at(m.storeys.front());
+    m.peer = config.method == LocalizerMethod::Amcl ? peers::makeAmcl(storey, m.T_base_lidar, m.config.amcl, m.config.seed)
+                                                    : peers::makeNdt(storey, m.T_base_lidar, m.config.ndt, m.config.seed);
+    m.filter_active = false;
+    return;
   }
   m.bank = std::make_unique<pf::StoreyBank>(building, m.storeys, m.T_base_lidar, m.config.pf);
 }
@@ -124,6 +146,10 @@ LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_od
   Impl& m = *impl_;
   LocalizationResult r;
   r.stamp_s = stamp_s;
+  if (m.peer) {
+    m.stepPeer(T_odom_base, points_lidar, r);
+    return r;
+  }
   // predict -> observe (only what a stage will look at) -> track -> search -> hand over or lose -> describe
   if (m.filter_active) m.bank->predict(T_odom_base);
   std::vector<planes::ObservedPlane> walls;
@@ -222,8 +248,44 @@ void Localizer::Impl::describe(LocalizationResult& r) const {
   r.room_name = room ? room->name : std::string();
 }
 
+// A peer (AMCL, NDT) decides by its own criterion; the states mean the same as for the
+// paper's method: converged once, tracking while it keeps its criterion, lost when it gives
+// the pose up after having had it (map <- odom kept, dead reckoning, until it converges again).
+void Localizer::Impl::stepPeer(const Eigen::Isometry3d& T_odom_base, const PointSource& points_lidar, LocalizationResult& r) {
+  std::vector<Eigen::Vector3f> points;
+  const bool wants = peer->wantsPoints(T_odom_base);
+  if (wants) points = points_lidar();
+  peers::PeerStep s = peer->step(r.stamp_s, T_odom_base, wants ? &points : nullptr);
+  r.used_points = wants;
+  for (auto& w : s.warnings) r.warnings.push_back(std::move(w));
+  const bool was_converged = peer_converged;
+  peer_converged = s.report.converged;
+  if (peer_converged) {
+    peer_T_map_odom = s.T_map_base * T_odom_base.inverse();
+    if (!convergence_stamp) convergence_stamp = r.stamp_s;
+  } else if (was_converged) {
+    ++losses;
+  }
+  r.T_map_odom = peer_T_map_odom;
+  r.T_map_base = !peer_converged && peer_T_map_odom ? *peer_T_map_odom * T_odom_base : s.T_map_base;
+  r.covariance = s.covariance;
+  r.losses = losses;
+  r.convergence_stamp_s = convergence_stamp;
+  r.storey = storeys.front();
+  r.leading_storey = storeys.front();
+  if (peer_converged)
+    r.state = convergence_stamp == r.stamp_s && !was_converged && losses == 0 ? LocalizationState::Converged : LocalizationState::Tracking;
+  else
+    r.state = convergence_stamp ? LocalizationState::Lost : LocalizationState::Searching;
+  r.peer = std::move(s.report);
+  const bim::Storey& storey = building.storeys.at(r.leading_storey);
+  const bim::Room* room = storey.roomAt(r.T_map_base.translation().head<2>());
+  r.room = room ? static_cast<int>(room - storey.rooms.data()) : -1;
+  r.room_name = room ? room->name : std::string();
+}
+
 const LocalizerConfig& Localizer::config() const { return impl_->config; }
-const pf::StoreyBank& Localizer::filter() const { return *impl_->bank; }
+const pf::StoreyBank* Localizer::filter() const { return impl_->bank.get(); }
 const sgraph::SGraphTracker* Localizer::tracker() const { return impl_->tracker.get(); }
 const std::vector<std::string>& Localizer::warnings() const { return impl_->warnings; }
 

@@ -151,9 +151,8 @@ void addBenchLoopCommand(CLI::App& bench) {
   cmd->add_option("--rooms-per-plan", args->rooms_per_plan, "start rooms per --plan, spread over the storey")
       ->check(CLI::Range(1, 1000))->capture_default_str();
   cmd->add_option("--method", args->method,
-                  "method of every run (over the scenario files' own): sgraph (the paper: the filter, then the S-Graph "
-                  "tracks), pf (the filter tracks) or pf-no-rooms (the ablation)")
-      ->check(CLI::IsMember({"sgraph", "pf", "pf-no-rooms"}))->capture_default_str();
+                  std::string("method of every run (over the scenario files' own): ") + bimloc::cli::kMethodHelp)
+      ->check(bimloc::cli::methodCheck())->capture_default_str();
   cmd->add_option("--duration", args->duration_s, "seconds of every run (over the scenarios' own; longer tours explore on)")
       ->check(CLI::Range(1.0, 7200.0));
   cmd->add_option("--rounds", args->rounds, "measurements of each, the best kept")->capture_default_str()->check(CLI::Range(1, 100));

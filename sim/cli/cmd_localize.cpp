@@ -1,4 +1,4 @@
-// bimloc localize DATASET --plan PLAN [--storey S|auto] [--method sgraph|pf|pf-no-rooms] [--config FILE.yaml] [--json]
+// bimloc localize DATASET --plan PLAN [--storey S|auto] [--method sgraph|pf|pf-no-rooms|amcl|ndt] [--config FILE.yaml] [--json]
 // The same localizer as `bimloc run`, offline, on a recorded dataset.
 #include "sim/cli/commands.hpp"
 #include "sim/cli/run_report.hpp"
@@ -105,8 +105,8 @@ void addLocalizeCommand(CLI::App& app) {
                   "storey name or index (default: as recorded, else 0); auto: not told, every storey with walls and rooms "
                   "is a candidate (scored against the recorded storey)");
   cmd->add_option("--method", args->method,
-                  "sgraph (the paper: the filter, then the S-Graph tracks), pf (the filter tracks) or pf-no-rooms (the ablation)")
-      ->check(CLI::IsMember({"sgraph", "pf", "pf-no-rooms"}))
+                  bimloc::cli::kMethodHelp)
+      ->check(bimloc::cli::methodCheck())
       ->capture_default_str();
   cmd->add_option("--config", args->config, "YAML file of localizer settings (the keys of a scenario's `localizer:`)")
       ->check(CLI::ExistingFile);

@@ -21,8 +21,10 @@ struct RunArgs {
   std::string starts = "rooms";
   int seeds = 1;
   std::string method = "sgraph";
+  bool method_given = false;  // --method on the command line: over the scenario files' own too
   std::string config;
   double duration_s = 40.0;
+  bool duration_given = false;
   bool json = false;
   std::string out;
   std::string trace;
@@ -49,6 +51,10 @@ void run(const RunArgs& args) {
   if (scenarios.empty()) throw std::runtime_error("nothing to run: give scenario files, or --plan PLAN --all-rooms");
   bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
   if (!args.config.empty()) bimloc::cli::applyConfig(scenarios, args.config);
+  for (std::size_t i = 0; i < args.scenarios.size(); ++i) {  // the files' own, unless the command line says
+    if (args.method_given) scenarios[i].localizer["method"] = args.method;
+    if (args.duration_given) scenarios[i].duration_s = args.duration_s;
+  }
   if (!args.site.empty())
     for (auto& s : scenarios) s.site = sitePreset(args.site);
 
@@ -103,10 +109,12 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--seeds", args->seeds, "seeds per room with --all-rooms; starts per storey with --starts outside")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  cmd->add_option("--method", args->method, "sgraph (the paper: the filter, then the S-Graph tracks), pf (the filter tracks) or pf-no-rooms (the ablation)")
-      ->check(CLI::IsMember({"sgraph", "pf", "pf-no-rooms"}))
-      ->capture_default_str();
-  cmd->add_option("--duration", args->duration_s, "seconds per --all-rooms scenario")->check(CLI::Range(1.0, 3600.0));
+  auto* method = cmd->add_option("--method", args->method, std::string(bimloc::cli::kMethodHelp) + "; over the scenario files' own when given")
+                     ->check(bimloc::cli::methodCheck())
+                     ->capture_default_str();
+  auto* duration = cmd->add_option("--duration", args->duration_s, "seconds per --all-rooms scenario; over the scenario files' own when given")
+                       ->check(CLI::Range(1.0, 3600.0))
+                       ->capture_default_str();
   cmd->add_flag("--json", args->json, "print one JSON object instead of the table");
   cmd->add_option("--out", args->out, "folder for top-view PNG snapshots (initialization, clustering, convergence)");
   cmd->add_option("--trace", args->trace,
@@ -133,5 +141,9 @@ void addRunCommand(CLI::App& app) {
                (guess.empty() ? std::string() : "; did you mean '" + guess + "'?");
       });
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args, method, duration] {
+    args->method_given = method->count() > 0;
+    args->duration_given = duration->count() > 0;
+    run(*args);
+  });
 }

@@ -168,8 +168,8 @@ void addSweepCommand(CLI::App& app) {
       "Make hard plans with `bimloc worldgen --random SEED --random-count K --out DIR`, then sweep DIR/*.ifc.");
   cmd->add_option("plans", args->plans, "IFC plans (or extract folders)")->required();
   cmd->add_option("--seeds", args->seeds, "seeds per room")->check(CLI::Range(1, 1000))->capture_default_str();
-  cmd->add_option("--method", args->method, "sgraph (the paper: the filter, then the S-Graph tracks), pf (the filter tracks) or pf-no-rooms (the ablation)")
-      ->check(CLI::IsMember({"sgraph", "pf", "pf-no-rooms"}))
+  cmd->add_option("--method", args->method, bimloc::cli::kMethodHelp)
+      ->check(bimloc::cli::methodCheck())
       ->capture_default_str();
   cmd->add_option("--rooms-per-storey", args->rooms_per_storey,
                   "start rooms per storey, spread over it (0: every room); long walks (--duration 300) explore the "

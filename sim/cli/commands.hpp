@@ -11,6 +11,12 @@ struct ExitCode {
   int code;
 };
 
+// `--method`, the same on every command that runs the localizer.
+inline constexpr const char* kMethodHelp =
+    "sgraph (the paper: the filter, then the S-Graph tracks), pf (the filter tracks), pf-no-rooms (the ablation), "
+    "amcl (peer: ROS-style AMCL on a 2D slice of the plan) or ndt (peer: HDL-style branch-and-bound, then NDT)";
+inline CLI::IsMember methodCheck() { return CLI::IsMember({"sgraph", "pf", "pf-no-rooms", "amcl", "ndt"}); }
+
 }  // namespace bimloc::cli
 
 void addExtractCommand(CLI::App& app);

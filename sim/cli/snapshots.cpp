@@ -75,17 +75,21 @@ sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& s
     sim::SnapshotScene scene;
     // The filter's storey: with storey auto, the leading one (the truth may be on another).
     scene.storey = &building->storeys.at(m.storey);
-    double max_lw = -1e300;
-    for (const auto& p : m.filter->particles()) max_lw = std::max(max_lw, p.log_weight);
-    for (const auto& p : m.filter->particles()) scene.particles.push_back({p.x, p.y, p.yaw, std::exp(p.log_weight - max_lw)});
     scene.truth = planarPose(m.truth);
-    scene.estimate = planarPose(m.estimate ? *m.estimate : m.filter->T_map_base());
     scene.title = name;
     scene.time_s = m.time_s;
     scene.phase = m.phase;
-    scene.legend_extra = {{"particles", std::to_string(m.filter->particles().size())},
-                          {"converged", m.filter->converged() ? "yes" : "no"},
-                          {"storey", scene.storey->name}};
+    if (m.filter) {
+      double max_lw = -1e300;
+      for (const auto& p : m.filter->particles()) max_lw = std::max(max_lw, p.log_weight);
+      for (const auto& p : m.filter->particles()) scene.particles.push_back({p.x, p.y, p.yaw, std::exp(p.log_weight - max_lw)});
+      scene.estimate = planarPose(m.estimate ? *m.estimate : m.filter->T_map_base());
+      scene.legend_extra = {{"particles", std::to_string(m.filter->particles().size())},
+                            {"converged", m.filter->converged() ? "yes" : "no"}};
+    } else if (m.estimate) {  // a peer (AMCL, NDT): its estimate only
+      scene.estimate = planarPose(*m.estimate);
+    }
+    scene.legend_extra.push_back({"storey", scene.storey->name});
     if (m.tracker) {
       scene.graph = snapshotGraph(*m.tracker, *scene.storey);
       scene.legend_extra.push_back({"tracker", sgraph::toString(m.tracker->state())});

@@ -112,7 +112,8 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
   };
   std::optional<Eigen::Isometry3d> estimate;  // the last step's, for the snapshots
   const auto moment = [&](const char* phase, double t, const Eigen::Isometry3d& truth) {
-    snapshot({phase, t, &localizer->filter().filter(), localizer->filter().leader(), truth, localizer->tracker(), estimate});
+    const pf::StoreyBank* bank = localizer->filter();  // null for the peers (AMCL, NDT)
+    snapshot({phase, t, bank ? &bank->filter() : nullptr, bank ? bank->leader() : sim.storey(), truth, localizer->tracker(), estimate});
   };
   if (snapshot) moment("initialization", 0.0, sim.trajectory().T_map_base(0.0));
 
@@ -160,7 +161,7 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
   }
   const bool converged = score.converged();
   if (!converged && last_verdict) r.hypotheses = placesOf(*last_verdict, building.storeys[verdict_storey]);
-  if (!localizer->filter().storey() && r.storey_auto && last_bank)
+  if (localizer->filter() && !localizer->filter()->storey() && r.storey_auto && last_bank)
     for (const auto& c : last_bank->candidates)
       r.storey_candidates.push_back({building.storeys[c.storey].name, c.converged, c.path_log_likelihood});
   // The last picture shows where the particles were left and why, or the graph the tracker built.

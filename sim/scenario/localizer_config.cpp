@@ -207,7 +207,7 @@ LocalizerSettings readLocalizerSettings(const nlohmann::json& block, const std::
   if (block.contains("method")) {
     const auto& v = block["method"];
     const auto m = v.is_string() ? methodFromString(v.get<std::string>()) : std::nullopt;
-    if (!m) read.fail("localizer.method", "expected sgraph, pf or pf-no-rooms, got " + v.dump());
+    if (!m) read.fail("localizer.method", "expected sgraph, pf, pf-no-rooms, amcl or ndt, got " + v.dump());
     c.method = *m;
   }
   if (block.contains("storey")) {

@@ -13,6 +13,9 @@
 #pragma once
 
 #include <bimloc/bim/building.hpp>
+#include <bimloc/peers/amcl_config.hpp>
+#include <bimloc/peers/ndt_config.hpp>
+#include <bimloc/peers/peer_report.hpp>
 #include <bimloc/pf/storey_bank.hpp>
 #include <bimloc/planes/plane_extraction.hpp>
 #include <bimloc/sgraph/sgraph_tracker.hpp>
@@ -32,9 +35,12 @@ enum class LocalizerMethod {
   SGraph,     // the paper: the filter, then the S-Graph tracks
   Pf,         // the filter, which then tracks with its own particles
   PfNoRooms,  // the filter without the room factor (the paper's ablation), tracking likewise
+  Amcl,       // peer: ROS-style AMCL on a 2D slice of the storey mesh (the paper's baseline)
+  Ndt,        // peer: HDL-style NDT, branch-and-bound global search then scan-to-map NDT
 };
+bool isPeer(LocalizerMethod method);  // Amcl or Ndt: needs a known storey, no wall planes
 const char* toString(LocalizerMethod method);
-std::optional<LocalizerMethod> methodFromString(const std::string& name);  // "sgraph", "pf", "pf-no-rooms"
+std::optional<LocalizerMethod> methodFromString(const std::string& name);  // "sgraph", "pf", "pf-no-rooms", "amcl", "ndt"
 
 struct LocalizerConfig {
   LocalizerMethod method = LocalizerMethod::SGraph;
@@ -47,6 +53,8 @@ struct LocalizerConfig {
   planes::PlaneExtractionConfig planes;
   pf::ParticleFilterConfig pf;  // pf.use_rooms follows `method`
   sgraph::SGraphConfig sgraph;
+  peers::AmclConfig amcl;  // method Amcl only
+  peers::NdtConfig ndt;    // method Ndt only
   // Search again after a loss of track: the filter's particles start within this of the last
   // tracked pose (1 sigma; the tracker drifted at most a few keyframes of odometry before it
   // said lost), the heading within relocalize_sigma_yaw_deg.
@@ -82,13 +90,15 @@ struct LocalizationResult {
   // searching again after a loss), the S-Graph while it tracks.
   std::optional<pf::StoreyBankReport> filter;
   std::optional<sgraph::SGraphResult> sgraph;
+  std::optional<peers::PeerReport> peer;  // methods Amcl and Ndt: every step
   std::vector<std::string> warnings;  // this step's, from every stage
 };
 
 class Localizer {
  public:
   // The building must outlive the localizer. Throws std::invalid_argument when the storey is
-  // not in the plan, or no storey can hold the robot (walls and rooms).
+  // not in the plan, or no storey can hold the robot (walls and rooms), or a peer method
+  // (Amcl, Ndt) is asked to choose among several storeys.
   Localizer(const bim::Building& building, const Eigen::Isometry3d& T_base_lidar, const LocalizerConfig& config);
   ~Localizer();
   Localizer(Localizer&&) noexcept;
@@ -102,7 +112,7 @@ class Localizer {
   LocalizationResult step(double stamp_s, const Eigen::Isometry3d& T_odom_base, const PointSource& points_lidar);
 
   const LocalizerConfig& config() const;
-  const pf::StoreyBank& filter() const;                  // the current (or last) search
+  const pf::StoreyBank* filter() const;                  // the current (or last) search; null for the peers
   const sgraph::SGraphTracker* tracker() const;          // while (or since) the S-Graph tracks; null before
   const std::vector<std::string>& warnings() const;      // from the construction (the plan, the config)
 
