@@ -1,7 +1,8 @@
-// bimloc run SCENARIO... | --plan PLAN --all-rooms [--storey S|auto] [--method M] [--config FILE.yaml] [--starts rooms|outside] [--json] [--out DIR] [--jobs N]
+// bimloc run SCENARIO... | --plan PLAN --all-rooms [--storey S|auto] [--method M] [--config FILE.yaml] [--starts rooms|outside] [--json] [--out DIR] [--jobs N] [--shard K/N]
 #include "sim/cli/commands.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
+#include "sim/cli/shards.hpp"
 #include "sim/runner/room_scenarios.hpp"
 #include "sim/scenario/yaml_mapping.hpp"
 
@@ -32,9 +33,13 @@ struct RunArgs {
   std::vector<std::string> rooms, prior_rooms;
   std::string prior_pose;
   std::string site;  // --site PRESET: every scenario's site (sim/world/site_config.hpp)
+  std::string shard;  // K/N: only the K-th of N slices of the scenario list (sim/cli/shards.hpp)
+  std::string tum;    // folder for each scenario's truth.tum and estimate.tum
 };
 
 void run(const RunArgs& args) {
+  const std::optional<bimloc::cli::ShardSpec> shard =
+      args.shard.empty() ? std::nullopt : std::optional(bimloc::cli::parseShard(args.shard));
   std::vector<Scenario> scenarios;
   bimloc::cli::WorldCache worlds;
   for (const auto& path : args.scenarios) scenarios.push_back(loadScenario(path));
@@ -58,19 +63,34 @@ void run(const RunArgs& args) {
   if (!args.site.empty())
     for (auto& s : scenarios) s.site = sitePreset(args.site);
 
-  // Scenarios in parallel, results in input order: the same output whatever --jobs.
-  const auto start = std::chrono::steady_clock::now();
   std::vector<bool> generated(scenarios.size());
   for (std::size_t i = args.scenarios.size(); i < scenarios.size(); ++i) generated[i] = generate;
+  // With --shard, the slice of the whole list (every expansion done): what merge needs to put
+  // it back in place, and to tell one sweep's shards from another's.
+  std::vector<std::size_t> positions;
+  std::string fingerprint;
+  const std::size_t total = scenarios.size();
+  if (shard) {
+    fingerprint = bimloc::cli::sweepFingerprint(scenarios);
+    std::vector<Scenario> kept;
+    std::vector<bool> kept_generated;
+    for (std::size_t i = 0; i < scenarios.size(); ++i)
+      if (shard->contains(i)) positions.push_back(i), kept.push_back(scenarios[i]), kept_generated.push_back(generated[i]);
+    scenarios = std::move(kept), generated = std::move(kept_generated);
+  }
+
+  // Scenarios in parallel, results in input order: the same output whatever --jobs.
+  const auto start = std::chrono::steady_clock::now();
   bimloc::cli::RunPoolOptions pool;
-  pool.jobs = args.jobs, pool.snapshots = args.out, pool.trace = args.trace;
+  pool.jobs = args.jobs, pool.snapshots = args.out, pool.trace = args.trace, pool.tum = args.tum;
   const auto runs = bimloc::cli::runPool(scenarios, generated, worlds, pool);
   std::vector<ScenarioResult> results;
   std::vector<std::string> errors;
   for (const auto& run : runs) results.push_back(run.result), errors.push_back(run.error);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const auto report = bimloc::cli::runReport(results, wall);
+  auto report = bimloc::cli::runReport(results, wall);
+  if (shard) report["shard"] = bimloc::cli::shardJson(*shard, total, fingerprint, positions);
   if (args.json)
     std::cout << report.dump() << "\n";
   else
@@ -140,6 +160,12 @@ void addRunCommand(CLI::App& app) {
         return "no site preset '" + v + "' (exact, as_built, construction, heavy)" +
                (guess.empty() ? std::string() : "; did you mean '" + guess + "'?");
       });
+  cmd->add_option("--shard", args->shard,
+                  "K/N: run only the K-th of N deterministic slices of the scenario list (every N-th from the K-th, after "
+                  "--all-rooms x --seeds); with --json the output carries what `bimloc report merge` needs");
+  cmd->add_option("--tum", args->tum,
+                  "folder for each scenario's trajectories in the TUM format, for `bimloc eval` or evo: truth.tum (every "
+                  "step) and estimate.tum (the steps the ATE scores: converged, not lost) in DIR/<scenario>/");
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->callback([args, method, duration] {
     args->method_given = method->count() > 0;

@@ -31,3 +31,5 @@ void addSimulateCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
 void addLocalizeCommand(CLI::App& app);
 void addSweepCommand(CLI::App& app);
+void addReportCommand(CLI::App& app);  // report merge
+void addEvalCommand(CLI::App& app);

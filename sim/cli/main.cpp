@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   addRunCommand(app);
   addLocalizeCommand(app);
   addSweepCommand(app);
+  addReportCommand(app);
+  addEvalCommand(app);
   addBenchCommand(app);
   try {
     app.parse(argc, argv);

@@ -21,14 +21,15 @@ const World& WorldCache::get(const std::string& path) {
 }
 
 ScenarioResult runChecked(const Scenario& s, const World& world, bool room_mode, const SnapshotHook& hook,
-                          std::vector<TraceRow>* trace) {
+                          std::vector<TraceRow>* trace, std::vector<PoseRow>* poses) {
   try {
     checkScenarioAgainstWorld(s, world);
-    return runScenario(s, world, hook, trace);
+    return runScenario(s, world, hook, trace, poses);
   } catch (const ScenarioError& e) {
     if (!room_mode) throw;
     if (trace) trace->clear();
-    ScenarioResult r = runScenario(stayInRoom(s), world, hook, trace);
+    if (poses) poses->clear();
+    ScenarioResult r = runScenario(stayInRoom(s), world, hook, trace, poses);
     r.warnings.insert(r.warnings.begin(), std::string("no path out of the room, walked inside it: ") + e.what());
     return r;
   }
@@ -41,12 +42,15 @@ ScenarioResult runOne(const Scenario& s, WorldCache& worlds, const RunPoolOption
   const SnapshotHook hook = options.snapshots.empty() ? SnapshotHook{} : snapshotWriter(world, s, options.snapshots);
   std::vector<TraceRow> rows;
   std::vector<TraceRow>* trace = options.trace.empty() ? nullptr : &rows;
+  std::vector<PoseRow> pose_rows;
+  std::vector<PoseRow>* poses = options.tum.empty() ? nullptr : &pose_rows;
   const auto traced = [&](ScenarioResult r) {
     if (trace) writeTrace(options.trace, s.name, rows);
+    if (poses) writeTumPair(options.tum, s.name, pose_rows);
     if (!options.snapshots.empty()) writeErrorPlot(options.snapshots, s.name, r);  // next to the snapshots
     return r;
   };
-  return traced(runChecked(s, world, room_mode, hook, trace));
+  return traced(runChecked(s, world, room_mode, hook, trace, poses));
 }
 
 }  // namespace

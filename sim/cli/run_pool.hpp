@@ -26,6 +26,7 @@ struct RunPoolOptions {
   int jobs = 1;
   std::string snapshots;  // folder for snapshots, empty for none
   std::string trace;      // folder for trace CSVs, empty for none
+  std::string tum;        // folder for truth.tum and estimate.tum per scenario, empty for none
   std::string progress_label = "running";
 };
 
@@ -33,7 +34,8 @@ struct RunPoolOptions {
 // start room, and the benchmark's), a plan whose doors are closed in the mesh has no path out
 // of the room: the base walks inside it instead, and the result says so in a warning.
 sim::ScenarioResult runChecked(const sim::Scenario& s, const sim::World& world, bool room_mode,
-                               const sim::SnapshotHook& hook = {}, std::vector<sim::TraceRow>* trace = nullptr);
+                               const sim::SnapshotHook& hook = {}, std::vector<sim::TraceRow>* trace = nullptr,
+                               std::vector<sim::PoseRow>* poses = nullptr);
 
 struct PooledRun {
   sim::ScenarioResult result;

@@ -1,6 +1,7 @@
 #include "sim/cli/trace_writer.hpp"
 
 #include "sim/cli/snapshots.hpp"
+#include "sim/dataset/tum_writer.hpp"
 #include "sim/world/atomic_file.hpp"
 
 #include <cmath>
@@ -42,6 +43,21 @@ std::string writeTrace(const std::string& dir, const std::string& scenario_name,
   }
   sim::writeFileAtomically(path, csv);
   return path;
+}
+
+std::string writeTumPair(const std::string& dir, const std::string& scenario_name, const std::vector<sim::PoseRow>& rows) {
+  const std::filesystem::path folder = std::filesystem::path(dir) / fileSafe(scenario_name);
+  std::filesystem::create_directories(folder);
+  std::string truth = "# " + scenario_name + ": true map <- base_link (timestamp tx ty tz qx qy qz qw)\n";
+  std::string estimate = "# " + scenario_name + ": estimated map <- base_link, converged and not lost\n";
+  for (const auto& row : rows) {
+    const auto stamp_ns = static_cast<std::uint64_t>(std::llround(row.time_s * 1e9));
+    truth += sim::tumLine(stamp_ns, row.truth) + "\n";
+    if (row.scored) estimate += sim::tumLine(stamp_ns, row.estimate) + "\n";
+  }
+  sim::writeFileAtomically((folder / "truth.tum").string(), truth);
+  sim::writeFileAtomically((folder / "estimate.tum").string(), estimate);
+  return folder.string();
 }
 
 }  // namespace bimloc::cli

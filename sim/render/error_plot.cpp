@@ -117,6 +117,7 @@ void convergenceLine(const ErrorPlotData& data, const ErrorPlotPanel& p, double 
 void header(const ErrorPlotData& data, const ErrorPlotLayout& l) {
   const int s = l.text_scale, big = s + 1;
   render::drawText(l.position.x0, l.pad, render::fitText(data.title, big, l.position.x1 - l.position.x0), big, kInk);
+  if (!data.show_states) return;
   const double y = l.pad * 2 + render::kLineHeight * big, line = render::kLineHeight * s;
   double x = l.position.x0;
   const auto item = [&](const std::string& label, const auto& symbol) {
@@ -149,7 +150,7 @@ Image renderErrorPlotImage(const ErrorPlotData& data, const ErrorPlotOptions& op
   const double s = l.text_scale;
   return render::renderOffscreen(l.width, l.height, [&] {
     for (const ErrorPlotPanel* p : {&l.position, &l.yaw}) {
-      shadeStates(data, *p);
+      if (data.show_states) shadeStates(data, *p);
       grid(*p, l.time_ticks, s);
       convergenceLine(data, *p, s);
     }
@@ -161,8 +162,8 @@ Image renderErrorPlotImage(const ErrorPlotData& data, const ErrorPlotOptions& op
     render::fillRect({0, 0, static_cast<double>(l.width), l.position.y0 - 1}, hex(0xffffff));
     render::fillRect({0, l.position.y1 + 1, static_cast<double>(l.width), l.yaw.y0 - 1}, hex(0xffffff));
     render::fillRect({0, l.yaw.y1 + 1, static_cast<double>(l.width), static_cast<double>(l.height)}, hex(0xffffff));
-    axes(l.position, l, "position error [m], log scale", hex(kErrorPlotPositionRgb), false);
-    axes(l.yaw, l, "yaw error [deg], log scale", hex(kErrorPlotYawRgb), true);
+    axes(l.position, l, data.position_label + ", log scale", hex(kErrorPlotPositionRgb), false);
+    axes(l.yaw, l, data.yaw_label + ", log scale", hex(kErrorPlotYawRgb), true);
     const std::string time = "time [s]";
     render::drawText(0.5 * (l.yaw.x0 + l.yaw.x1 - render::textWidth(time, l.text_scale)),
                      l.height - l.pad - render::kLineHeight * s, time, l.text_scale, kInk);

@@ -24,6 +24,10 @@ struct ErrorPlotData {
   std::string title;
   std::vector<ErrorPlotSample> samples;  // by time
   std::optional<double> convergence_time_s;
+  // The panels' names (", log scale" is added), and whether the states are shaded and keyed
+  // (a run's plot) or not (`bimloc eval`: an estimate's error, no localizer state).
+  std::string position_label = "position error [m]", yaw_label = "yaw error [deg]";
+  bool show_states = true;
 };
 
 struct ErrorPlotOptions {

@@ -38,7 +38,7 @@ bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isomet
     found_storey_ = found.name;
     true_room_ = trueRoom(building_.storeys.at(storey_), truth);
   }
-  if (step.state == LocalizationState::Lost) return first;  // it says it does not know
+  if (!scored(step)) return first;  // lost: it says it does not know
   // Right place, wrong storey is a false convergence too: the plan's x, y repeat on every storey.
   const double error = (estimate_.translation() - truth.translation()).head<2>().norm();
   if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg || *step.storey != storey_) false_convergence_ = true;

@@ -22,6 +22,10 @@ class RunScore {
   // the step where the localizer declared convergence.
   bool add(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth);
   bool converged() const { return converged_; }
+  // Whether the ATE counts the step: converged (or tracking) on a storey, and not lost.
+  static bool scored(const LocalizationResult& step) {
+    return step.state != LocalizationState::Searching && step.state != LocalizationState::Lost && step.storey.has_value();
+  }
   // Fills the result's scores from the last step.
   void finish(ScenarioResult& result) const;
 

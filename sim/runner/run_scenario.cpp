@@ -79,7 +79,8 @@ std::string storeyKey(const bim::Building& building, std::size_t index) {
   return !id.empty() && same == 1 ? id : std::to_string(index);
 }
 
-ScenarioResult runScenario(const Scenario& s, const World& world, const SnapshotHook& snapshot, std::vector<TraceRow>* trace) {
+ScenarioResult runScenario(const Scenario& s, const World& world, const SnapshotHook& snapshot, std::vector<TraceRow>* trace,
+                           std::vector<PoseRow>* poses) {
   const auto wall_start = std::chrono::steady_clock::now();
   ScenarioResult r;
   r.name = s.name;
@@ -141,6 +142,7 @@ ScenarioResult runScenario(const Scenario& s, const World& world, const Snapshot
     const Eigen::Isometry3d truth = sim.trajectory().T_map_base(t);
     if (i > 0) r.path_length_m += (truth.translation() - previous_truth.translation()).head<2>().norm();
     previous_truth = truth;
+    if (poses) poses->push_back({t, truth, step.T_map_base, RunScore::scored(step)});
     r.error_series.push_back({t, (step.T_map_base.translation() - truth.translation()).head<2>().norm(), yawErrorDeg(step.T_map_base, truth), step.state});
     if (step.filter) {
       const pf::StoreyBankReport& bank = *step.filter;

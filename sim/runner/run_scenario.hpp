@@ -118,8 +118,16 @@ struct TraceRow {
   std::optional<double> storey_margin;  // StoreyBankReport::storey_margin
 };
 
-// `trace`, when given, receives a row per weighing.
+// One localizer step, for `bimloc run --tum`: the true and the estimated map <- base, and
+// whether the ATE scores the step (RunScore::scored).
+struct PoseRow {
+  double time_s = 0;
+  Eigen::Isometry3d truth = Eigen::Isometry3d::Identity(), estimate = Eigen::Isometry3d::Identity();
+  bool scored = false;
+};
+
+// `trace`, when given, receives a row per weighing; `poses` a row per step.
 ScenarioResult runScenario(const Scenario& scenario, const World& world, const SnapshotHook& snapshot = {},
-                           std::vector<TraceRow>* trace = nullptr);
+                           std::vector<TraceRow>* trace = nullptr, std::vector<PoseRow>* poses = nullptr);
 
 }  // namespace bimloc::sim

@@ -1,0 +1,98 @@
+// Sharded sweeps: the array tasks' command (deploy/run_shard.sh, the one the Slurm and
+// Kubernetes scripts run) for N = 3 locally, merged by `bimloc report merge`, gives exactly
+// the unsharded run's JSON and table; bad shard sets are named.
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+using bimloc::test::CommandResult;
+using bimloc::test::runBimloc;
+using bimloc::test::tempDir;
+
+namespace {
+
+// A small sweep: 3 start rooms x 2 seeds of the default world, 6 s each.
+std::string sweep(const std::string& duration = "6") {
+  return std::string("--plan '") + BIMLOC_WORLDS_DIR + "/site_office.ifc' --all-rooms --rooms R108,W100,S100 --seeds 2 --duration " +
+         duration;
+}
+
+// The array task K of N, as Slurm's and Kubernetes' tasks run it.
+CommandResult shardTask(int k, int n, const std::string& out, const std::string& args) {
+  const std::string script = std::string(BIMLOC_TESTS_DIR) + "/../deploy/run_shard.sh";
+  const std::string cmd = "BIMLOC='" + std::string(BIMLOC_EXE) + "' sh '" + script + "' " + std::to_string(k) + " " +
+                          std::to_string(n) + " '" + out + "' " + args + " >'" + out + "/task.log' 2>&1";
+  CommandResult r;
+  r.exit_code = std::system(cmd.c_str()) == 0 ? 0 : 1;
+  return r;
+}
+
+std::string file(int k, int n, const std::string& dir) {
+  return "'" + dir + "/shard-" + std::to_string(k) + "-of-" + std::to_string(n) + ".json'";
+}
+
+// The summary line's wall-clock time is the only thing that may differ.
+std::string withoutWallClock(const std::string& table) {
+  return std::regex_replace(table, std::regex(R"(simulated in [0-9.]+ s)"), "simulated in - s");
+}
+
+}  // namespace
+
+TEST(Shards, ArrayTasksMergeIntoTheUnshardedRun) {
+  const std::string dir = tempDir("shards");
+  const auto whole = runBimloc("run " + sweep() + " --json");
+  ASSERT_FALSE(whole.out.empty()) << whole.err;
+  auto unsharded = nlohmann::json::parse(whole.out);
+  ASSERT_EQ(unsharded["scenarios"].size(), 6u);
+  for (int k = 1; k <= 3; ++k) ASSERT_EQ(shardTask(k, 3, dir, sweep()).exit_code, 0) << "task " << k;
+  // Each shard is every third scenario, from the K-th on.
+  const auto second = nlohmann::json::parse(std::ifstream(dir + "/shard-2-of-3.json"));
+  EXPECT_EQ(second["shard"]["positions"], nlohmann::json({1, 4}));
+  EXPECT_EQ(second["scenarios"][1]["name"], unsharded["scenarios"][4]["name"]);
+
+  // Any order of the files: the unsharded order back.
+  const std::string files = file(3, 3, dir) + " " + file(1, 3, dir) + " " + file(2, 3, dir);
+  const auto merged = runBimloc("report merge " + files + " --json");
+  ASSERT_FALSE(merged.out.empty()) << merged.err;
+  EXPECT_EQ(merged.exit_code, whole.exit_code);
+  auto m = nlohmann::json::parse(merged.out);
+  unsharded["summary"].erase("wall_seconds"), m["summary"].erase("wall_seconds");
+  EXPECT_EQ(m.dump(), unsharded.dump());
+
+  // The table too (the unsharded table from its own run).
+  const auto whole_table = runBimloc("run " + sweep());
+  const auto merged_table = runBimloc("report merge " + files);
+  EXPECT_EQ(withoutWallClock(merged_table.out), withoutWallClock(whole_table.out));
+
+  // Missing, overlapping, foreign shards and bad files are named.
+  const auto missing = runBimloc("report merge " + file(1, 3, dir) + " " + file(3, 3, dir));
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("missing shards: 2/3"), std::string::npos) << missing.err;
+  const auto twice = runBimloc("report merge " + files + " " + file(1, 3, dir));
+  EXPECT_NE(twice.err.find("overlapping shards"), std::string::npos) << twice.err;
+  const std::string other = dir + "/other";
+  ASSERT_EQ(shardTask(1, 3, (std::filesystem::create_directories(other), other), sweep("5")).exit_code, 0);
+  const auto mixed = runBimloc("report merge " + file(1, 3, other) + " " + file(2, 3, dir) + " " + file(3, 3, dir));
+  EXPECT_EQ(mixed.exit_code, 1);
+  EXPECT_NE(mixed.err.find("mixed sweeps"), std::string::npos) << mixed.err;
+  EXPECT_NE(mixed.err.find(other + "/shard-1-of-3.json"), std::string::npos) << mixed.err;
+  std::ofstream(dir + "/bad.json") << "{\"scenarios\": [";
+  const auto bad = runBimloc("report merge '" + dir + "/bad.json' " + files);
+  EXPECT_NE(bad.err.find(dir + "/bad.json: not valid JSON"), std::string::npos) << bad.err;
+  std::ofstream(dir + "/whole.json") << whole.out;
+  const auto plain = runBimloc("report merge '" + dir + "/whole.json'");
+  EXPECT_NE(plain.err.find(dir + "/whole.json: not the JSON of a sharded run"), std::string::npos) << plain.err;
+}
+
+TEST(Shards, BadShardSyntaxIsAClearError) {
+  for (const char* bad : {"0/3", "4/3", "3", "a/b", "1/0", "1/2/3", "2/x"}) {
+    const auto r = runBimloc(std::string("run --plan '") + BIMLOC_WORLDS_DIR + "/site_office.ifc' --all-rooms --shard '" + bad + "'");
+    EXPECT_EQ(r.exit_code, 1) << bad;
+    EXPECT_NE(r.err.find("--shard '" + std::string(bad) + "': expected K/N with 1 <= K <= N"), std::string::npos) << r.err;
+  }
+}
