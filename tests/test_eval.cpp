@@ -156,8 +156,8 @@ TEST(EvalRpe, DeltaInMetresAsEvoPicksThePairs) {
   // evo's filter_pairs_by_path: the path reaches 1 m at pose 2 (0.5 + 0.5 and a little in y),
   // then again 2 poses later: pairs (2,4), (4,6), (6,8); the first pair does not start at 0.
   ASSERT_EQ(e.rpe_pairs.size(), 3u);
-  EXPECT_EQ(e.rpe_pairs[0], std::make_pair<std::size_t, std::size_t>(2, 4));
-  EXPECT_EQ(e.rpe_pairs[2], std::make_pair<std::size_t, std::size_t>(6, 8));
+  EXPECT_EQ(e.rpe_pairs[0], (std::pair<std::size_t, std::size_t>(2, 4)));
+  EXPECT_EQ(e.rpe_pairs[2], (std::pair<std::size_t, std::size_t>(6, 8)));
   for (const double r : e.rpe_m) EXPECT_NEAR(r, 0.1, 1e-12);  // 1.1 m walked for 1.0 m in x
   o.delta = 3, o.delta_metres = false;  // frames: 0-3, 3-6 (8 is not reached a third time)
   const TrajectoryEvaluation f = evaluateTrajectory(truth, estimate, o);
