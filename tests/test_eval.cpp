@@ -142,7 +142,7 @@ TEST(EvalApe, DegenerateAlignmentIsAClearError) {
 }
 
 TEST(EvalRpe, DeltaInMetresAsEvoPicksThePairs) {
-  // A straight walk in 0.5 m steps; the estimate walks 10% too far in x.
+  // A straight walk in 0.5 m steps; the estimate walks 10% too far in x (0.55 m steps).
   TumTrajectory truth, estimate;
   truth.path = "truth", estimate.path = "estimate";
   for (int i = 0; i < 9; ++i) {
@@ -150,15 +150,23 @@ TEST(EvalRpe, DeltaInMetresAsEvoPicksThePairs) {
     estimate.stamps_s.push_back(i), estimate.poses.push_back(pose(0.55 * i, 0.01 * i * i, 0, 0));
   }
   TrajectoryEvalOptions o;
-  o.delta = 1.0;
+  o.delta = 1.05;
   o.delta_metres = true;
   const TrajectoryEvaluation e = evaluateTrajectory(truth, estimate, o);
-  // evo's filter_pairs_by_path: the path reaches 1 m at pose 2 (0.5 + 0.5 and a little in y),
-  // then again 2 poses later: pairs (2,4), (4,6), (6,8); the first pair does not start at 0.
+  // evo's filter_pairs_by_path on the estimate (its default): the path reaches 1.05 m at pose 2
+  // (0.55 + 0.55 and a little in y), then again 2 poses later: pairs (2,4), (4,6), (6,8); the
+  // first pair does not start at pose 0.
   ASSERT_EQ(e.rpe_pairs.size(), 3u);
   EXPECT_EQ(e.rpe_pairs[0], (std::pair<std::size_t, std::size_t>(2, 4)));
   EXPECT_EQ(e.rpe_pairs[2], (std::pair<std::size_t, std::size_t>(6, 8)));
   for (const double r : e.rpe_m) EXPECT_NEAR(r, 0.1, 1e-12);  // 1.1 m walked for 1.0 m in x
+  // On the truth's path (evo --pairs_from_reference): 1.05 m first reached at pose 3 (1.5 m),
+  // then at pose 6: one pair, 1.65 m walked for 1.5 m.
+  o.pairs_from_truth = true;
+  const TrajectoryEvaluation t = evaluateTrajectory(truth, estimate, o);
+  ASSERT_EQ(t.rpe_pairs.size(), 1u);
+  EXPECT_EQ(t.rpe_pairs[0], (std::pair<std::size_t, std::size_t>(3, 6)));
+  EXPECT_NEAR(t.rpe_m[0], 0.15, 1e-12);
   o.delta = 3, o.delta_metres = false;  // frames: 0-3, 3-6 (8 is not reached a third time)
   const TrajectoryEvaluation f = evaluateTrajectory(truth, estimate, o);
   ASSERT_EQ(f.rpe_pairs.size(), 2u);

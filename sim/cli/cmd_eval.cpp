@@ -18,7 +18,7 @@ using bimloc::cli::fixed;
 struct EvalArgs {
   std::string truth, estimate, align = "none", delta_unit = "frames", project, plot;
   double delta = 1, max_diff_s = 0.01;
-  bool json = false;
+  bool json = false, pairs_from_truth = false;
 };
 
 nlohmann::json statsJson(const ErrorStatistics& s) {
@@ -39,6 +39,7 @@ void evaluate(const EvalArgs& args) {
   o.delta = args.delta;
   o.delta_metres = args.delta_unit == "m";
   o.project_xy = args.project == "xy";
+  o.pairs_from_truth = args.pairs_from_truth;
   const TrajectoryEvaluation e = evaluateTrajectory(truth, estimate, o);
   std::vector<std::string> warnings = truth.warnings;
   warnings.insert(warnings.end(), estimate.warnings.begin(), estimate.warnings.end());
@@ -67,6 +68,7 @@ void evaluate(const EvalArgs& args) {
                        {"translation", {t.x(), t.y(), t.z()}}, {"scale", e.alignment.scale}}},
         {"ape", {{"unit", "m"}, {"relation", "translation part"}, {"statistics", statsJson(e.ape)}}},
         {"rpe", {{"unit", "m"}, {"relation", "translation part"}, {"delta", args.delta}, {"delta_unit", args.delta_unit},
+                 {"pairs_from", args.pairs_from_truth ? "truth" : "estimate"},
                  {"statistics", statsJson(e.rpe)}}},
         {"warnings", warnings}};
     std::cout << j.dump() << "\n";
@@ -105,9 +107,11 @@ void addEvalCommand(CLI::App& app) {
       ->check(CLI::IsMember({"none", "se3", "se3-scale"}))
       ->capture_default_str();
   cmd->add_option("--delta", args->delta, "RPE: pose pairs this far apart (evo --delta)")->capture_default_str();
-  cmd->add_option("--delta-unit", args->delta_unit, "frames or m (metres of the truth's path; evo --delta_unit f|m)")
+  cmd->add_option("--delta-unit", args->delta_unit, "frames or m (metres of path; evo --delta_unit f|m)")
       ->check(CLI::IsMember({"frames", "m"}))
       ->capture_default_str();
+  cmd->add_flag("--pairs-from-truth", args->pairs_from_truth,
+                "RPE: pick the pose pairs on the truth's path, not the estimate's (evo --pairs_from_reference)");
   cmd->add_option("--max-diff", args->max_diff_s, "largest time difference [s] of associated poses (evo --t_max_diff)")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();

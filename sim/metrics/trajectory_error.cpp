@@ -31,14 +31,14 @@ Eigen::Isometry3d projectXy(const Eigen::Isometry3d& pose) {
 // evo's filters.filter_pairs_by_index and filter_pairs_by_path (consecutive pairs, not all
 // pairs): by path, a pose is a pair's end once the path since the previous end reaches delta,
 // the first one included (so the first pair starts there, not at pose 0, as in evo).
-std::vector<std::pair<std::size_t, std::size_t>> rpePairs(const std::vector<Eigen::Isometry3d>& truth, double delta, bool metres) {
+std::vector<std::pair<std::size_t, std::size_t>> rpePairs(const std::vector<Eigen::Isometry3d>& poses, double delta, bool metres) {
   std::vector<std::size_t> ids;
   if (!metres) {
-    for (std::size_t i = 0; i < truth.size(); i += static_cast<std::size_t>(delta)) ids.push_back(i);
+    for (std::size_t i = 0; i < poses.size(); i += static_cast<std::size_t>(delta)) ids.push_back(i);
   } else {
     double path = 0;
-    for (std::size_t i = 0; i < truth.size(); ++i) {
-      if (i > 0) path += (truth[i].translation() - truth[i - 1].translation()).norm();
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      if (i > 0) path += (poses[i].translation() - poses[i - 1].translation()).norm();
       if (path >= delta) ids.push_back(i), path = 0;
     }
   }
@@ -113,7 +113,7 @@ TrajectoryEvaluation evaluateTrajectory(const TumTrajectory& truth, const TumTra
     e.ape_rotation_deg.push_back(std::abs(d.angle()) * 180.0 / M_PI);
   }
   e.ape = errorStatistics(e.ape_m);
-  e.rpe_pairs = rpePairs(e.truth, options.delta, options.delta_metres);
+  e.rpe_pairs = rpePairs(options.pairs_from_truth ? e.truth : e.estimate, options.delta, options.delta_metres);
   if (e.rpe_pairs.empty())
     throw std::invalid_argument("RPE: delta " + text(options.delta) + (options.delta_metres ? " m" : " frames") + " gives no pose pair among the " +
                                 std::to_string(n) + " associated poses of " + files + ": try a lower --delta");

@@ -5,8 +5,9 @@
 //   1. associate the poses by timestamp (sim/metrics/trajectory_sync.hpp),
 //   2. align the estimate on the truth (Umeyama, SE(3) or Sim(3)), or not,
 //   3. optionally project both onto the xy plane (evo's --project_to_plane xy),
-//   4. APE_i = |p_est_i - p_ref_i|; RPE over pose pairs (i, j) chosen on the truth, every
-//      `delta` frames or metres of path: |trans((Q_i^-1 Q_j)^-1 (P_i^-1 P_j))|.
+//   4. APE_i = |p_est_i - p_ref_i|; RPE over pose pairs (i, j) every `delta` frames or metres
+//      of path, chosen on the (aligned) estimate as evo does by default, or on the truth (evo's
+//      --pairs_from_reference): |trans((Q_i^-1 Q_j)^-1 (P_i^-1 P_j))|, Q the truth, P the estimate.
 #pragma once
 
 #include "sim/dataset/tum_reader.hpp"
@@ -32,7 +33,8 @@ struct TrajectoryEvalOptions {
   TrajectoryAlignment align = TrajectoryAlignment::None;
   double max_diff_s = 0.01;    // evo's --t_max_diff
   double delta = 1.0;          // RPE: pairs this far apart ...
-  bool delta_metres = false;   // ... in frames (false) or metres of the truth's path
+  bool delta_metres = false;   // ... in frames (false) or metres of path
+  bool pairs_from_truth = false;  // the path that picks the pairs: the estimate's (evo's default) or the truth's
   bool project_xy = false;     // evo's --project_to_plane xy, after the alignment
 };
 
