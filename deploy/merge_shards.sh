@@ -11,18 +11,17 @@ if [ $# -ne 2 ]; then
 fi
 N=$1 OUT=$2
 BIMLOC=${BIMLOC:-bimloc}
-files=""
+set --  # the shards' files, as arguments (a missing one is named by bimloc report merge)
 k=1
 while [ "$k" -le "$N" ]; do
-  files="$files $OUT/shard-$k-of-$N.json"  # a missing one is named by bimloc report merge
+  set -- "$@" "$OUT/shard-$k-of-$N.json"
   k=$((k + 1))
 done
-# shellcheck disable=SC2086 # the file names are ours, without spaces unless OUT_DIR has them
-"$BIMLOC" report merge $files --json >"$OUT/.merged.json.$$"
+"$BIMLOC" report merge "$@" --json >"$OUT/.merged.json.$$"
 status=$?
 if [ "$status" -le 1 ] && [ -s "$OUT/.merged.json.$$" ]; then
   mv -f "$OUT/.merged.json.$$" "$OUT/merged.json"
-  "$BIMLOC" report merge $files >"$OUT/merged.txt"
+  "$BIMLOC" report merge "$@" >"$OUT/merged.txt"
   cat "$OUT/merged.txt"
   exit 0
 fi

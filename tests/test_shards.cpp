@@ -1,6 +1,7 @@
-// Sharded sweeps: the array tasks' command (deploy/run_shard.sh, the one the Slurm and
-// Kubernetes scripts run) for N = 3 locally, merged by `bimloc report merge`, gives exactly
-// the unsharded run's JSON and table; bad shard sets are named.
+// Sharded sweeps: the Slurm array of deploy/slurm (its scripts run locally by a stand-in for
+// sbatch; each task runs deploy/run_shard.sh, as the Kubernetes pods do) for N = 3, merged by
+// its merge job (`bimloc report merge`), gives exactly the unsharded run's JSON and table;
+// bad shard sets are named.
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <sstream>
 
 using bimloc::test::CommandResult;
 using bimloc::test::runBimloc;
@@ -16,20 +18,57 @@ using bimloc::test::tempDir;
 
 namespace {
 
-// A small sweep: 3 start rooms x 2 seeds of the default world, 6 s each.
-std::string sweep(const std::string& duration = "6") {
+// A small sweep: 3 start rooms x 2 seeds of the default world, 8 s each (some converge).
+std::string sweep(const std::string& duration = "8") {
   return std::string("--plan '") + BIMLOC_WORLDS_DIR + "/site_office.ifc' --all-rooms --rooms R108,W100,S100 --seeds 2 --duration " +
          duration;
 }
 
-// The array task K of N, as Slurm's and Kubernetes' tasks run it.
+std::string repo() { return std::string(BIMLOC_TESTS_DIR) + "/.."; }
+
+// The array task K of N alone, as Slurm's and Kubernetes' tasks run it.
 CommandResult shardTask(int k, int n, const std::string& out, const std::string& args) {
-  const std::string script = std::string(BIMLOC_TESTS_DIR) + "/../deploy/run_shard.sh";
-  const std::string cmd = "BIMLOC='" + std::string(BIMLOC_EXE) + "' sh '" + script + "' " + std::to_string(k) + " " +
-                          std::to_string(n) + " '" + out + "' " + args + " >'" + out + "/task.log' 2>&1";
+  const std::string cmd = "cd '" + repo() + "' && BIMLOC='" + std::string(BIMLOC_EXE) + "' sh deploy/run_shard.sh " +
+                          std::to_string(k) + " " + std::to_string(n) + " '" + out + "' " + args + " >'" + out + "/task.log' 2>&1";
   CommandResult r;
   r.exit_code = std::system(cmd.c_str()) == 0 ? 0 : 1;
   return r;
+}
+
+// deploy/slurm/submit.sh as a user runs it, with a stand-in for Slurm's sbatch that runs each
+// job at once (an array's tasks one after the other, SLURM_ARRAY_TASK_ID set) on this machine:
+// the real batch scripts, their real command lines.
+int submitToFakeSlurm(int n, const std::string& out, const std::string& args, const std::string& dir) {
+  const std::string bin = dir + "/fake-slurm";
+  std::filesystem::create_directories(bin);
+  std::ofstream(bin + "/sbatch") << R"(#!/bin/sh
+array=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --array=*) array=${1#--array=}; shift ;;
+    --*) shift ;;
+    *) break ;;
+  esac
+done
+script=$1
+shift
+export SLURM_SUBMIT_DIR="$PWD"
+if [ -n "$array" ]; then
+  i=${array%-*}
+  while [ "$i" -le "${array#*-}" ]; do
+    SLURM_ARRAY_TASK_ID=$i bash "$script" "$@" >&2 || exit 1
+    i=$((i + 1))
+  done
+else
+  bash "$script" "$@" >&2 || exit 1
+fi
+echo 4242
+)";
+  std::filesystem::permissions(bin + "/sbatch", std::filesystem::perms::owner_all);
+  const std::string cmd = "cd '" + repo() + "' && PATH='" + bin + "':$PATH BIMLOC='" + std::string(BIMLOC_EXE) +
+                          "' sh deploy/slurm/submit.sh " + std::to_string(n) + " '" + out + "' " + args + " >'" + dir +
+                          "/submit.log' 2>&1";
+  return std::system(cmd.c_str());
 }
 
 std::string file(int k, int n, const std::string& dir) {
@@ -49,7 +88,9 @@ TEST(Shards, ArrayTasksMergeIntoTheUnshardedRun) {
   ASSERT_FALSE(whole.out.empty()) << whole.err;
   auto unsharded = nlohmann::json::parse(whole.out);
   ASSERT_EQ(unsharded["scenarios"].size(), 6u);
-  for (int k = 1; k <= 3; ++k) ASSERT_EQ(shardTask(k, 3, dir, sweep()).exit_code, 0) << "task " << k;
+  // The Slurm array (3 tasks) and its merge job: merged.json and merged.txt in the folder.
+  ASSERT_EQ(submitToFakeSlurm(3, dir, sweep(), dir), 0) << std::ifstream(dir + "/submit.log").rdbuf();
+  auto from_slurm = nlohmann::json::parse(std::ifstream(dir + "/merged.json"));
   // Each shard is every third scenario, from the K-th on.
   const auto second = nlohmann::json::parse(std::ifstream(dir + "/shard-2-of-3.json"));
   EXPECT_EQ(second["shard"]["positions"], nlohmann::json({1, 4}));
@@ -63,11 +104,16 @@ TEST(Shards, ArrayTasksMergeIntoTheUnshardedRun) {
   auto m = nlohmann::json::parse(merged.out);
   unsharded["summary"].erase("wall_seconds"), m["summary"].erase("wall_seconds");
   EXPECT_EQ(m.dump(), unsharded.dump());
+  from_slurm["summary"].erase("wall_seconds");
+  EXPECT_EQ(from_slurm.dump(), unsharded.dump());
 
   // The table too (the unsharded table from its own run).
   const auto whole_table = runBimloc("run " + sweep());
   const auto merged_table = runBimloc("report merge " + files);
   EXPECT_EQ(withoutWallClock(merged_table.out), withoutWallClock(whole_table.out));
+  std::stringstream slurm_table;
+  slurm_table << std::ifstream(dir + "/merged.txt").rdbuf();
+  EXPECT_EQ(withoutWallClock(slurm_table.str()), withoutWallClock(whole_table.out));
 
   // Missing, overlapping, foreign shards and bad files are named.
   const auto missing = runBimloc("report merge " + file(1, 3, dir) + " " + file(3, 3, dir));
