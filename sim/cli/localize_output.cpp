@@ -13,11 +13,6 @@
 namespace bimloc::cli {
 namespace {
 
-Eigen::Vector3d xyYaw(const Eigen::Isometry3d& T) {
-  const auto p = planarPose(T);
-  return {p.x, p.y, p.yaw};
-}
-
 std::uint64_t nanoseconds(double s) { return static_cast<std::uint64_t>(std::llround(s * 1e9)); }
 
 }  // namespace
@@ -42,8 +37,8 @@ void LocalizeOutput::snapshot(const std::string& phase, double time_s, const Loc
   sim::SnapshotScene scene;
   const std::size_t storey = r.storey ? *r.storey : r.leading_storey;
   scene.storey = &building_.storeys.at(storey);
-  if (truth) scene.truth = xyYaw(*truth);
-  scene.estimate = xyYaw(r.T_map_base);
+  if (truth) scene.truth = planarPose(*truth);
+  scene.estimate = planarPose(r.T_map_base);
   scene.title = "localize";
   scene.time_s = time_s;
   scene.phase = phase;

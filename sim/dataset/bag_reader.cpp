@@ -59,6 +59,15 @@ struct Edge {
   Eigen::Isometry3d T;  // parent <- child, or its inverse when walked backwards
 };
 
+// rosbag's words, with what they mean for a recording: a bag cut short (the recorder killed)
+// has no index at its end, which `rosbag reindex` rebuilds.
+std::string bagProblem(const std::exception& e) {
+  const std::string what = e.what();
+  const bool cut = what.find("Error reading from file") != std::string::npos || what.find("unindexed") != std::string::npos;
+  return "damaged or unreadable bag: " + what +
+         (cut ? " (a bag cut short, e.g. a recording that did not finish: 'rosbag reindex' rebuilds its index)" : "");
+}
+
 }  // namespace
 
 struct BagInput::Impl {
@@ -219,10 +228,8 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
       T_base_lidar_ = reached[lidar_frame_];
       mount_source_ = "tf " + options.base_frame + " -> " + lidar_frame_;
     }
-  } catch (const rosbag::BagException& e) {
-    fail(std::string("damaged or unreadable bag: ") + e.what());
-  } catch (const ros::Exception& e) {
-    fail(std::string("damaged or unreadable bag: ") + e.what());
+  } catch (const ros::Exception& e) {  // rosbag::BagException and the deserialiser's overruns
+    fail(bagProblem(e));
   } catch (const std::bad_alloc&) {
     fail("damaged bag: a record claims more memory than there is");
   }
@@ -260,10 +267,8 @@ void BagInput::forEachTurn(const std::function<void(const BagTurn&)>& visit) con
       };
       visit(turn);
     }
-  } catch (const rosbag::BagException& e) {
-    throw std::runtime_error(path_ + ": damaged or unreadable bag: " + e.what());
   } catch (const ros::Exception& e) {
-    throw std::runtime_error(path_ + ": damaged or unreadable bag: " + e.what());
+    throw std::runtime_error(path_ + ": " + bagProblem(e));
   } catch (const std::bad_alloc&) {
     throw std::runtime_error(path_ + ": damaged bag: a record claims more memory than there is");
   }
