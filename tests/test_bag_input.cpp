@@ -55,6 +55,11 @@ nlohmann::json localizeJson(const std::string& input, const std::string& options
   try {
     auto j = nlohmann::json::parse(r.out)["scenarios"][0];
     j.erase("wall_seconds"), j.erase("name");  // the input's path and the machine's speed
+    for (auto& w : j["warnings"]) {  // "INPUT: message N: ...": the same without the path
+      std::string text = w.get<std::string>();
+      if (text.rfind(input, 0) == 0) text.erase(0, input.size());
+      w = text;
+    }
     return j;
   } catch (const std::exception& e) {
     ADD_FAILURE() << "not JSON: " << r.out << r.err;
@@ -273,12 +278,15 @@ TEST(BagInput, DamagedBagsAreRefusedByNameNeverACrash) {
   const std::string dir = simulated() + "/damaged";
   fs::create_directories(dir);
   int refused = 0, accepted = 0;
-  // Cut at ten places (a recording that stopped mid-write), and bytes overwritten at ten.
-  for (int i = 0; i < 20; ++i) {
+  // Cut at six places (a recording that stopped mid-write), and bytes overwritten at four.
+  for (int i = 0; i < 10; ++i) {
     std::string damaged = bytes;
-    const std::size_t at = 13 + (bytes.size() - 13) * ((i % 10) + 1) / 11;
-    if (i < 10) damaged.resize(at);
-    else for (std::size_t k = at; k < std::min(at + 64, damaged.size()); ++k) damaged[k] = static_cast<char>(0xA5 ^ k);
+    const std::size_t at = i < 6 ? 13 + (bytes.size() - 13) * (i + 1) / 7 : 13 + (bytes.size() - 13) * (i - 5) / 5;
+    if (i < 6) {
+      damaged.resize(at);
+    } else {
+      for (std::size_t k = at; k < std::min(at + 64, damaged.size()); ++k) damaged[k] = static_cast<char>(0xA5 ^ k);
+    }
     const std::string path = dir + "/" + std::to_string(i) + ".bag";
     std::ofstream(path, std::ios::binary) << damaged;
     const auto r = runBimloc("localize '" + path + "' --plan '" + kPlan + "' --json", 60.0);
@@ -290,7 +298,9 @@ TEST(BagInput, DamagedBagsAreRefusedByNameNeverACrash) {
     } else {
       ++accepted;
     }
-    if (i < 10) EXPECT_NE(r.exit_code, 0) << i << ": a truncated bag was accepted";
+    if (i < 6) {
+      EXPECT_NE(r.exit_code, 0) << i << ": a truncated bag was accepted";
+    }
   }
   std::cout << "damaged bags: " << refused << " refused, " << accepted << " accepted" << std::endl;
 }
