@@ -9,6 +9,8 @@ Usage: rewrite_bag.py IN OUT MODE
             goes to /tf_static once (as robot_state_publisher latches it)
   reorder   the clouds' fields in another order and width: time FLOAT64 first, ring, z,
             intensity, y FLOAT64, x, with padding; the same points
+  footprint no /odom; /tf odom -> base_footprint, and base_footprint -> base_link 0.3 m up
+            on /tf_static (as a legged robot's state publisher gives them)
   noodom    no /odom and no odom -> base_link on /tf (the mount stays)
 """
 import copy
@@ -75,6 +77,37 @@ def reorder(inp, out):
         out.write(topic, msg, t)
 
 
+def footprint(inp, out):
+    static_written = False
+    for topic, msg, t in inp.read_messages():
+        if topic == "/odom":
+            continue
+        if topic == "/tf":
+            for x in msg.transforms:
+                if x.header.frame_id == "odom":  # odom <- footprint = odom <- base * (footprint <- base)^-1
+                    x.child_frame_id = "base_footprint"
+                    q = x.transform.rotation
+                    # base_link is 0.3 m above the footprint, same orientation: shift by R * (0, 0, -0.3)
+                    r13 = 2 * (q.x * q.z + q.w * q.y)
+                    r23 = 2 * (q.y * q.z - q.w * q.x)
+                    r33 = 1 - 2 * (q.x * q.x + q.y * q.y)
+                    x.transform.translation.x -= 0.3 * r13
+                    x.transform.translation.y -= 0.3 * r23
+                    x.transform.translation.z -= 0.3 * r33
+            if not static_written:
+                static = copy.deepcopy(msg)
+                edge = static.transforms[0]
+                edge.header.frame_id, edge.child_frame_id = "base_footprint", "base_link"
+                edge.transform.translation.x = edge.transform.translation.y = 0.0
+                edge.transform.translation.z = 0.3
+                edge.transform.rotation.x = edge.transform.rotation.y = edge.transform.rotation.z = 0.0
+                edge.transform.rotation.w = 1.0
+                static.transforms = [edge]
+                out.write("/tf_static", static, t)
+                static_written = True
+        out.write(topic, msg, t)
+
+
 def noodom(inp, out):
     for topic, msg, t in inp.read_messages():
         if topic == "/odom":
@@ -87,7 +120,7 @@ def noodom(inp, out):
 def main():
     source, target, mode = sys.argv[1:4]
     with rosbag.Bag(source) as inp, rosbag.Bag(target, "w") as out:
-        {"rename": rename, "reorder": reorder, "noodom": noodom}[mode](inp, out)
+        {"rename": rename, "reorder": reorder, "footprint": footprint, "noodom": noodom}[mode](inp, out)
 
 
 if __name__ == "__main__":

@@ -206,6 +206,17 @@ TEST(BagInput, RenamedTopicsAndFramesLocalizeWithTheOptions) {
   EXPECT_NEAR(manual["position_error_m"].get<double>(), original["position_error_m"].get<double>(), 1e-3);
 }
 
+TEST(BagInput, OdometryOnTfThroughAFootprintFrameIsComposedWithItsFixedTransform) {
+  const auto original = localizeJson(simulated() + "/data/dataset.bag");
+  const auto r = runBimloc("localize '" + rewritten("footprint") + "' --plan '" + kPlan + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("odometry: /tf odom -> base_link (via base_footprint)"), std::string::npos) << r.out;
+  const auto via = localizeJson(rewritten("footprint"));
+  EXPECT_EQ(via["converged"], true);
+  EXPECT_NEAR(via["position_error_m"].get<double>(), original["position_error_m"].get<double>(), 1e-3);
+  EXPECT_NEAR(via["ate_m"].get<double>(), original["ate_m"].get<double>(), 1e-3);
+}
+
 TEST(BagInput, CloudsWithTheFieldsInAnotherOrderGiveTheSamePoints) {
   // Identical points (y widened to FLOAT64 exactly), identical times: an identical run.
   EXPECT_EQ(localizeJson(rewritten("reorder")), localizeJson(simulated() + "/data/dataset.bag"));

@@ -117,7 +117,7 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     std::map<std::string, std::vector<Edge>> edges;
     std::set<std::pair<std::string, std::string>> seen;
     std::set<std::string> frames;
-    std::vector<StampedPose> tf_odometry;
+    std::map<std::string, std::vector<StampedPose>> from_odom;  // odom -> child, over time
     std::vector<std::string> tf_topics;
     for (const auto& t : {options.tf_static_topic, options.tf_topic})
       if (impl_->topics.count(t) && impl_->topics[t].first == "tf2_msgs/TFMessage") tf_topics.push_back(t);
@@ -130,8 +130,8 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
           const std::string parent = frameName(t.header.frame_id), child = frameName(t.child_frame_id);
           frames.insert(parent), frames.insert(child);
           const std::string where = path + ": " + topic + " " + parent + " -> " + child;
-          if (parent == options.odom_frame && child == options.base_frame) {
-            tf_odometry.push_back({t.header.stamp.toSec(), pose(t.transform, where)});
+          if (parent == options.odom_frame) {  // the odometry: never a fixed edge
+            from_odom[child].push_back({t.header.stamp.toSec(), pose(t.transform, where)});
             continue;
           }
           if (!seen.insert({parent, child}).second) continue;
@@ -142,6 +142,21 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
       }
     }
 
+    // Breadth-first through the fixed transforms: T_from_to, when a chain links them.
+    auto fixed = [&edges](const std::string& from, const std::string& to) -> std::optional<Eigen::Isometry3d> {
+      std::map<std::string, Eigen::Isometry3d> reached{{from, Eigen::Isometry3d::Identity()}};
+      std::queue<std::string> queue;
+      queue.push(from);
+      while (!queue.empty() && !reached.count(to)) {
+        const std::string f = queue.front();
+        queue.pop();
+        for (const Edge& e : edges[f])
+          if (!reached.count(e.to)) reached[e.to] = reached[f] * e.T, queue.push(e.to);
+      }
+      if (!reached.count(to)) return std::nullopt;
+      return reached[to];
+    };
+
     if (odom_topic) {
       for (const rosbag::MessageInstance& m : rosbag::View(impl_->bag, rosbag::TopicQuery(options.odom_topic))) {
         const auto odom = m.instantiate<nav_msgs::Odometry>();
@@ -149,8 +164,17 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
       }
       odometry_source_ = options.odom_topic + " (nav_msgs/Odometry)";
     } else {
-      odometry_ = std::move(tf_odometry);
-      odometry_source_ = options.tf_topic + " " + options.odom_frame + " -> " + options.base_frame;
+      // odom -> base directly, or odom -> a frame fixed to base (base_footprint -> base_link).
+      for (auto& [child, samples] : from_odom) {
+        const auto T_child_base = child == options.base_frame ? std::optional(Eigen::Isometry3d::Identity())
+                                                               : fixed(child, options.base_frame);
+        if (!T_child_base) continue;
+        for (auto& sample : samples) sample.pose = sample.pose * *T_child_base;
+        odometry_ = std::move(samples);
+        odometry_source_ = options.tf_topic + " " + options.odom_frame + " -> " + options.base_frame +
+                           (child == options.base_frame ? "" : " (via " + child + ")");
+        break;
+      }
     }
     sortByStamp(odometry_);
     if (odometry_.empty())
@@ -208,24 +232,15 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     } else if (lidar_frame_ == options.base_frame) {
       mount_source_ = "the clouds are in " + options.base_frame;
     } else {
-      // Breadth-first through the fixed transforms: base_link -> ... -> the cloud's frame.
-      std::map<std::string, Eigen::Isometry3d> reached{{options.base_frame, Eigen::Isometry3d::Identity()}};
-      std::queue<std::string> queue;
-      queue.push(options.base_frame);
-      while (!queue.empty() && !reached.count(lidar_frame_)) {
-        const std::string f = queue.front();
-        queue.pop();
-        for (const Edge& e : edges[f])
-          if (!reached.count(e.to)) reached[e.to] = reached[f] * e.T, queue.push(e.to);
-      }
-      if (!reached.count(lidar_frame_)) {
+      const auto mount = fixed(options.base_frame, lidar_frame_);  // base_link -> ... -> the cloud's frame
+      if (!mount) {
         std::string known;
         for (const auto& f : frames) known += (known.empty() ? "" : ", ") + f;
         fail("no transform " + options.base_frame + " -> " + lidar_frame_ + " (the clouds' frame) in " +
              options.tf_static_topic + " or " + options.tf_topic + "; give the mount with --mount x,y,z,roll,pitch,yaw "
              "or the base frame with --base-frame. Frames in the bag's tf: " + (known.empty() ? "(none)" : known));
       }
-      T_base_lidar_ = reached[lidar_frame_];
+      T_base_lidar_ = *mount;
       mount_source_ = "tf " + options.base_frame + " -> " + lidar_frame_;
     }
   } catch (const ros::Exception& e) {  // rosbag::BagException and the deserialiser's overruns
