@@ -11,6 +11,7 @@ Usage: rewrite_bag.py IN OUT MODE
             intensity, y FLOAT64, x, with padding; the same points
   footprint no /odom; /tf odom -> base_footprint, and base_footprint -> base_link 0.3 m up
             on /tf_static (as a legged robot's state publisher gives them)
+  otherclock /odom stamped 100000 s later (another clock), nothing else changed
   noodom    no /odom and no odom -> base_link on /tf (the mount stays)
 """
 import copy
@@ -108,6 +109,13 @@ def footprint(inp, out):
         out.write(topic, msg, t)
 
 
+def otherclock(inp, out):
+    for topic, msg, t in inp.read_messages():
+        if topic == "/odom":
+            msg.header.stamp.secs += 100000
+        out.write(topic, msg, t)
+
+
 def noodom(inp, out):
     for topic, msg, t in inp.read_messages():
         if topic == "/odom":
@@ -120,7 +128,8 @@ def noodom(inp, out):
 def main():
     source, target, mode = sys.argv[1:4]
     with rosbag.Bag(source) as inp, rosbag.Bag(target, "w") as out:
-        {"rename": rename, "reorder": reorder, "footprint": footprint, "noodom": noodom}[mode](inp, out)
+        {"rename": rename, "reorder": reorder, "footprint": footprint, "otherclock": otherclock,
+         "noodom": noodom}[mode](inp, out)
 
 
 if __name__ == "__main__":

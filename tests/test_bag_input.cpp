@@ -230,6 +230,13 @@ TEST(BagInput, ABagWithNoOdometryFailsClearly) {
                              "/tf transform odom -> base_link"),
             std::string::npos) << r.err;
   EXPECT_NE(r.err.find("/velodyne_points (sensor_msgs/PointCloud2, 80 messages)"), std::string::npos) << r.err;
+  // Odometry on another clock: as good as none.
+  const std::string late = rewritten("otherclock");
+  const auto r2 = runBimloc("localize '" + late + "' --plan '" + kPlan + "'");
+  EXPECT_EQ(r2.exit_code, 1);
+  EXPECT_NE(r2.err.find(late + ": the clouds (1000.000 to 1008.000 s) and the odometry (101000.000 to 101008.000 s) never "
+                               "overlap in time"),
+            std::string::npos) << r2.err;
 }
 
 TEST(BagInput, OutputsAreWrittenWholeAndReadBack) {

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <queue>
@@ -225,6 +226,15 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
       first_offset_s_ = 0.5 * turn_period_s_;
     }
     first_turn_s_ = first->header.stamp.toSec() + first_offset_s_;
+    // Odometry outside the clouds' time (another clock: sim time against wall time) would make
+    // every turn look taken from one pose: refused, as the dataset reader refuses it.
+    const double c0 = first->header.stamp.toSec(), c1 = c0 + turn_period_s_ * static_cast<double>(turns_);
+    if (odometry_.back().stamp_s < c0 || odometry_.front().stamp_s > c1) {
+      char what[256];
+      std::snprintf(what, sizeof what, "the clouds (%.3f to %.3f s) and the odometry (%.3f to %.3f s) never overlap in time",
+                    c0, c1, odometry_.front().stamp_s, odometry_.back().stamp_s);
+      fail(what);
+    }
 
     if (options.mount) {
       T_base_lidar_ = *options.mount;
