@@ -81,14 +81,14 @@ Image renderTrajectoryViewImage(const TrajectoryPlotData& data, int width, int h
       render::drawText(v.x0 - pad - render::textWidth(label, s), py - 3.5 * s, label, s, ink);
     }
     const double w = std::max(2.0, 1.4 * s);
-    path(v, data.truth, hex(kTrajectoryTruthRgb), w);
+    path(v, data.truth, hex(kTrajectoryTruthRgb), 2.5 * w);
     path(v, data.estimate, hex(kTrajectoryEstimateRgb), w);
     render::strokeRect({v.x0, v.y0, v.x1, v.y1}, std::max(1, s / 2 + 1), frame);
     const std::string axis = "x [m] (y [m] up), start: dot";
     render::drawText(0.5 * (v.x0 + v.x1 - render::textWidth(axis, s)), height - pad - line, axis, s, ink);
     render::drawText(v.x0, pad, render::fitText(data.title, s + 1, v.x1 - v.x0), s + 1, ink);
     const double y = 2 * pad + render::kLineHeight * (s + 1);
-    render::segment({v.x0, y + 0.4 * line}, {v.x0 + 2 * line, y + 0.4 * line}, w, hex(kTrajectoryTruthRgb));
+    render::segment({v.x0, y + 0.4 * line}, {v.x0 + 2 * line, y + 0.4 * line}, 2.5 * w, hex(kTrajectoryTruthRgb));
     render::drawText(v.x0 + 2.5 * line, y, "truth", s, ink);
     const double x = v.x0 + 2.5 * line + render::textWidth("truth", s) + 2 * line;
     render::segment({x, y + 0.4 * line}, {x + 2 * line, y + 0.4 * line}, w, hex(kTrajectoryEstimateRgb));

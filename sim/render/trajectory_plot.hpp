@@ -25,7 +25,8 @@ struct TrajectoryPlotOptions {
   int error_height_px = 700;
 };
 
-constexpr std::uint32_t kTrajectoryTruthRgb = 0x1b1b1b;
+// The truth wide and light under the estimate, so that both show where they coincide.
+constexpr std::uint32_t kTrajectoryTruthRgb = 0xa3a3a3;
 constexpr std::uint32_t kTrajectoryEstimateRgb = 0x2166ac;
 
 // The top view alone; throws std::invalid_argument for a size out of range.
