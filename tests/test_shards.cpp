@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cstdio>
 #include <regex>
 #include <sstream>
 
@@ -141,4 +142,42 @@ TEST(Shards, BadShardSyntaxIsAClearError) {
     EXPECT_EQ(r.exit_code, 1) << bad;
     EXPECT_NE(r.err.find("--shard '" + std::string(bad) + "': expected K/N with 1 <= K <= N"), std::string::npos) << r.err;
   }
+}
+
+// The Kubernetes manifests cannot run here (no cluster): check that they say one thing. The
+// Indexed Job maps JOB_COMPLETION_INDEX (0-based) to shard index + 1 of SHARDS, SHARDS is its
+// completions, and the merge job merges that many shards.
+TEST(Shards, KubernetesManifestsAgreeOnTheShardCount) {
+  const auto read = [](const std::string& name) {
+    std::stringstream text;
+    text << std::ifstream(repo() + "/deploy/kubernetes/" + name).rdbuf();
+    return text.str();
+  };
+  const std::string job = read("sweep-job.yaml"), merge = read("merge-job.yaml");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(job, m, std::regex(R"(completions:\s*(\d+))")));
+  const std::string n = m[1];
+  EXPECT_NE(job.find("completionMode: Indexed"), std::string::npos);
+  ASSERT_TRUE(std::regex_search(job, m, std::regex(R"k8s(name: SHARDS\s+value:\s*"(\d+)")k8s")));
+  EXPECT_EQ(m[1], n);
+  EXPECT_NE(job.find(R"k8s(run_shard.sh "$((JOB_COMPLETION_INDEX + 1))" "$SHARDS" /results)k8s"), std::string::npos);
+  ASSERT_TRUE(std::regex_search(merge, m, std::regex(R"k8s(merge_shards.sh",\s*"(\d+)",\s*"/results")k8s")));
+  EXPECT_EQ(m[1], n);
+  // The pods' shell command, run here for every index with a stand-in for the script: the
+  // shards 1..N of N, each once.
+  ASSERT_TRUE(std::regex_search(job, m, std::regex(R"k8s(- exec (\S*run_shard.sh) ("\$\(\(JOB_COMPLETION_INDEX \+ 1\)\)" "\$SHARDS" /results))k8s")));
+  const std::string dir = tempDir("k8s");
+  std::ofstream(dir + "/pod.sh") << "echo " << m[2] << "\n";  // the script's arguments, as the pod's shell expands them
+  std::string shards;
+  for (int i = 0; i < std::stoi(n); ++i) {
+    const std::string cmd = "JOB_COMPLETION_INDEX=" + std::to_string(i) + " SHARDS=" + n + " sh '" + dir + "/pod.sh'";
+    FILE* p = ::popen(cmd.c_str(), "r");
+    ASSERT_NE(p, nullptr);
+    char line[256] = {0};
+    if (std::fgets(line, sizeof line, p)) shards += line;
+    ::pclose(p);
+  }
+  std::string expected;
+  for (int k = 1; k <= std::stoi(n); ++k) expected += std::to_string(k) + " " + n + " /results\n";
+  EXPECT_EQ(shards, expected);
 }
