@@ -86,8 +86,9 @@ TEST(EvalApe, ConstantOffsetUnalignedAndRemovedBySe3) {
   EXPECT_NEAR(e.ape.std, 0.0, 1e-12);
   EXPECT_NEAR(e.ape.sse, 20 * 0.25, 1e-12);
   // A translation of the whole path changes no relative pose: RPE 0, 19 consecutive pairs.
-  EXPECT_EQ(e.rpe.count, 19u);
-  EXPECT_NEAR(e.rpe.max, 0.0, 1e-12);
+  ASSERT_TRUE(e.rpe);
+  EXPECT_EQ(e.rpe->count, 19u);
+  EXPECT_NEAR(e.rpe->max, 0.0, 1e-12);
   o.align = TrajectoryAlignment::SE3;
   e = evaluateTrajectory(truth, estimate, o);
   EXPECT_NEAR(e.ape.max, 0.0, 1e-9);
@@ -171,7 +172,13 @@ TEST(EvalRpe, DeltaInMetresAsEvoPicksThePairs) {
   const TrajectoryEvaluation f = evaluateTrajectory(truth, estimate, o);
   ASSERT_EQ(f.rpe_pairs.size(), 2u);
   for (const double r : f.rpe_m) EXPECT_NEAR(r, 0.15, 1e-12);
-  o.delta = 50;
+  o.delta = 50;  // no pair: the APE stands, the RPE is missing with a warning
+  const TrajectoryEvaluation none = evaluateTrajectory(truth, estimate, o);
+  EXPECT_FALSE(none.rpe);
+  EXPECT_EQ(none.ape.count, 9u);
+  ASSERT_EQ(none.warnings.size(), 1u);
+  EXPECT_NE(none.warnings[0].find("no RPE: delta 50 frames"), std::string::npos) << none.warnings[0];
+  o.delta = 0;
   EXPECT_THROW(evaluateTrajectory(truth, estimate, o), std::invalid_argument);
 }
 

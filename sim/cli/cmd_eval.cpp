@@ -43,6 +43,7 @@ void evaluate(const EvalArgs& args) {
   const TrajectoryEvaluation e = evaluateTrajectory(truth, estimate, o);
   std::vector<std::string> warnings = truth.warnings;
   warnings.insert(warnings.end(), estimate.warnings.begin(), estimate.warnings.end());
+  warnings.insert(warnings.end(), e.warnings.begin(), e.warnings.end());
   for (const auto& w : warnings) std::cerr << "bimloc eval: warning: " << w << "\n";
 
   if (!args.plot.empty()) {
@@ -69,7 +70,7 @@ void evaluate(const EvalArgs& args) {
         {"ape", {{"unit", "m"}, {"relation", "translation part"}, {"statistics", statsJson(e.ape)}}},
         {"rpe", {{"unit", "m"}, {"relation", "translation part"}, {"delta", args.delta}, {"delta_unit", args.delta_unit},
                  {"pairs_from", args.pairs_from_truth ? "truth" : "estimate"},
-                 {"statistics", statsJson(e.rpe)}}},
+                 {"statistics", e.rpe ? statsJson(*e.rpe) : nlohmann::json(nullptr)}}},
         {"warnings", warnings}};
     std::cout << j.dump() << "\n";
     return;
@@ -86,7 +87,11 @@ void evaluate(const EvalArgs& args) {
   std::cout << (o.project_xy ? ", projected to the xy plane\n\n" : "\n\n");
   bimloc::cli::Table table({"metric [m]", "n", "rmse", "mean", "median", "std", "min", "max", "sse"});
   table.add(statsRow("APE translation", e.ape));
-  table.add(statsRow("RPE translation, delta " + bimloc::cli::fixed(args.delta, args.delta_unit == "m" ? 2 : 0) + " " + args.delta_unit, e.rpe));
+  const std::string rpe_name = "RPE translation, delta " + fixed(args.delta, args.delta_unit == "m" ? 2 : 0) + " " + args.delta_unit;
+  if (e.rpe)
+    table.add(statsRow(rpe_name, *e.rpe));
+  else
+    table.add({rpe_name, "0", "-", "-", "-", "-", "-", "-", "-"});
   table.print(std::cout);
   if (!args.plot.empty()) std::cout << "\nplot: " << args.plot << "\n";
 }

@@ -114,9 +114,12 @@ TrajectoryEvaluation evaluateTrajectory(const TumTrajectory& truth, const TumTra
   }
   e.ape = errorStatistics(e.ape_m);
   e.rpe_pairs = rpePairs(options.pairs_from_truth ? e.truth : e.estimate, options.delta, options.delta_metres);
-  if (e.rpe_pairs.empty())
-    throw std::invalid_argument("RPE: delta " + text(options.delta) + (options.delta_metres ? " m" : " frames") + " gives no pose pair among the " +
-                                std::to_string(n) + " associated poses of " + files + ": try a lower --delta");
+  if (e.rpe_pairs.empty()) {
+    e.warnings.push_back("no RPE: delta " + text(options.delta) + (options.delta_metres ? " m" : " frames") +
+                         " gives no pose pair among the " + std::to_string(n) + " associated poses of " + files +
+                         " (try a lower --delta)");
+    return e;
+  }
   for (const auto& [i, j] : e.rpe_pairs) {
     const Eigen::Isometry3d q = e.truth[i].inverse() * e.truth[j], p = e.estimate[i].inverse() * e.estimate[j];
     e.rpe_m.push_back((q.inverse() * p).translation().norm());

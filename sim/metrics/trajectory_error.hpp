@@ -13,6 +13,7 @@
 #include "sim/dataset/tum_reader.hpp"
 #include "sim/metrics/umeyama.hpp"
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -46,11 +47,15 @@ struct TrajectoryEvaluation {
   std::vector<double> ape_m, ape_rotation_deg;       // per associated pose
   std::vector<std::pair<std::size_t, std::size_t>> rpe_pairs;  // indices into the associated poses
   std::vector<double> rpe_m;                         // per pair
-  ErrorStatistics ape, rpe;
+  ErrorStatistics ape;
+  // Unset when delta gives no pose pair (too few poses, too short a path): the APE stands,
+  // and `warnings` says why there is no RPE.
+  std::optional<ErrorStatistics> rpe;
+  std::vector<std::string> warnings;
 };
 
-// Throws std::invalid_argument naming both files when no stamps match, when the alignment is
-// not possible, or when delta gives no RPE pair.
+// Throws std::invalid_argument naming both files when no stamps match or when the alignment
+// is not possible.
 TrajectoryEvaluation evaluateTrajectory(const TumTrajectory& truth, const TumTrajectory& estimate,
                                         const TrajectoryEvalOptions& options);
 
