@@ -20,7 +20,7 @@ sim::BarChartData convergenceBars(const CompareSetup& setup, const std::vector<C
   sim::BarChartData data;
   char duration[32];
   std::snprintf(duration, sizeof duration, "%.0f s", setup.duration_s);
-  data.title = "Convergence time per start room: " + planName(setup) + ", " + setup.storey;
+  data.title = "Convergence time: " + planName(setup) + ", " + setup.storey;
   data.value_label = "convergence time [s] (bars: each seed, by method)";
   data.series = setup.methods;
   data.value_max = setup.duration_s;
@@ -44,8 +44,8 @@ sim::BarChartData convergenceBars(const CompareSetup& setup, const std::vector<C
 
 sim::CurvesData errorCurves(const CompareSetup& setup, const std::vector<CompareRun>& runs) {
   sim::CurvesData data;
-  data.title = "Position error over time, median over " + std::to_string(runs.size()) + " runs: " + planName(setup) + ", " +
-               setup.storey;
+  data.title = "Median position error: " + planName(setup) + ", " + setup.storey + " (" + std::to_string(runs.size()) +
+               (runs.size() == 1 ? " run)" : " runs)");
   data.value_label = "position error [m]";
   for (std::size_t k = 0; k < setup.methods.size(); ++k) {
     sim::CurvesData::Curve curve{setup.methods[k], {}};

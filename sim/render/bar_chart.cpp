@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace bimloc::sim {
 
@@ -35,6 +36,12 @@ std::vector<render::KeyItem> keyItems(const BarChartData& data, int s) {
                      render::strokeRect(r, s, render::hex(kBarFlagRgb));
                    }});
   return items;
+}
+
+std::string valueLabel(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", value);
+  return text;
 }
 
 std::vector<double> valueTicks(double top) { return render::niceTicks(0, top, 8); }
@@ -113,11 +120,14 @@ Image renderBarChartImage(const BarChartData& data, const PlotSize& size) {
           render::segment({left, f.y0}, {right, f.y0 + w}, std::max(1.0, 0.15 * w), colour);
           render::segment({left, f.y0 + w}, {right, f.y0}, std::max(1.0, 0.15 * w), colour);
         }
-        if (bar.flagged) {
-          render::strokeRect({left, top, right, f.y1}, std::max(1, s), render::hex(kBarFlagRgb));
-          const double y = std::max(f.y0, top - 9.0 * s);
-          render::drawText(0.5 * (left + right) - 0.5 * render::textWidth("!", s), y, "!", s, render::hex(kBarFlagRgb));
-        }
+        if (bar.flagged) render::strokeRect({left, top, right, f.y1}, std::max(1, s), render::hex(kBarFlagRgb));
+        // Above the bar: its value where it fits (the table's number), and the flag's '!'.
+        std::string text = bar.value && std::isfinite(*bar.value) ? valueLabel(*bar.value) : std::string();
+        if (render::textWidth(text + "!", s) > right - left + 4) text.clear();  // over its neighbours: none
+        if (bar.flagged) text += "!";
+        if (!text.empty())
+          render::drawText(0.5 * (left + right) - 0.5 * render::textWidth(text, s), std::max(f.y0 + s, top - 9.0 * s), text,
+                           s, bar.flagged ? render::hex(kBarFlagRgb) : render::plotInk());
       }
     }
     const double edge = std::max(1, s / 2 + 1);
