@@ -116,9 +116,12 @@ Image renderBarChartImage(const BarChartData& data, const PlotSize& size) {
         } else {  // not localized: pale to the top, crossed at the top
           const render::Colour pale = render::hex(seriesRgb(bar.series), 0.25f);
           render::fillRect({left, f.y0, right, f.y1}, pale);
-          const double w = right - left;
-          render::segment({left, f.y0}, {right, f.y0 + w}, std::max(1.0, 0.15 * w), colour);
-          render::segment({left, f.y0 + w}, {right, f.y0}, std::max(1.0, 0.15 * w), colour);
+          const double c = std::min(right - left, 8.0 * s), mid = 0.5 * (left + right), y = f.y0 + s;
+          const double width = std::max(1.0, std::min(0.15 * c, 1.5 * s));
+          render::segment({mid - 0.5 * c, y}, {mid + 0.5 * c, y + c}, width, colour);
+          render::segment({mid - 0.5 * c, y + c}, {mid + 0.5 * c, y}, width, colour);
+          if (render::textWidth("N.L.", s) <= right - left)
+            render::drawText(mid - 0.5 * render::textWidth("N.L.", s), y + c + pad, "N.L.", s, render::plotInk());
         }
         if (bar.flagged) render::strokeRect({left, top, right, f.y1}, std::max(1, s), render::hex(kBarFlagRgb));
         // Above the bar: its value where it fits (the table's number), and the flag's '!'.
