@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   addRunCommand(app);
   addLocalizeCommand(app);
   addSweepCommand(app);
+  addCompareCommand(app);
   addBenchCommand(app);
   try {
     app.parse(argc, argv);
