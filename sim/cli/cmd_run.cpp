@@ -104,6 +104,18 @@ void run(const RunArgs& args) {
 
 }  // namespace
 
+CLI::Validator bimloc::cli::siteCheck() {
+  return CLI::Validator(
+      [](const std::string& v) {  // a typo gets the nearest preset, as in scenario files
+        const auto& names = sitePresetNames();
+        if (std::find(names.begin(), names.end(), v) != names.end()) return std::string();
+        const std::string guess = bimloc::sim::detail::nearestWord(v, names);
+        return "no site preset '" + v + "' (exact, as_built, construction, heavy)" +
+               (guess.empty() ? std::string() : "; did you mean '" + guess + "'?");
+      },
+      "");
+}
+
 void addRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand(
@@ -153,13 +165,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--site", args->site,
                   "simulate every scenario on a site that is not its plan: exact, as_built, construction or heavy "
                   "(replaces the scenarios' site: sections; the localizer still gets only the plan)")
-      ->check([](const std::string& v) {  // a typo gets the nearest preset, as in scenario files
-        const auto& names = sitePresetNames();
-        if (std::find(names.begin(), names.end(), v) != names.end()) return std::string();
-        const std::string guess = bimloc::sim::detail::nearestWord(v, names);
-        return "no site preset '" + v + "' (exact, as_built, construction, heavy)" +
-               (guess.empty() ? std::string() : "; did you mean '" + guess + "'?");
-      });
+      ->check(bimloc::cli::siteCheck());
   cmd->add_option("--shard", args->shard,
                   "K/N: run only the K-th of N deterministic slices of the scenario list (every N-th from the K-th, after "
                   "--all-rooms x --seeds); with --json the output carries what `bimloc report merge` needs");

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   addSweepCommand(app);
   addReportCommand(app);
   addEvalCommand(app);
+  addCompareCommand(app);
   addBenchCommand(app);
   try {
     app.parse(argc, argv);

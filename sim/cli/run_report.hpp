@@ -12,6 +12,9 @@
 
 namespace bimloc::cli {
 
+// The middle value (the mean of the middle two for an even count); NaN for none.
+double median(std::vector<double> values);
+
 // One entry of the report's "scenarios" array.
 nlohmann::json scenarioJson(const sim::ScenarioResult& result);
 // The report's "summary" from its "scenarios" entries (in their order).
