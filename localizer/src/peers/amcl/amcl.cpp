@@ -178,11 +178,18 @@ PeerStep Amcl::step(double stamp_s, const Eigen::Isometry3d& T_odom_base, const 
   s.report.method = "amcl";
   s.warnings = std::move(pending_warnings_);
   pending_warnings_.clear();
-  const PlanarPose odom = planarPose(T_odom_base);
-  if (points_lidar && gatePasses(odom)) update(stamp_s, odom, T_odom_base, *points_lidar, s);
-  // Between updates the odometry carries the last published pose (ROS: map -> odom).
-  if (!published_) map_odom_ = compose(stats_.best.mean, inverse(odom));
-  s.T_map_base = poseOf(compose(map_odom_, odom), T_odom_base);
+  if (!T_odom_base.matrix().allFinite()) {
+    // No odometry this turn: nothing moves the particles; the last pose stands.
+    if (!warned_odometry_) s.warnings.push_back("amcl: non-finite odometry pose at t=" + std::to_string(stamp_s) + " s: step skipped (warned once)");
+    warned_odometry_ = true;
+  } else {
+    last_T_odom_base_ = T_odom_base;
+    const PlanarPose odom = planarPose(T_odom_base);
+    if (points_lidar && gatePasses(odom)) update(stamp_s, odom, T_odom_base, *points_lidar, s);
+    // Between updates the odometry carries the last published pose (ROS: map -> odom).
+    if (!published_) map_odom_ = compose(stats_.best.mean, inverse(odom));
+  }
+  s.T_map_base = poseOf(compose(map_odom_, planarPose(last_T_odom_base_)), last_T_odom_base_);
   s.covariance = stats_.set.covariance;
   s.report.converged = converged_;
   s.report.relocalizing = ever_converged_ && !converged_;

@@ -59,7 +59,8 @@ class Amcl : public PeerLocalizer {
   bool converged_ = false, ever_converged_ = false;
   int weighed_updates_ = 0;
   std::vector<std::string> pending_warnings_;
-  bool warned_non_finite_ = false, warned_empty_ = false;
+  bool warned_non_finite_ = false, warned_empty_ = false, warned_odometry_ = false;
+  Eigen::Isometry3d last_T_odom_base_ = Eigen::Isometry3d::Identity();  // the last finite odometry pose
 };
 
 }  // namespace bimloc::peers::amcl
