@@ -5,8 +5,6 @@
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -126,9 +124,6 @@ void Amcl::publish(const PlanarPose& odom) {
   else
     converged_ = xy <= config_.lost_xy_std_m && yaw <= config_.lost_yaw_std_deg * deg;
   ever_converged_ = ever_converged_ || converged_;
-  if (std::getenv("AMCL_DEBUG"))
-    fprintf(stderr, "DBG n=%zu clusters=%d xy=%.3f yaw=%.2fdeg best=(%.2f %.2f %.1f) conv=%d\n", particles_.size(), stats_.clusters, xy, yaw / deg,
-            stats_.best.mean.x(), stats_.best.mean.y(), stats_.best.mean.z() / deg, converged_);
 }
 
 void Amcl::update(double stamp_s, const PlanarPose& odom, const Eigen::Isometry3d& T_odom_base, const std::vector<Eigen::Vector3f>& points,
