@@ -128,6 +128,7 @@ void Amcl::publish(const PlanarPose& odom) {
 
 void Amcl::update(double stamp_s, const PlanarPose& odom, const Eigen::Isometry3d& T_odom_base, const std::vector<Eigen::Vector3f>& points,
                   PeerStep& s) {
+  s.report.updated = true;  // the gates passed: the particles move, and are weighed if the scan has beams
   if (!initialized_) {
     initialized_ = true;  // ROS: the first scan sets pf_odom_pose_ and is weighed, no motion
     resample_count_ = 0;
@@ -165,7 +166,6 @@ void Amcl::update(double stamp_s, const PlanarPose& odom, const Eigen::Isometry3
     if (w_diff > 0) w_slow_ = w_fast_ = 0;  // ROS: "to avoid spiraling off into complete randomness"
     publish(odom);
   }
-  s.report.updated = true;
 }
 
 PeerStep Amcl::step(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<Eigen::Vector3f>* points_lidar) {
