@@ -78,7 +78,7 @@ TEST(LocalizerConfig, MistakesAreErrorsAtTheirLine) {
   EXPECT_TRUE(has(e, ":2: localizer.pf.particles: expected a whole number")) << e;
   e = errorOf("planes:\n  voxel_size_m: 7\n");
   EXPECT_TRUE(has(e, ":2: localizer.planes.voxel_size_m: 7 is outside")) << e;
-  e = errorOf("method: icp\n");
+  e = errorOf("method: hdl\n");
   EXPECT_TRUE(has(e, ":1: localizer.method: expected sgraph, pf, pf-no-rooms, amcl or ndt")) << e;
   e = errorOf("pf: {use_hypotheses: 1}\n");
   EXPECT_TRUE(has(e, "expected true or false")) << e;
