@@ -126,6 +126,46 @@ std::vector<Field> sgraphFields(sgraph::SGraphConfig& c) {
           {"recover_after_keyframes", &c.recover_after_keyframes, closed(1, 1000)}};
 }
 
+std::vector<Field> amclFields(peers::AmclConfig& c) {
+  return {{"min_particles", &c.min_particles, closed(1, 1e6)},
+          {"max_particles", &c.max_particles, closed(1, 1e6)},
+          {"kld_err", &c.kld_err, positive(1)},
+          {"kld_z", &c.kld_z, positive(10)},
+          {"update_min_d_m", &c.update_min_d_m, closed(0, 100)},
+          {"update_min_a_rad", &c.update_min_a_rad, closed(0, 2 * M_PI)},
+          {"resample_interval", &c.resample_interval, closed(1, 1000)},
+          {"recovery", &c.recovery},
+          {"recovery_alpha_slow", &c.recovery_alpha_slow, closed(0, 1)},
+          {"recovery_alpha_fast", &c.recovery_alpha_fast, closed(0, 1)},
+          {"z_hit", &c.z_hit, closed(0, 1)},
+          {"z_rand", &c.z_rand, closed(0, 1)},
+          {"sigma_hit_m", &c.sigma_hit_m, positive(10)},
+          {"likelihood_max_dist_m", &c.likelihood_max_dist_m, positive(100)},
+          {"max_beams", &c.max_beams, closed(1, 100000)},
+          {"laser_min_range_m", &c.laser_min_range_m, closed(0, 100)},
+          {"laser_max_range_m", &c.laser_max_range_m, positive(1000)},
+          {"odom_alpha1", &c.odom_alpha1, closed(0, 10)},
+          {"odom_alpha2", &c.odom_alpha2, closed(0, 10)},
+          {"odom_alpha3", &c.odom_alpha3, closed(0, 10)},
+          {"odom_alpha4", &c.odom_alpha4, closed(0, 10)},
+          {"band_min_m", &c.band_min_m, closed(-10, 10)},
+          {"band_max_m", &c.band_max_m, closed(-10, 10)},
+          {"map_resolution_m", &c.map_resolution_m, closed(0.01, 1)},
+          {"map_doors", &c.map_doors},
+          {"free_clearance_m", &c.free_clearance_m, closed(0, 10)},
+          {"scan_angle_increment_deg", &c.scan_angle_increment_deg, closed(0.05, 10)},
+          {"use_initial_pose", &c.use_initial_pose},
+          {"initial_pose_x_m", &c.initial_pose_x_m, closed(-1e6, 1e6)},
+          {"initial_pose_y_m", &c.initial_pose_y_m, closed(-1e6, 1e6)},
+          {"initial_pose_yaw_deg", &c.initial_pose_yaw_deg, closed(-360, 360)},
+          {"initial_sigma_xy_m", &c.initial_sigma_xy_m, closed(0, 1e4)},
+          {"initial_sigma_yaw_deg", &c.initial_sigma_yaw_deg, closed(0, 180)},
+          {"converged_xy_std_m", &c.converged_xy_std_m, positive(100)},
+          {"converged_yaw_std_deg", &c.converged_yaw_std_deg, positive(180)},
+          {"lost_xy_std_m", &c.lost_xy_std_m, positive(100)},
+          {"lost_yaw_std_deg", &c.lost_yaw_std_deg, positive(180)}};
+}
+
 // The field named `key` of `fields`, under another name (an alias keeps its field's range).
 Field alias(const std::string& name, const std::vector<Field>& fields, const std::string& key) {
   for (const Field& f : fields)
@@ -147,7 +187,7 @@ std::vector<Field> topFields(LocalizerConfig& c) {
           alias("voxel_size_m", planeFields(c.planes), "voxel_size_m")};
 }
 
-const std::vector<std::string> kOtherTopKeys{"method", "storey", "prior_rooms", "prior_pose", "planes", "pf", "sgraph"};
+const std::vector<std::string> kOtherTopKeys{"method", "storey", "prior_rooms", "prior_pose", "planes", "pf", "sgraph", "amcl"};
 
 struct Reader {
   const std::string& file;
@@ -236,6 +276,7 @@ LocalizerSettings readLocalizerSettings(const nlohmann::json& block, const std::
   if (block.contains("planes")) read.section(block["planes"], "localizer.planes", planeFields(c.planes));
   if (block.contains("pf")) read.section(block["pf"], "localizer.pf", pfFields(c.pf));
   if (block.contains("sgraph")) read.section(block["sgraph"], "localizer.sgraph", sgraphFields(c.sgraph));
+  if (block.contains("amcl")) read.section(block["amcl"], "localizer.amcl", amclFields(c.amcl));
   return out;
 }
 
@@ -283,6 +324,7 @@ std::vector<std::pair<std::string, std::string>> localizerKeys(const LocalizerCo
   add("planes.", planeFields(c.planes));
   add("pf.", pfFields(c.pf));
   add("sgraph.", sgraphFields(c.sgraph));
+  add("amcl.", amclFields(c.amcl));
   out.emplace_back("method", toString(c.method));
   out.emplace_back("storey", "auto, or told by the caller");
   out.emplace_back("prior_rooms", "[]");
