@@ -4,6 +4,7 @@
 // fast, how accurately, and the smallest path-evidence margin a convergence was accepted at.
 // Generated worlds come from `bimloc worldgen --random`: this command only runs plans.
 #include "sim/cli/commands.hpp"
+#include "sim/cli/site_preset_check.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
 #include "sim/cli/sweep_sites.hpp"
@@ -90,7 +91,7 @@ void run(const SweepArgs& args) {
     o.plot = args.plot, o.json = args.json, o.jobs = args.jobs;
     std::string plans;
     for (const auto& p : args.plans) plans += (plans.empty() ? "" : ", ") + std::filesystem::path(p).filename().string();
-    o.title = "robustness: " + plans + ", " + std::to_string(scenarios.size()) + " starts, " +
+    o.title = "robustness: " + plans + ", " + std::to_string(scenarios.size()) + (scenarios.size() == 1 ? " start, " : " starts, ") +
               fixed(args.duration_s, 0) + " s each";
     bimloc::cli::runRobustness(scenarios, worlds, o);  // degrading is what it measures: exit 0
     return;
@@ -166,12 +167,12 @@ void addSweepCommand(CLI::App& app) {
   cmd->add_option("--site", args->site,
                   "every run on a site that is not its plan: exact, as_built, construction or heavy (the localizer "
                   "still gets only the plan); one sweep per preset gives the robustness table")
-      ->check(CLI::IsMember(sitePresetNames()));
+      ->check(bimloc::cli::sitePresetCheck());
   cmd->add_option("--sites", args->sites,
                   "robustness sweep: the same starts on each of these site presets (comma-separated, in order of "
                   "deviation: exact,as_built,construction,heavy); a row per preset and method")
       ->delimiter(',')
-      ->check(CLI::IsMember(sitePresetNames()))
+      ->check(bimloc::cli::sitePresetCheck())
       ->excludes("--site");
   cmd->add_option("--methods", args->methods,
                   "robustness sweep: each of these methods (comma-separated, any --method value) on every preset")

@@ -42,12 +42,12 @@ bool LidarSite::effects(int laser, const RayHit& hit, float& range) {
   const float here = hit.range_m, before = previous;
   previous = here;
   if (!hit.hit()) return false;
-  // A draw for every return and effect, taken or not: the sequence depends on the scene only.
-  const double lose = random_.uniform(), mix = random_.uniform(), where = random_.uniform();
-  if (lose < hit.dropout) return false;
+  // Draws only where an effect can happen (a lossy surface, an edge): the sequence is a
+  // function of the scene and the turn, and a plain wall costs no draw.
+  if (hit.dropout > 0.0f && random_.uniform() < hit.dropout) return false;
   if (sensor_.mixed_probability > 0.0 && std::isfinite(before) && std::abs(here - before) > sensor_.mixed_jump_m &&
-      mix < sensor_.mixed_probability)
-    range += static_cast<float>(where) * (before - here);  // between this surface and the previous firing's
+      random_.uniform() < sensor_.mixed_probability)
+    range += static_cast<float>(random_.uniform()) * (before - here);  // between this surface and the previous firing's
   return true;
 }
 

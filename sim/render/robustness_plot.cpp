@@ -49,7 +49,7 @@ void line(const Panel& p, const std::vector<double>& values, const Colour& colou
     }
     const Eigen::Vector2d at(p.x(i), p.y(values[i]));
     if (have) render::segment(prev, at, width, colour);
-    render::fillDisc(at, 2.0 * width, colour);
+    render::fillDisc(at, 0.5 * width + 3.0, colour);
     prev = at, have = true;
   }
 }
@@ -73,7 +73,7 @@ Image renderRobustnessPlotImage(const RobustnessPlotData& d) {
   const std::vector<double> ate_ticks = render::niceTicks(0.0, ate_max * 1.1, 5);
   const double ate_hi = std::max(ate_max * 1.1, ate_ticks.empty() ? 0.1 : ate_ticks.back());
   const double left = 8.0 * pad + render::textWidth("0.00", s), right = d.width_px - 2.0 * pad;
-  const double top = 3.0 * pad + 2.0 * line_h + line_h * 1.5;  // title, legend, panel name
+  const double top = 4.0 * pad + 2.0 * line_h + line_h * 2.0;  // title, legend, panel name
   const double bottom = d.height_px - 3.0 * pad - 2.0 * line_h;  // level labels, axis name
   const double gap = 2.5 * line_h, h = 0.5 * (bottom - top - gap);
   const Panel rate{left, top, right, top + h, 0.0, 1.0, d.levels.size()};
@@ -82,13 +82,18 @@ Image renderRobustnessPlotImage(const RobustnessPlotData& d) {
     panel(rate, "localization rate", render::niceTicks(0.0, 1.0, 5), s, pad);
     panel(ate, "median ATE [m]", ate_ticks, s, pad);
     const double width = std::max(2.0, 1.4 * s);
-    for (std::size_t m = 0; m < d.series.size(); ++m) {
-      line(rate, d.series[m].rate, hex(robustnessColour(m)), width);
-      line(ate, d.series[m].ate_m, hex(robustnessColour(m)), width);
+    // Methods often agree (the same rate): each later line thinner, so a line under another
+    // still shows at its edges.
+    const std::size_t n = d.series.size();
+    for (std::size_t m = 0; m < n; ++m) {
+      const double w = width * (1.0 + 1.5 * double(n - 1 - m));
+      line(rate, d.series[m].rate, hex(robustnessColour(m)), w);
+      line(ate, d.series[m].ate_m, hex(robustnessColour(m)), w);
     }
     for (std::size_t i = 0; i < d.levels.size(); ++i) {
-      const double x = ate.x(i) - 0.5 * render::textWidth(d.levels[i], s);
-      render::drawText(std::max(0.0, x), bottom + pad, d.levels[i], s, kInk);
+      const double w = render::textWidth(d.levels[i], s);
+      const double x = std::clamp(ate.x(i) - 0.5 * w, 0.0, d.width_px - pad - w);  // the end labels stay whole
+      render::drawText(x, bottom + pad, d.levels[i], s, kInk);
     }
     const std::string axis = "site (deviation level: walls' max. offset)";
     render::drawText(0.5 * (left + right - render::textWidth(axis, s)), d.height_px - pad - line_h, axis, s, kInk);
