@@ -25,8 +25,23 @@ void LidarSite::moveTo(double t_s) {
   }
 }
 
-void LidarSite::occlude(const Eigen::Vector3f& origin, const Eigen::Vector3f& dir, float t_min, RayHit& hit) const {
+void LidarSite::aim(const Eigen::Vector3f& origin, const Eigen::Vector3f& look, float spread_rad) {
+  aimed_.clear();
+  const Eigen::Vector2f h = look.head<2>().normalized();
+  // The rays' origins differ by the lasers' vertical offsets (about 2 cm, tilted): a margin.
+  constexpr float kOriginMargin_m = 0.05f;
   for (const Cylinder& c : now_) {
+    const Eigen::Vector2f v = c.centre - origin.head<2>();
+    const float along = h.dot(v), across = std::abs(h.x() * v.y() - h.y() * v.x());
+    if (along < -(c.radius + kOriginMargin_m)) continue;  // behind the cycle's rays
+    if (across > c.radius + kOriginMargin_m + spread_rad * v.norm()) continue;  // beside them
+    aimed_.push_back(&c);
+  }
+}
+
+void LidarSite::occlude(const Eigen::Vector3f& origin, const Eigen::Vector3f& dir, float t_min, RayHit& hit) const {
+  for (const Cylinder* cylinder : aimed_) {
+    const Cylinder& c = *cylinder;
     float t = 0.0f;
     Eigen::Vector3f normal;
     if (!rayEntersCylinder(origin, dir, c.centre, c.radius, c.z0, c.z1, t_min, t, normal) || !(t < hit.range_m)) continue;
@@ -37,7 +52,6 @@ void LidarSite::occlude(const Eigen::Vector3f& origin, const Eigen::Vector3f& di
 }
 
 bool LidarSite::effects(int laser, const RayHit& hit, float& range) {
-  if (!any_effect_) return true;
   float& previous = previous_range_[static_cast<std::size_t>(laser)];
   const float here = hit.range_m, before = previous;
   previous = here;

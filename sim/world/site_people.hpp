@@ -1,7 +1,7 @@
 // Walking people on a site: where each one is at a time, where a ray meets one (exactly: a
 // vertical cylinder, analytically, no Embree scene to rebuild as they move), and where they
 // walk (drawn from the seed in the site's rooms, or given; a given path through a wall is an
-// error). The lidar intersects every ray with the people at its firing cycle's instant.
+// error). The lidar intersects every ray with the people at its firing block's instant (16 cycles, 0.9 ms).
 #pragma once
 
 #include "sim/world/site_truth.hpp"

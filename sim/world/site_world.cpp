@@ -178,6 +178,8 @@ World World::withSite(const SiteConfig& config, std::uint64_t seed) const {
     if (fraction > 0.0) truth.glass.push_back({type, fraction, glass_count[type]});
   truth.sensor = config.sensor;
   impl->glass_dropout = static_cast<float>(config.sensor.glass_dropout);
+  impl->any_dropout = impl->glass_dropout > 0.0f;
+  for (const auto& table : impl->triangle_dropout) impl->any_dropout = impl->any_dropout || !table.empty();
   impl->build();
   World world(std::move(impl));
   // People walk the site as built (its walls, shut doors, clutter): placed in the built world.

@@ -204,7 +204,7 @@ RayHit World::castRay(std::size_t storey, const Eigen::Vector3f& origin, const E
   }
   hit.range_m = rh.ray.tfar;
   hit.normal = normalFacing({rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}, dir);
-  hit.dropout = impl_->dropout(storey, rh.hit.geomID, rh.hit.primID);
+  hit.dropout = impl_->any_dropout ? impl_->dropout(storey, rh.hit.geomID, rh.hit.primID) : 0.0f;
   return hit;
 }
 
@@ -232,7 +232,7 @@ void World::castRays16(std::size_t storey, const Eigen::Vector3f origins[16], co
     }
     hits[i].range_m = rh.ray.tfar[i];
     hits[i].normal = normalFacing({rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]}, dirs[i]);
-    hits[i].dropout = impl_->dropout(storey, rh.hit.geomID[i], rh.hit.primID[i]);
+    hits[i].dropout = impl_->any_dropout ? impl_->dropout(storey, rh.hit.geomID[i], rh.hit.primID[i]) : 0.0f;
   }
 }
 

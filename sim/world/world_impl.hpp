@@ -56,6 +56,7 @@ struct World::Impl {
   // Sensor dropout (SiteSensor): per storey, per opaque triangle (empty: none), and for glass.
   std::vector<std::vector<float>> triangle_dropout;
   float glass_dropout = 0.0f;
+  bool any_dropout = false;  // any of the above non-zero: the plan's world skips the look-up
   std::vector<unsigned> opaque_geometry;  // per storey: the opaque mesh's Embree geometry id
   RTCDevice device = nullptr;
   std::vector<RTCScene> scenes;
