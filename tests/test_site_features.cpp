@@ -142,7 +142,10 @@ std::string writeScenario(const std::string& dir, const std::string& site_text) 
 
 TEST(SiteSimulate, SameBytesOnOneAndTwoThreadsWithTheTruthInTheMetadata) {
   const std::string dir = test::tempDir("site-simulate");
-  const std::string scenario = writeScenario(dir, "site: construction\n");
+  // construction (people) with every sensor effect: their draws too are the same on any thread.
+  const std::string scenario = writeScenario(
+      dir, "site:\n  preset: construction\n  sensor: {glass_dropout: 0.3, dark_fraction: 0.2, dark_dropout: 0.3, "
+           "mixed_probability: 0.3}\n");
   ASSERT_EQ(test::runBimloc("simulate '" + scenario + "' --out '" + dir + "/t1' --threads 1 --quiet").exit_code, 0);
   ASSERT_EQ(test::runBimloc("simulate '" + scenario + "' --out '" + dir + "/t2' --threads 2 --quiet").exit_code, 0);
   std::size_t files = 0;
