@@ -1,6 +1,5 @@
 // bimloc run SCENARIO... | --plan PLAN --all-rooms [--storey S|auto] [--method M] [--config FILE.yaml] [--starts rooms|outside] [--json] [--out DIR] [--jobs N]
 #include "sim/cli/commands.hpp"
-#include "sim/cli/site_preset_check.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
 #include "sim/runner/room_scenarios.hpp"
@@ -134,7 +133,13 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--site", args->site,
                   "simulate every scenario on a site that is not its plan: exact, as_built, construction or heavy "
                   "(replaces the scenarios' site: sections; the localizer still gets only the plan)")
-      ->check(bimloc::cli::sitePresetCheck());  // a typo gets the nearest preset, as in scenario files
+      ->check([](const std::string& v) {  // a typo gets the nearest preset, as in scenario files
+        const auto& names = sitePresetNames();
+        if (std::find(names.begin(), names.end(), v) != names.end()) return std::string();
+        const std::string guess = bimloc::sim::detail::nearestWord(v, names);
+        return "no site preset '" + v + "' (exact, as_built, construction, heavy)" +
+               (guess.empty() ? std::string() : "; did you mean '" + guess + "'?");
+      });
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->callback([args, method, duration] {
     args->method_given = method->count() > 0;
