@@ -142,7 +142,10 @@ std::string writeScenario(const std::string& dir, const std::string& site_text) 
 
 TEST(SiteSimulate, SameBytesOnOneAndTwoThreadsWithTheTruthInTheMetadata) {
   const std::string dir = test::tempDir("site-simulate");
-  const std::string scenario = writeScenario(dir, "site: construction\n");
+  // construction (people) with every sensor effect: their draws too are the same on any thread.
+  const std::string scenario = writeScenario(
+      dir, "site:\n  preset: construction\n  sensor: {glass_dropout: 0.3, dark_fraction: 0.2, dark_dropout: 0.3, "
+           "mixed_probability: 0.3}\n");
   ASSERT_EQ(test::runBimloc("simulate '" + scenario + "' --out '" + dir + "/t1' --threads 1 --quiet").exit_code, 0);
   ASSERT_EQ(test::runBimloc("simulate '" + scenario + "' --out '" + dir + "/t2' --threads 2 --quiet").exit_code, 0);
   std::size_t files = 0;
@@ -157,6 +160,7 @@ TEST(SiteSimulate, SameBytesOnOneAndTwoThreadsWithTheTruthInTheMetadata) {
   ASSERT_TRUE(meta.contains("site"));
   EXPECT_EQ(meta["site"]["preset"], "construction");
   EXPECT_EQ(meta["site"]["seed"], 4);
+  EXPECT_EQ(meta["site"]["people"].size(), 2u) << "construction: 2 people, walking in the scans of both runs alike";
   EXPECT_EQ(meta["site"]["walls"].size(), test::officeWorld().building().storeys[0].walls.size());
 }
 
@@ -190,6 +194,16 @@ TEST(SiteSimulate, BadSiteInputGetsFileLineErrorsAndNothingIsWritten) {
   expectSimulateError("site:\n  walls:\n    edit:\n      - {id: " + name + "X, offset_m: 0.1}\n", 9,
                       "no wall '" + name + "X' (GlobalId or name) in the plan (did you mean '" + name + "'?)");
   expectSimulateError("site:\n  walls:\n    edit:\n      - {id: " + name + ", offset_m: 3}\n", 9, "offset_m must be in [-1, 1]");
+  // People: a path from R101 straight out through its wall, a key with a typo, a bad probability.
+  const Eigen::Vector2d c = test::officeWorld().building().storeys[0].findRoom("R101")->centre;
+  const std::string through = "[[" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + "], [" +
+                              std::to_string(c.x() + 30.0) + ", " + std::to_string(c.y()) + "]]";
+  expectSimulateError("site:\n  people:\n    paths:\n      - {waypoints: " + through + "}\n", 9,
+                      "meets a wall at");
+  expectSimulateError("site:\n  people:\n    paths:\n      - {waypoints: " + through + "}\n", 9, "move the waypoints");
+  expectSimulateError("site:\n  peple: {count: 2}\n", 7, "did you mean 'people'?");
+  expectSimulateError("site:\n  people: {count: -1}\n", 7, "site.people.count must be in [0, 100]");
+  expectSimulateError("site:\n  sensor: {glass_dropout: 1.5}\n", 7, "site.sensor.glass_dropout must be in [0, 1]");
 }
 
 }  // namespace

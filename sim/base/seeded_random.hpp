@@ -8,7 +8,7 @@
 
 namespace bimloc::sim {
 
-enum class RandomStream : std::uint64_t { Gait = 1, Walk = 2, Start = 3, SiteWalls = 4, SiteDoors = 5, SitePartitions = 6, SiteClutter = 7 };
+enum class RandomStream : std::uint64_t { Gait = 1, Walk = 2, Start = 3, SiteWalls = 4, SiteDoors = 5, SitePartitions = 6, SiteClutter = 7, SitePeople = 8, SiteSensor = 9 };
 
 class SeededRandom {
  public:

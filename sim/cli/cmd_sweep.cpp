@@ -1,11 +1,14 @@
-// bimloc sweep PLAN... [--seeds K] [--method M] [--duration S] [--storey auto] [--starts rooms|outside] [--jobs N] [--json]
+// bimloc sweep PLAN... [--sites P,Q --methods M,N --plot F.png] [--seeds K] [--method M] [--duration S] [--storey auto] [--starts rooms|outside] [--jobs N] [--json]
 // The paper's experiment over many plans at once: every room of every storey with rooms, K
 // seeds each, and a row per plan and storey: how often it localized, how often falsely, how
 // fast, how accurately, and the smallest path-evidence margin a convergence was accepted at.
 // Generated worlds come from `bimloc worldgen --random`: this command only runs plans.
 #include "sim/cli/commands.hpp"
+#include "sim/cli/site_preset_check.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
+#include "sim/cli/sweep_sites.hpp"
+#include "sim/cli/sweep_summary.hpp"
 #include "sim/cli/table.hpp"
 #include "sim/runner/room_scenarios.hpp"
 
@@ -18,6 +21,7 @@
 namespace {
 
 using namespace bimloc::sim;
+using bimloc::cli::cell;
 using bimloc::cli::fixed;
 
 struct SweepArgs {
@@ -31,43 +35,17 @@ struct SweepArgs {
   std::string starts = "rooms";  // or "outside"
   int rooms_per_storey = 0;      // 0: every room
   std::string site;              // --site PRESET: the simulated site of every run
+  std::vector<std::string> sites, methods;  // --sites, --methods: the robustness sweep
+  std::string plot;                         // --plot FILE.png (robustness sweep)
   std::vector<std::string> prior_rooms;
   std::string prior_pose;
 };
 
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const double at = q * static_cast<double>(v.size() - 1);
-  const auto lo = static_cast<std::size_t>(at);
-  const std::size_t hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (at - static_cast<double>(lo)) * (v[hi] - v[lo]);
-}
-
 // One row: a group of runs (a plan's storey, or all of them).
 nlohmann::json summarise(const std::string& plan, const std::string& storey, const std::vector<const ScenarioResult*>& runs) {
-  int localized = 0, false_conv = 0, errors = 0, losses = 0;
-  std::vector<double> times, ates, margins, rpes, map_rmses, paths;
-  for (const ScenarioResult* r : runs) {
-    localized += r->converged && !r->false_convergence;
-    false_conv += r->false_convergence;
-    errors += !r->failures.empty() && r->sim_seconds == 0;
-    if (r->converged && r->convergence_time_s) times.push_back(*r->convergence_time_s);
-    if (r->ate_m) ates.push_back(*r->ate_m);
-    if (r->rpe_m_per_m) rpes.push_back(*r->rpe_m_per_m);
-    if (r->map_rmse_m) map_rmses.push_back(*r->map_rmse_m);
-    paths.push_back(r->path_length_m);
-    losses += r->losses;
-    if (r->convergence_margin) margins.push_back(*r->convergence_margin);
-  }
-  const auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-  return {{"plan", plan}, {"storey", storey}, {"runs", runs.size()}, {"localized", localized}, {"false_convergences", false_conv},
-          {"errors", errors}, {"median_convergence_s", num(quantile(times, 0.5))}, {"p90_convergence_s", num(quantile(times, 0.9))},
-          {"max_convergence_s", num(quantile(times, 1.0))}, {"median_ate_m", num(quantile(ates, 0.5))},
-          {"max_ate_m", num(quantile(ates, 1.0))}, {"median_rpe_m_per_m", num(quantile(rpes, 0.5))},
-          {"median_map_rmse_m", num(quantile(map_rmses, 0.5))}, {"losses", losses},
-          {"median_path_length_m", num(quantile(paths, 0.5))},
-          {"min_accepted_margin", num(margins.empty() ? std::nan("") : *std::min_element(margins.begin(), margins.end()))}};
+  nlohmann::json row{{"plan", plan}, {"storey", storey}};
+  row.update(bimloc::cli::summariseRuns(runs));
+  return row;
 }
 
 // Start rooms spread over the storey (every k-th room, with all its seeds): long walks explore
@@ -81,8 +59,6 @@ std::vector<Scenario> spread(const std::vector<Scenario>& all, int rooms, int se
     for (std::size_t k = 0; k < per_room; ++k) out.push_back(all[r * per_room + k]);
   return out;
 }
-
-std::string cell(const nlohmann::json& v, int decimals) { return v.is_null() ? "-" : fixed(v.get<double>(), decimals); }
 
 void run(const SweepArgs& args) {
   bimloc::cli::WorldCache worlds;
@@ -108,6 +84,18 @@ void run(const SweepArgs& args) {
   }
   if (scenarios.empty()) throw std::runtime_error("no storey with rooms and walls in the given plans");
   bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
+  if (!args.sites.empty() || !args.methods.empty() || !args.plot.empty()) {
+    bimloc::cli::RobustnessOptions o;
+    o.sites = args.sites.empty() ? std::vector<std::string>{args.site.empty() ? "exact" : args.site} : args.sites;
+    o.methods = args.methods.empty() ? std::vector<std::string>{args.method} : args.methods;
+    o.plot = args.plot, o.json = args.json, o.jobs = args.jobs;
+    std::string plans;
+    for (const auto& p : args.plans) plans += (plans.empty() ? "" : ", ") + std::filesystem::path(p).filename().string();
+    o.title = "robustness: " + plans + ", " + std::to_string(scenarios.size()) + (scenarios.size() == 1 ? " start, " : " starts, ") +
+              fixed(args.duration_s, 0) + " s each";
+    bimloc::cli::runRobustness(scenarios, worlds, o);  // degrading is what it measures: exit 0
+    return;
+  }
   if (!args.site.empty())
     for (auto& s : scenarios) s.site = sitePreset(args.site);
   const auto start = std::chrono::steady_clock::now();
@@ -179,7 +167,20 @@ void addSweepCommand(CLI::App& app) {
   cmd->add_option("--site", args->site,
                   "every run on a site that is not its plan: exact, as_built, construction or heavy (the localizer "
                   "still gets only the plan); one sweep per preset gives the robustness table")
-      ->check(CLI::IsMember(sitePresetNames()));
+      ->check(bimloc::cli::sitePresetCheck());
+  cmd->add_option("--sites", args->sites,
+                  "robustness sweep: the same starts on each of these site presets (comma-separated, in order of "
+                  "deviation: exact,as_built,construction,heavy); a row per preset and method")
+      ->delimiter(',')
+      ->check(bimloc::cli::sitePresetCheck())
+      ->excludes("--site");
+  cmd->add_option("--methods", args->methods,
+                  "robustness sweep: each of these methods (comma-separated, any --method value) on every preset")
+      ->delimiter(',')
+      ->check(bimloc::cli::methodCheck())
+      ->excludes("--method");
+  cmd->add_option("--plot", args->plot,
+                  "robustness sweep: a PNG of the localization rate and the median ATE against the deviation level");
   cmd->add_option("--duration", args->duration_s, "seconds per run")->check(CLI::Range(1.0, 3600.0))->capture_default_str();
   cmd->add_option("--storey", args->storey,
                   "auto: the localizer is not told the storey (every storey with walls and rooms is a candidate); rows "

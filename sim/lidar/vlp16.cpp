@@ -1,6 +1,7 @@
 #include "sim/lidar/vlp16.hpp"
 
 #include "sim/lidar/fast_random.hpp"
+#include "sim/lidar/lidar_site.hpp"
 #include "sim/world/world.hpp"
 
 #include <cmath>
@@ -44,6 +45,7 @@ LidarScan Vlp16::scan(const World& world, std::size_t storey, const std::functio
   out.stamp_s = t0_s;
   out.points.reserve(static_cast<std::size_t>(cycles_) * kVlp16Lasers);
   FastRandom rng(mix(seed ^ mix(turn_index)));
+  LidarSite site(world, storey, mix(seed ^ mix(turn_index)), kVlp16Lasers);
   const float sigma = static_cast<float>(config_.range_noise_sigma_m);
   const bool dropout = config_.dropout_probability > 0.0;
   const double omega = 2.0 * M_PI * config_.rpm / 60.0;  // rad/s, clockwise seen from above
@@ -99,18 +101,35 @@ LidarScan Vlp16::scan(const World& world, std::size_t storey, const std::functio
         for (int j = 0; j < n; ++j) hits[j][k] = world.castRay(storey, origins[j][k], world_dirs[j][k], t_min, t_max);
       }
     }
-    for (int j = 0; j < n; ++j)
+    // People move between firing blocks: a block (16 cycles, 0.9 ms: a walker moves 1 mm)
+    // meets them where they are at its first cycle's instant.
+    const bool people = site.hasPeople(), effects = site.hasEffects();
+    if (people) site.moveTo(t0_s + c0 * kVlp16CyclePeriod_s);
+    for (int j = 0; j < n; ++j) {
+      if (people) {
+        // A cycle's rays share one azimuth in the sensor frame; in the map their horizontal
+        // directions part by the spin over its 16 firings and, tilted, by up to
+        // tan(15 deg) sin(tilt) / cos(tilt) either side of the level one.
+        const Eigen::Vector3f up = (world_dirs[j][kVlp16Lasers - 1] - world_dirs[j][0]).normalized();  // +-15 deg pair
+        const float tilt = std::sqrt(std::max(0.0f, 1.0f - up.z() * up.z()));
+        const float spread = 0.6f * tilt / std::max(0.5f, std::abs(up.z())) + 0.01f;
+        site.aim(origins[j][0], world_dirs[j][0], spread);
+      }
       for (int k = 0; k < kVlp16Lasers; ++k) {
-        const RayHit& hit = hits[j][k];
+        RayHit& hit = hits[j][k];
+        if (people) site.occlude(origins[j][k], world_dirs[j][k], t_min, hit);
+        float true_range = hit.range_m;
+        const bool kept = !effects || site.effects(k, hit, true_range);
         if (!hit.hit()) continue;
         // Noise and dropout are drawn for every return, kept or not, so that the random
         // sequence depends on the configuration only, never on the range limits.
-        const float range = hit.range_m + (sigma > 0.0f ? sigma * static_cast<float>(rng.normal()) : 0.0f);
+        const float range = true_range + (sigma > 0.0f ? sigma * static_cast<float>(rng.normal()) : 0.0f);
         const bool dropped = dropout && rng.uniform() < config_.dropout_probability;
-        if (dropped || range < config_.min_range_m || range > config_.max_range_m) continue;
+        if (!kept || dropped || range < config_.min_range_m || range > config_.max_range_m) continue;
         const Eigen::Vector3f p = offsets_[k].cast<float>() + range * local_dirs[j][k];
         out.points.push_back({p.x(), p.y(), p.z(), intensity(world_dirs[j][k], hit.normal), vlp16Ring(k), times[j][k]});
       }
+    }
   }
   return out;
 }

@@ -3,6 +3,7 @@
 // checkSiteAgainstWorld.
 #include "sim/scenario/scenario_sections.hpp"
 #include "sim/world/site_draws.hpp"
+#include "sim/world/site_people.hpp"
 #include "sim/world/world.hpp"
 
 #include <algorithm>
@@ -104,6 +105,49 @@ void readClutter(const Mapping& site, SiteClutter& clutter) {
   m.read("clearance_m", clutter.clearance_m, Range::closed(0.8, 5.0));
 }
 
+// people: {count, speed_mps, radius_m, height_m, paths: [{waypoints: [[x, y], ...], speed_mps, storey}]}
+void readPeople(const Mapping& site, SitePeople& people) {
+  const Mapping m = site.mapping("people", {"count", "speed_mps", "radius_m", "height_m", "paths"});
+  people.count_per_storey = readCount(m, "count", people.count_per_storey, 100);
+  m.read("speed_mps", people.speed_mps, Range::positive(3.0));
+  m.read("radius_m", people.radius_m, Range::closed(0.05, 1.0));
+  m.read("height_m", people.height_m, Range::closed(0.3, 2.5));
+  if (!m.has("paths")) return;
+  const YAML::Node& list = m.value("paths");
+  if (!list.IsSequence())
+    m.fail("paths", m.name("paths") + " must be a list of {waypoints: [[x, y], ...], speed_mps: ...} mappings, got " +
+                        describe(list));
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Mapping item(m.file(), list[i], m.name("paths") + "[" + std::to_string(i) + "]", m.line("paths"),
+                       {"waypoints", "speed_mps", "storey"});
+    item.require("waypoints");
+    PersonPath path;
+    path.speed_mps = people.speed_mps;
+    path.line = item.line("waypoints");
+    item.read("speed_mps", path.speed_mps, Range::positive(3.0));
+    item.read("storey", path.storey);
+    const YAML::Node& points = item.value("waypoints");
+    if (!points.IsSequence() || points.size() < 2)
+      item.fail("waypoints", item.name("waypoints") + " must be a list of at least two [x, y] points, got " + describe(points));
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const auto xy = item.numbers(points[k], item.name("waypoints") + "[" + std::to_string(k) + "]", path.line, 2, 2,
+                                   Range::closed(-1e6, 1e6));
+      path.waypoints.emplace_back(xy[0], xy[1]);
+    }
+    people.paths.push_back(path);
+  }
+}
+
+void readSensorEffects(const Mapping& site, SiteSensor& sensor) {
+  const Mapping m =
+      site.mapping("sensor", {"glass_dropout", "dark_fraction", "dark_dropout", "mixed_probability", "mixed_jump_m"});
+  m.read("glass_dropout", sensor.glass_dropout, kFraction);
+  m.read("dark_fraction", sensor.dark_fraction, kFraction);
+  m.read("dark_dropout", sensor.dark_dropout, kFraction);
+  m.read("mixed_probability", sensor.mixed_probability, kFraction);
+  m.read("mixed_jump_m", sensor.mixed_jump_m, Range::positive(10.0));
+}
+
 }  // namespace
 
 SiteConfig readSite(const Mapping& top, std::map<std::string, int>& lines) {
@@ -117,7 +161,7 @@ SiteConfig readSite(const Mapping& top, std::map<std::string, int>& lines) {
     top.fail("site", "site must be a preset (exact, as_built, construction, heavy) or a mapping, got '" + node.Scalar() +
                          "'" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)"));
   }
-  const Mapping m = top.mapping("site", {"preset", "walls", "glass", "doors", "clutter"});
+  const Mapping m = top.mapping("site", {"preset", "walls", "glass", "doors", "clutter", "people", "sensor"});
   std::string preset = "exact";
   m.readChoice("preset", preset, sitePresetNames());
   SiteConfig site = sitePreset(preset);
@@ -126,6 +170,8 @@ SiteConfig readSite(const Mapping& top, std::map<std::string, int>& lines) {
   for (const auto& key : glass.given()) glass.read(key, site.glass.pass_fraction[key], kFraction);
   readDoors(m, site.doors);
   readClutter(m, site.clutter);
+  readPeople(m, site.people);
+  readSensorEffects(m, site.sensor);
   return site;
 }
 
@@ -158,6 +204,19 @@ void checkSiteAgainstWorld(const Scenario& s, const World& world) {
                                    : guess.empty()    ? ""
                                                       : " (did you mean '" + guess + "'?)"));
     }
+  // A person's path is checked against the plan: the walls the scenario's author sees.
+  for (const PersonPath& path : s.site.people.paths) {
+    std::size_t storey = 0;
+    try {
+      storey = world.storeyIndex(path.storey.empty() ? "0" : path.storey);
+    } catch (const std::invalid_argument& e) {
+      fail(s.file, path.line, std::string("site.people.paths: ") + e.what());
+    }
+    const std::string problem = personPathProblem(world, storey, path, s.site.people.radius_m);
+    if (!problem.empty())
+      fail(s.file, path.line, "site.people.paths: " + problem + ": move the waypoints so that every leg keeps " +
+                                  std::to_string(s.site.people.radius_m).substr(0, 4) + " m (the person's radius) from the walls");
+  }
 }
 
 }  // namespace bimloc::sim::detail

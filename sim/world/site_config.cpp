@@ -19,7 +19,8 @@ bool SiteConfig::exact() const {
   const bool walls_moved = this->walls.fraction > 0.0 && (this->walls.max_offset_m > 0.0 || this->walls.max_angle_deg > 0.0);
   return !walls_moved && this->walls.missing_fraction == 0.0 && this->walls.partitions_per_storey == 0 &&
          this->walls.edits.empty() && !glass && doors.shut_fraction == 0.0 && doors.ajar_fraction == 0.0 &&
-         doors.edits.empty() && clutter.density_per_m2 == 0.0;
+         doors.edits.empty() && clutter.density_per_m2 == 0.0 && people.count_per_storey == 0 && people.paths.empty() &&
+         !sensor.any();
 }
 
 const std::vector<std::string>& sitePresetNames() {
@@ -47,6 +48,8 @@ SiteConfig sitePreset(const std::string& name) {
   c.doors.shut_fraction = 0.2;
   c.doors.ajar_fraction = 0.3;
   c.clutter.density_per_m2 = 0.2;
+  c.people.count_per_storey = 2;
+  // Dropout and mixed points: of the order a VLP-16 shows on glass and at door jambs.
   if (name == "construction") return c;
   if (name == "heavy") {
     c.walls.max_offset_m = 0.20;
@@ -57,6 +60,12 @@ SiteConfig sitePreset(const std::string& name) {
     c.doors.shut_fraction = 0.3;
     c.doors.ajar_fraction = 0.4;
     c.clutter.density_per_m2 = 0.4;
+    c.people.count_per_storey = 6;
+    // Sensor effects only here: the construction site has none (they are keys).
+    c.sensor.glass_dropout = 0.5;
+    c.sensor.dark_fraction = 0.2;
+    c.sensor.dark_dropout = 0.5;
+    c.sensor.mixed_probability = 0.5;
     return c;
   }
   std::string names;

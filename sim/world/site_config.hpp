@@ -4,6 +4,8 @@
 // scenario's seed (World::withSite), and what was drawn is the SiteTruth.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <map>
 #include <optional>
 #include <string>
@@ -77,12 +79,51 @@ struct SiteClutter {
   double clearance_m = 1.0;
 };
 
+// One walking person given in the scenario: a polyline walked at `speed_mps`, there and back
+// again, for ever (from the first waypoint at t = 0).
+struct PersonPath {
+  std::vector<Eigen::Vector2d> waypoints;  // map frame, at least two
+  double speed_mps = 1.2;
+  std::string storey;  // name, GlobalId or index; the scenario's storey when not given
+  int line = 0;        // where the scenario gave it, for messages
+};
+
+// People: vertical cylinders walking through the site, moving occluders for the lidar only
+// (the robot neither avoids nor meets them: they may cross its path, and the base's collision
+// world never has them). `count_per_storey` are drawn from the seed, each walking back and forth
+// between two to four points of one room (legs clear of the site's walls by its radius); `paths`
+// are given. 0.25 m x 1.75 m is an adult's shoulder half-width and height (DIN 33402).
+struct SitePeople {
+  int count_per_storey = 0;
+  double speed_mps = 1.2;  // walking pace on a site (slower than the 1.4 m/s of a street)
+  double radius_m = 0.25;
+  double height_m = 1.75;
+  std::vector<PersonPath> paths;
+};
+
+// Sensor effects of a real site. Dropout: a return from glass (a pane the ray does not pass)
+// or from a dark surface (tar paper, black-painted steel: `dark_fraction` of the elements,
+// drawn from the seed) is lost with the given probability. Mixed points: where consecutive
+// firings of one laser land on surfaces more than `mixed_jump_m` apart, the beam's footprint
+// straddles the edge and, with `mixed_probability`, the return is a range between the two
+// (uniform): the "mixed pixels" of Hebert & Krotkov 1992, the veiling points of a real VLP-16.
+struct SiteSensor {
+  double glass_dropout = 0.0;
+  double dark_fraction = 0.0;
+  double dark_dropout = 0.0;
+  double mixed_probability = 0.0;
+  double mixed_jump_m = 0.3;
+  bool any() const { return glass_dropout > 0.0 || (dark_fraction > 0.0 && dark_dropout > 0.0) || mixed_probability > 0.0; }
+};
+
 struct SiteConfig {
   std::string preset = "exact";  // the preset it started from (the keys given override it)
   SiteWalls walls;
   SiteGlass glass;
   SiteDoors doors;
   SiteClutter clutter;
+  SitePeople people;
+  SiteSensor sensor;
   bool exact() const;  // nothing differs from the plan
 };
 

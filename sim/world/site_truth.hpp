@@ -57,6 +57,17 @@ struct GlassTruth {
   std::size_t elements = 0;  // how many elements of that class the site has
 };
 
+// A walking person: a vertical cylinder whose axis walks the polyline `waypoints` at speed_mps,
+// there and back again, starting `phase_m` along that loop at t = 0 (site_people.hpp).
+struct PersonTruth {
+  std::size_t storey = 0;
+  std::string room;  // the room a drawn person walks in ("" for a path the scenario gave)
+  std::vector<Eigen::Vector2d> waypoints;
+  double speed_mps = 0.0, radius_m = 0.0, height_m = 0.0;
+  double floor_z = 0.0;  // the cylinder stands from floor_z to floor_z + height_m
+  double phase_m = 0.0;
+};
+
 struct SiteTruth {
   std::string preset = "exact";
   std::uint64_t seed = 0;
@@ -65,6 +76,9 @@ struct SiteTruth {
   std::vector<DoorTruth> doors;
   std::vector<GlassTruth> glass;
   std::vector<ClutterTruth> clutter;
+  std::vector<PersonTruth> people;
+  SiteSensor sensor;                  // the lidar's site effects (dropout, mixed points)
+  std::vector<std::string> dark;      // ids of the dark elements (sensor.dark_fraction)
   std::vector<std::string> warnings;  // what was asked and could not be done (a partition with no room for it, ...)
 
   const WallTruth* findWall(const std::string& id) const;

@@ -5,7 +5,10 @@
 #include "sim/world/site_draws.hpp"
 #include "sim/world/site_mesh.hpp"
 #include "sim/world/site_partitions.hpp"
+#include "sim/world/site_people.hpp"
 #include "sim/world/world_impl.hpp"
+
+#include "sim/base/seeded_random.hpp"
 
 #include <cmath>
 #include <limits>
@@ -50,6 +53,27 @@ void appendDoorLeaf(ComposedStorey& out, const PlanStorey& plan, const bim::Mesh
   }
   const auto moved = [&](const Eigen::Vector2d& p) { return (motion * Eigen::Vector3d(p.x(), p.y(), 0.0)).head<2>().eval(); };
   appendBox(out, door.id, "DoorLeaf", moved(a), moved(b), config.leaf_thickness_m, box.z_min, box.z_max);
+}
+
+// Dark elements: a fraction of the storey's opaque elements, each drawn from the seed in part order,
+// (their own stream), whose triangles lose returns with sensor.dark_dropout; opaque glass with glass_dropout.
+std::vector<float> darkTriangles(const ComposedStorey& storey, std::size_t index, const SiteSensor& sensor,
+                                 std::uint64_t seed, std::vector<std::string>& dark) {
+  std::vector<float> table;
+  const bool darks = sensor.dark_fraction > 0.0 && sensor.dark_dropout > 0.0;
+  if (!darks && sensor.glass_dropout <= 0.0) return table;
+  table.assign(storey.mesh.triangles.size(), 0.0f);
+  SeededRandom random(seed ^ (0xDA7Cull * (index + 1)), RandomStream::SiteSensor);
+  for (const bim::MeshPart& part : storey.parts) {
+    const bool is_dark = random.uniform() < sensor.dark_fraction && darks;
+    // Glass left opaque (no pass fraction) is still glass to the sensor: it loses returns too.
+    const double p = std::max(is_dark ? sensor.dark_dropout : 0.0, glassClass(part).empty() ? 0.0 : sensor.glass_dropout);
+    if (is_dark) dark.push_back(part.id);
+    if (p <= 0.0) continue;
+    for (std::uint32_t t = part.first_triangle; t < part.first_triangle + part.triangle_count && t < table.size(); ++t)
+      table[t] = static_cast<float>(p);
+  }
+  return table;
 }
 
 }  // namespace
@@ -143,6 +167,7 @@ World World::withSite(const SiteConfig& config, std::uint64_t seed) const {
                      motions[static_cast<std::size_t>(leaf.host)], leaf.state, config.doors);
     placePartitions(storey, s, config.walls, motions, door_centres, seed, composed, truth);
     placeClutter(storey, s, config.clutter, motions, door_centres, seed, composed, truth);
+    impl->triangle_dropout.push_back(darkTriangles(composed, s, config.sensor, seed, truth.dark));
     composed.glass.seed = seed;
     impl->building.storeys[s].mesh = std::move(composed.mesh);
     impl->building.storeys[s].mesh_parts = std::move(composed.parts);
@@ -151,8 +176,15 @@ World World::withSite(const SiteConfig& config, std::uint64_t seed) const {
   }
   for (const auto& [type, fraction] : config.glass.pass_fraction)
     if (fraction > 0.0) truth.glass.push_back({type, fraction, glass_count[type]});
+  truth.sensor = config.sensor;
+  impl->glass_dropout = static_cast<float>(config.sensor.glass_dropout);
+  impl->any_dropout = impl->glass_dropout > 0.0f;
+  for (const auto& table : impl->triangle_dropout) impl->any_dropout = impl->any_dropout || !table.empty();
   impl->build();
-  return World(std::move(impl));
+  World world(std::move(impl));
+  // People walk the site as built (its walls, shut doors, clutter): placed in the built world.
+  placePeople(world, config.people, seed, world.impl_->truth);
+  return world;
 }
 
 const SiteTruth& World::siteTruth() const { return impl_->truth; }

@@ -43,10 +43,11 @@ void World::Impl::build() {
     RTCScene scene = rtcNewScene(device);
     // Robust: rays graze wall corners and door jambs all the time.
     rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+    opaque_geometry.push_back(RTC_INVALID_GEOMETRY_ID);
     if (!mesh.empty()) {
       RTCGeometry geometry = newTriangleGeometry(device, mesh);
       rtcCommitGeometry(geometry);
-      rtcAttachGeometry(scene, geometry);
+      opaque_geometry.back() = rtcAttachGeometry(scene, geometry);
       rtcReleaseGeometry(geometry);
     }
     if (!glass[s]) glass[s] = std::make_unique<GlassLayer>();
@@ -56,6 +57,12 @@ void World::Impl::build() {
     // The robot never walks through glass: Bullet has the glazing as solid as the rest.
     bullet.push_back(makeBullet({&building.storeys[s].mesh, &glass[s]->mesh}));
   }
+}
+
+float World::Impl::dropout(std::size_t storey, unsigned geometry, unsigned triangle) const {
+  if (geometry != opaque_geometry[storey]) return glass_dropout;
+  if (storey >= triangle_dropout.size() || triangle >= triangle_dropout[storey].size()) return 0.0f;
+  return triangle_dropout[storey][triangle];
 }
 
 std::unique_ptr<BulletStorey> World::Impl::makeBullet(const std::vector<bim::TriangleMesh*>& meshes) {
@@ -197,6 +204,7 @@ RayHit World::castRay(std::size_t storey, const Eigen::Vector3f& origin, const E
   }
   hit.range_m = rh.ray.tfar;
   hit.normal = normalFacing({rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}, dir);
+  hit.dropout = impl_->any_dropout ? impl_->dropout(storey, rh.hit.geomID, rh.hit.primID) : 0.0f;
   return hit;
 }
 
@@ -219,10 +227,12 @@ void World::castRays16(std::size_t storey, const Eigen::Vector3f origins[16], co
   for (int i = 0; i < count; ++i) {
     if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
       hits[i].range_m = kInf;
+      hits[i].dropout = 0.0f;
       continue;
     }
     hits[i].range_m = rh.ray.tfar[i];
     hits[i].normal = normalFacing({rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]}, dirs[i]);
+    hits[i].dropout = impl_->any_dropout ? impl_->dropout(storey, rh.hit.geomID[i], rh.hit.primID[i]) : 0.0f;
   }
 }
 

@@ -17,6 +17,7 @@ namespace bimloc::sim {
 struct RayHit {
   float range_m = 0.0f;  // +inf when the ray hits nothing within its range
   Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // unit geometric normal, facing the ray
+  float dropout = 0.0f;  // probability the sensor loses this return (a site's glass, dark surfaces)
   bool hit() const;
 };
 

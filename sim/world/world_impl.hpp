@@ -53,12 +53,18 @@ struct World::Impl {
   std::shared_ptr<const std::vector<PlanStorey>> plan;
   std::vector<std::unique_ptr<GlassLayer>> glass;  // per storey (empty: no glass passes rays)
   SiteTruth truth;
+  // Sensor dropout (SiteSensor): per storey, per opaque triangle (empty: none), and for glass.
+  std::vector<std::vector<float>> triangle_dropout;
+  float glass_dropout = 0.0f;
+  bool any_dropout = false;  // any of the above non-zero: the plan's world skips the look-up
+  std::vector<unsigned> opaque_geometry;  // per storey: the opaque mesh's Embree geometry id
   RTCDevice device = nullptr;
   std::vector<RTCScene> scenes;
   std::vector<std::unique_ptr<BulletStorey>> bullet;
 
   ~Impl();
   void build();
+  float dropout(std::size_t storey, unsigned geometry, unsigned triangle) const;
   static std::unique_ptr<BulletStorey> makeBullet(const std::vector<bim::TriangleMesh*>& meshes);
 };
 
