@@ -25,6 +25,11 @@ set_target_properties(bimloc_localizer PROPERTIES
   EXPORT_NAME localizer
   VERSION ${PROJECT_VERSION}
   SOVERSION ${PROJECT_VERSION_MAJOR})
+# Shared code is compiled -fPIC, where GCC assumes any exported function may be replaced at
+# load time (ELF interposition) and so stops inlining calls to them inside the library; nobody
+# interposes ours, so the library keeps the code a static build had (GCC manual,
+# -fno-semantic-interposition).
+target_compile_options(bimloc_localizer PRIVATE $<$<CXX_COMPILER_ID:GNU,Clang>:-fno-semantic-interposition>)
 # The public headers are C++17 (std::optional): a consumer's target gets at least that.
 target_compile_features(bimloc_localizer PUBLIC cxx_std_17)
 

@@ -41,6 +41,23 @@ foreach(h ${headers})
   endif()
 endforeach()
 
+# SameMajorVersion: 0.1.0 satisfies requests for 0.0.5 and 0.1, not 0.2 (newer) nor 1.0.
+function(version_compatible requested result)
+  set(PACKAGE_FIND_VERSION ${requested})
+  string(REPLACE "." ";" parts ${requested})
+  list(GET parts 0 PACKAGE_FIND_VERSION_MAJOR)
+  include("${prefix}/${LIBDIR}/cmake/bimloc/bimlocConfigVersion.cmake")
+  set(${result} ${PACKAGE_VERSION_COMPATIBLE} PARENT_SCOPE)
+endfunction()
+foreach(case "0.0.5;TRUE" "0.1;TRUE" "0.2;FALSE" "1.0;FALSE")
+  list(GET case 0 requested)
+  list(GET case 1 want)
+  version_compatible(${requested} got)
+  if(NOT "${got}" STREQUAL "${want}")
+    message(FATAL_ERROR "find_package(bimloc ${requested}): compatible is '${got}', expected ${want}")
+  endif()
+endforeach()
+
 # With the bench, the command is installed and finds the installed localizer ($ORIGIN/../lib).
 if(WITH_SIM)
   run("the installed bimloc command" "${prefix}/bin/bimloc" --help)
