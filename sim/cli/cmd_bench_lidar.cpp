@@ -2,7 +2,6 @@
 // The full VLP-16 model (noise, fields, distortion, packets) against a bare rtcIntersect1
 // loop over exactly the same rays on the same scene, in the same run.
 #include "sim/cli/commands.hpp"
-#include "sim/cli/site_preset_check.hpp"
 #include "sim/cli/table.hpp"
 #include "sim/lidar/vlp16.hpp"
 #include "sim/world/world.hpp"
@@ -161,6 +160,6 @@ void addBenchLidarCommand(CLI::App& bench) {
   cmd->add_option("--site", args->site,
                   "also time the model on this site of the plan (as_built, construction, heavy; seed 1), interleaved "
                   "with the others: site_vs_exact is its speed over the plan's world's")
-      ->check(bimloc::cli::sitePresetCheck());
+      ->check(bimloc::cli::siteCheck());
   cmd->callback([args] { run(*args); });
 }

@@ -4,7 +4,6 @@
 // fast, how accurately, and the smallest path-evidence margin a convergence was accepted at.
 // Generated worlds come from `bimloc worldgen --random`: this command only runs plans.
 #include "sim/cli/commands.hpp"
-#include "sim/cli/site_preset_check.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
 #include "sim/cli/sweep_sites.hpp"
@@ -167,12 +166,12 @@ void addSweepCommand(CLI::App& app) {
   cmd->add_option("--site", args->site,
                   "every run on a site that is not its plan: exact, as_built, construction or heavy (the localizer "
                   "still gets only the plan); one sweep per preset gives the robustness table")
-      ->check(bimloc::cli::sitePresetCheck());
+      ->check(bimloc::cli::siteCheck());
   cmd->add_option("--sites", args->sites,
                   "robustness sweep: the same starts on each of these site presets (comma-separated, in order of "
                   "deviation: exact,as_built,construction,heavy); a row per preset and method")
       ->delimiter(',')
-      ->check(bimloc::cli::sitePresetCheck())
+      ->check(bimloc::cli::siteCheck())
       ->excludes("--site");
   cmd->add_option("--methods", args->methods,
                   "robustness sweep: each of these methods (comma-separated, any --method value) on every preset")

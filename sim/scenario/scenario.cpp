@@ -119,8 +119,8 @@ Scenario loadScenario(const std::string& path) {
   if (s.storey == "auto" && !s.localizer.contains("storey")) s.localizer["storey"] = "auto";
   s.seed = readSeed(top);
   s.site = detail::readSite(top, s.lines);
-  for (PersonPath& path : s.site.people.paths)  // a person walks the robot's storey unless told
-    if (path.storey.empty() && s.storey != "auto") path.storey = s.storey;
+  for (PersonPath& person : s.site.people.paths)  // a person walks the robot's storey unless told
+    if (person.storey.empty() && s.storey != "auto") person.storey = s.storey;
   s.expect = detail::readExpect(top);
   for (const auto& key : top.given()) s.lines.emplace(key, top.line(key));
   readLocalizerSettings(s.localizer, path, s.lines);  // a key the localizer would reject fails here, at its line
