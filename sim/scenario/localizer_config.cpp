@@ -133,6 +133,7 @@ std::vector<Field> ndtFields(peers::NdtConfig& c) {
           {"ndt_max_iterations", &c.ndt_max_iterations, closed(1, 1000)},
           {"ndt_epsilon_m", &c.ndt_epsilon_m, positive(1)},
           {"downsample_m", &c.downsample_m, closed(0.01, 2)},
+          {"ndt_max_points", &c.ndt_max_points, closed(10, 1e7)},
           {"max_range_m", &c.max_range_m, positive(1000)},
           {"update_min_d_m", &c.update_min_d_m, closed(0, 100)},
           {"update_min_a_rad", &c.update_min_a_rad, closed(0, 2 * M_PI)},

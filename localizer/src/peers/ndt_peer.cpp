@@ -80,7 +80,7 @@ class NdtPeer : public PeerLocalizer {
   }
 
  private:
-  // Finite points within max_range_m, on hdl_localization's voxel grid.
+  // Finite points within max_range_m, on hdl_localization's voxel grid, at most ndt_max_points.
   Cloud3 cleanScan(const std::vector<Eigen::Vector3f>& points, std::vector<std::string>& warnings) {
     const Cloud3 valid = planes::detail::validPoints(points, 0.0, c_.max_range_m);
     std::size_t nonfinite = 0;
@@ -89,7 +89,12 @@ class NdtPeer : public PeerLocalizer {
       warnings.push_back("ndt: " + std::to_string(nonfinite) + " non-finite scan points dropped (warned once)");
       warned_nonfinite_ = true;
     }
-    return planes::detail::voxelDownsample(valid, c_.downsample_m);
+    Cloud3 down = planes::detail::voxelDownsample(valid, c_.downsample_m);
+    if (static_cast<int>(down.size()) <= c_.ndt_max_points) return down;
+    const std::size_t stride = (down.size() + c_.ndt_max_points - 1) / c_.ndt_max_points;
+    Cloud3 kept;
+    for (std::size_t i = 0; i < down.size(); i += stride) kept.push_back(down[i]);
+    return kept;
   }
 
   // The scan's slice: the points in the band about the lidar's height, in the level base frame

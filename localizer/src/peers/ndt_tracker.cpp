@@ -1,6 +1,6 @@
 #include "peers/ndt_tracker.hpp"
 
-#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/console/print.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/registration/ndt.h>
@@ -11,6 +11,13 @@ namespace bimloc::peers {
 using PclCloud = pcl::PointCloud<pcl::PointXYZ>;
 
 namespace {
+// PCL prints to stderr (a flat voxel's "Invalid eigen value"); the library stays quiet.
+struct QuietPcl {
+  pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel();
+  QuietPcl() { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
+  ~QuietPcl() { pcl::console::setVerbosityLevel(level); }
+};
+
 PclCloud::Ptr toPcl(const Cloud3& points) {
   PclCloud::Ptr out(new PclCloud);
   out->reserve(points.size());
@@ -55,6 +62,7 @@ NdtTracker::NdtTracker(const Cloud3& map, const NdtConfig& config) : impl_(std::
   m.ndt.setMaximumIterations(config.ndt_max_iterations);
   // PCL 1.13 ends when the squared translation of a step is below the epsilon (ndt.hpp).
   m.ndt.setTransformationEpsilon(config.ndt_epsilon_m * config.ndt_epsilon_m);
+  const QuietPcl quiet;
   m.ndt.setInputTarget(m.map);
   m.ndt.setSearchMethodTarget(m.tree, true);  // the tree above, never rebuilt
 }
@@ -69,6 +77,7 @@ NdtAlignment NdtTracker::align(const Cloud3& scan, const Eigen::Isometry3d& gues
   PclCloud::Ptr source = toPcl(scan);
   if (!ready() || source->empty()) return a;
   Impl& m = *impl_;
+  const QuietPcl quiet;
   m.ndt.setInputSource(source);
   PclCloud aligned;
   m.ndt.align(aligned, guess_map_lidar.matrix().cast<float>());
