@@ -78,8 +78,8 @@ TEST(LocalizerConfig, MistakesAreErrorsAtTheirLine) {
   EXPECT_TRUE(has(e, ":2: localizer.pf.particles: expected a whole number")) << e;
   e = errorOf("planes:\n  voxel_size_m: 7\n");
   EXPECT_TRUE(has(e, ":2: localizer.planes.voxel_size_m: 7 is outside")) << e;
-  e = errorOf("method: amcl\n");
-  EXPECT_TRUE(has(e, ":1: localizer.method: expected sgraph, pf or pf-no-rooms")) << e;
+  e = errorOf("method: hdl\n");
+  EXPECT_TRUE(has(e, ":1: localizer.method: expected sgraph, pf, pf-no-rooms, amcl or ndt")) << e;
   e = errorOf("pf: {use_hypotheses: 1}\n");
   EXPECT_TRUE(has(e, "expected true or false")) << e;
   e = errorOf("sgraph: 3\n");

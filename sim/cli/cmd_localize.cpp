@@ -1,39 +1,142 @@
-// bimloc localize DATASET --plan PLAN [--storey S|auto] [--method sgraph|pf|pf-no-rooms|amcl|ndt] [--config FILE.yaml] [--json]
-// The same localizer as `bimloc run`, offline, on a recorded dataset.
+// bimloc localize INPUT --plan PLAN [--storey S|auto] [--method ...] [--config FILE.yaml] [--json] [--out DIR]
+//   INPUT: a dataset folder of `bimloc simulate`, or a ROS1 bag (recorded on a robot, or the
+//   dataset.bag of `simulate`): [--cloud-topic T] [--odom-topic T] [--odom-frame F]
+//   [--base-frame F] [--mount x,y,z,roll,pitch,yaw] [--truth-topic T] [--no-deskew]
+// The same localizer as `bimloc run`, offline, on a recording; one loop for both kinds
+// (sim/runner/localize_recording.hpp).
 #include "sim/cli/commands.hpp"
+#include "sim/cli/localize_output.hpp"
 #include "sim/cli/run_report.hpp"
-#include "sim/dataset/dataset_reader.hpp"
-#include "sim/metrics/map_error.hpp"
-#include "sim/runner/evaluation.hpp"
+#include "sim/dataset/bag_reader.hpp"
+#include "sim/dataset/deskew.hpp"
+#include "sim/runner/localize_recording.hpp"
 #include "sim/world/world.hpp"
 
 #include <bimloc/bim/ifc_reader.hpp>
 
 #include <chrono>
+#include <filesystem>
 #include <iostream>
+#include <sstream>
 
 namespace {
 
 using namespace bimloc::sim;
 
 struct LocalizeArgs {
-  std::string dataset;
+  std::string input;
   std::string plan;
   std::string storey;
   std::string method = "sgraph";
   std::string config;
+  std::string out;
   std::uint64_t seed = 0;
   bool json = false;
+  BagInputOptions bag;
+  std::string mount;
+  bool no_deskew = false;
 };
+
+// "x,y,z,roll,pitch,yaw" (metres, radians; R = Rz(yaw) Ry(pitch) Rx(roll), as ROS's RPY).
+Eigen::Isometry3d parseMount(const std::string& text) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) {
+    std::size_t used = 0;
+    double x = 0;
+    try {
+      x = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(x))
+      throw std::runtime_error("--mount: '" + item + "' is not a number (expected x,y,z,roll,pitch,yaw in m and rad)");
+    v.push_back(x);
+  }
+  if (v.size() != 6) throw std::runtime_error("--mount: expected 6 numbers x,y,z,roll,pitch,yaw (m, rad), got " + std::to_string(v.size()));
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+  return T;
+}
+
+// What the loop needs of a recording, whichever its kind.
+struct Recording {
+  Eigen::Isometry3d T_base_lidar = Eigen::Isometry3d::Identity();
+  std::string storey;  // as recorded, may be empty
+  std::vector<StampedPose> ground_truth;
+  double start_s = 0;
+  TurnSource turns;
+  std::string input_bag;  // the bag, for localized.bag
+  std::vector<std::string> notes;  // where the odometry and mount came from
+  // Keeps what `turns` reads from alive.
+  std::shared_ptr<RecordedDataset> dataset;
+  std::shared_ptr<BagInput> bag;
+};
+
+Recording openDataset(const std::string& dir) {
+  Recording rec;
+  rec.dataset = std::make_shared<RecordedDataset>(readDataset(dir));
+  const RecordedDataset& data = *rec.dataset;
+  rec.T_base_lidar = data.T_base_lidar;
+  rec.storey = data.storey;
+  rec.ground_truth = data.ground_truth;
+  rec.start_s = data.scans.front().stamp_s;
+  rec.turns = [d = rec.dataset](const std::function<void(const RecordedTurn&)>& visit) {
+    for (const auto& scan : d->scans) {
+      RecordedTurn turn;
+      turn.stamp_s = scan.stamp_s + 0.5 * d->turn_period_s;  // mid-turn, as the runner
+      turn.T_odom_base = nearest(d->odometry, turn.stamp_s).pose;
+      // The scan's file is read only when the localizer looks at it, as the runner extracts planes.
+      turn.points = [file = scan.file] { return readPcdPoints(file); };
+      turn.name = scan.file;
+      visit(turn);
+    }
+  };
+  return rec;
+}
+
+Recording openBag(const std::string& path, const BagInputOptions& options) {
+  Recording rec;
+  rec.bag = std::make_shared<BagInput>(path, options);
+  const BagInput& bag = *rec.bag;
+  rec.T_base_lidar = bag.T_base_lidar();
+  rec.ground_truth = bag.groundTruth();
+  rec.input_bag = path;
+  rec.notes = {"odometry: " + bag.odometrySource(), "mount: " + bag.mountSource(),
+               std::string("de-skew: ") + (bag.timed() && options.deskew ? "on (per-point time)" : "off")};
+  rec.turns = [b = rec.bag](const std::function<void(const RecordedTurn&)>& visit) {
+    b->forEachTurn([&](const BagTurn& t) {
+      RecordedTurn turn;
+      turn.stamp_s = t.stamp_s;
+      // Interpolated at the turn's middle, the instant its points are de-skewed to.
+      turn.T_odom_base = interpolatePose(b->odometry(), t.stamp_s);
+      turn.points = t.points;
+      turn.name = b->path() + ": message " + std::to_string(t.index);
+      visit(turn);
+    });
+  };
+  rec.start_s = bag.firstTurnStamp() - 0.5 * bag.turnPeriod();
+  return rec;
+}
 
 void run(const LocalizeArgs& args) {
   const auto start = std::chrono::steady_clock::now();
-  const RecordedDataset data = readDataset(args.dataset);
+  const bool is_bag = !std::filesystem::is_directory(args.input) && isRosBag(args.input);
+  if (!is_bag && !std::filesystem::is_directory(args.input) && std::filesystem::exists(args.input) &&
+      args.input.size() > 4 && args.input.substr(args.input.size() - 4) == ".bag")
+    throw std::runtime_error(args.input + ": not a ROS1 bag (no '#ROSBAG V2.0' at its start)");
+  BagInputOptions bag_options = args.bag;
+  if (!args.mount.empty()) bag_options.mount = parseMount(args.mount);
+  bag_options.deskew = !args.no_deskew;
+  Recording rec = is_bag ? openBag(args.input, bag_options) : openDataset(args.input);
   const bimloc::bim::Building building = bimloc::bim::readIfc(args.plan, {});
   const bool storey_auto = args.storey == "auto";
   // The true storey, for scoring: as recorded (with auto, the localizer is not told it).
   const std::string storey_name =
-      !args.storey.empty() && !storey_auto ? args.storey : (data.storey.empty() ? "0" : data.storey);
+      !args.storey.empty() && !storey_auto ? args.storey : (rec.storey.empty() ? "0" : rec.storey);
   const bimloc::bim::Storey* storey = building.findStorey(storey_name);
   if (!storey) throw std::runtime_error(args.plan + ": no storey '" + storey_name + "'");
   const auto truth_storey = static_cast<std::size_t>(storey - building.storeys.data());
@@ -43,48 +146,47 @@ void run(const LocalizeArgs& args) {
   if (!args.method.empty()) config.method = *bimloc::methodFromString(args.method);
   config.seed = args.seed;
   config.storey = storey_auto || settings.storey_auto ? std::string() : storeyKey(building, truth_storey);
-  bimloc::Localizer localizer(building, data.T_base_lidar, config);
-  RunScore score(building, truth_storey);
+  bimloc::Localizer localizer(building, rec.T_base_lidar, config);
   ScenarioResult r;
-  r.name = args.dataset, r.plan = args.plan, r.storey = storey->name, r.method = bimloc::toString(config.method), r.seed = args.seed;
+  r.name = args.input, r.plan = args.plan, r.storey = storey->name, r.method = bimloc::toString(config.method), r.seed = args.seed;
   r.storey_auto = config.storey.empty();
   r.start_room = "(unknown)";
-  std::optional<bimloc::LocalizationResult> last;
-  MapErrorSampler map_error(building);  // the scans placed with the estimate against the plan's mesh
-  for (const auto& scan : data.scans) {
-    const double t = scan.stamp_s + 0.5 * data.turn_period_s;  // mid-turn, as the runner
-    // The scan's file is read only when the localizer looks at it, as the runner extracts planes.
-    last = localizer.step(t, nearest(data.odometry, t).pose, [&scan] { return readPcdPoints(scan.file); });
-    if (last->filter && last->filter->decided && !r.storey_margin && r.storey_auto) r.storey_margin = last->filter->storey_margin;
-    for (const auto& w : last->warnings) r.warnings.push_back(scan.file + ": " + w);
-    map_error.step(*last, data.T_base_lidar, [&scan] { return readPcdPoints(scan.file); });
-    if (!data.ground_truth.empty()) score.add(t - data.scans.front().stamp_s, *last, nearest(data.ground_truth, t).pose);
+
+  std::unique_ptr<bimloc::cli::LocalizeOutput> output;
+  if (!args.out.empty()) {
+    bimloc::cli::LocalizeOutputFrames frames;
+    frames.odom = args.bag.odom_frame, frames.base = args.bag.base_frame, frames.tf_topic = args.bag.tf_topic;
+    output = std::make_unique<bimloc::cli::LocalizeOutput>(args.out, rec.input_bag, frames, building, localizer);
   }
-  if (data.ground_truth.empty()) {
-    r.converged = last && last->convergence_stamp_s;
-    if (last && last->storey) r.found_storey = building.storeys[*last->storey].name;
-    r.losses = last ? last->losses : 0;
-  } else {
-    score.finish(r);
-  }
-  if (const auto* tracker = localizer.tracker())
-    for (const auto& w : tracker->wallDeviations()) r.wall_deviations.push_back({w, std::nullopt, std::nullopt});
-  r.map_rmse_m = map_error.rmse_m();
-  r.sim_seconds = data.scans.empty() ? 0.0 : data.scans.back().stamp_s - data.scans.front().stamp_s + data.turn_period_s;
+  TurnObserver observe;
+  if (output)
+    observe = [&](const RecordedTurn& turn, const bimloc::LocalizationResult& step) {
+      std::optional<Eigen::Isometry3d> truth;
+      if (!rec.ground_truth.empty()) truth = nearest(rec.ground_truth, turn.stamp_s).pose;
+      output->step(turn, step, truth);
+    };
+  RecordingRun recording =
+      localizeRecording(building, truth_storey, localizer, rec.T_base_lidar, rec.turns, rec.start_s, rec.ground_truth, r, observe);
+  r = std::move(recording.result);
+  const auto& last = recording.last;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  r.passed = r.converged && !r.false_convergence;
   const auto report = bimloc::cli::runReport({r}, r.wall_seconds);
+  if (output) output->commit(report, r);
   if (args.json) {
     std::cout << report.dump() << "\n";
   } else {
     bimloc::cli::printRunTable({r}, report, std::cout);
+    for (const auto& note : rec.notes) std::cout << note << "\n";
     if (last && last->T_map_odom) {
       const Eigen::Isometry3d& T = *last->T_map_odom;
       const Eigen::Quaterniond q(T.linear());
       std::cout << "map <- odom: xyz " << T.translation().transpose() << ", quaternion xyzw " << q.x() << " " << q.y() << " "
                 << q.z() << " " << q.w() << " (" << bimloc::toString(last->state) << ")\n";
     }
-    if (data.ground_truth.empty()) std::cout << "(no ground_truth.tum: errors not evaluated)\n";
+    if (rec.ground_truth.empty())
+      std::cout << (is_bag ? "(no " + args.bag.truth_topic + " in the bag: errors not evaluated)\n"
+                           : std::string("(no ground_truth.tum: errors not evaluated)\n"));
+    if (output) std::cout << "wrote " << args.out << "/ (trajectory.tum" << (is_bag ? ", localized.bag" : "") << ", report.json, snapshots/)\n";
   }
   // As `run`: a run that did not localize, or localized falsely, fails.
   if (!r.passed) throw bimloc::cli::ExitCode{1};
@@ -96,10 +198,12 @@ void addLocalizeCommand(CLI::App& app) {
   auto args = std::make_shared<LocalizeArgs>();
   CLI::App* cmd = app.add_subcommand(
       "localize",
-      "Run the localizer offline on a dataset in the form `bimloc simulate` writes (clouds/*.pcd with\n"
-      "clouds/index.csv, odometry.tum, metadata.json with the mount; ground_truth.tum if known) against a plan:\n"
-      "global localization, then map <- odom. Scored like `bimloc run` when ground truth is present.");
-  cmd->add_option("dataset", args->dataset, "dataset folder")->required();
+      "Run the localizer offline on a recording against a plan: global localization, then map <- odom. The\n"
+      "recording is a dataset folder in the form `bimloc simulate` writes (clouds/*.pcd with clouds/index.csv,\n"
+      "odometry.tum, metadata.json with the mount; ground_truth.tum if known) or a ROS1 bag (sensor_msgs/PointCloud2\n"
+      "of a Velodyne driver; nav_msgs/Odometry or /tf odom -> base_link; the mount on /tf_static or --mount).\n"
+      "Scored like `bimloc run` when ground truth is present.");
+  cmd->add_option("input", args->input, "dataset folder or ROS1 .bag")->required();
   cmd->add_option("--plan", args->plan, "IFC plan")->required();
   cmd->add_option("--storey", args->storey,
                   "storey name or index (default: as recorded, else 0); auto: not told, every storey with walls and rooms "
@@ -112,5 +216,22 @@ void addLocalizeCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--seed", args->seed, "seed of the filter")->capture_default_str();
   cmd->add_flag("--json", args->json, "print one JSON object");
+  cmd->add_option("--out", args->out,
+                  "write trajectory.tum (map <- base_link), localized.bag (bag input: + /tf map -> odom, /localization), "
+                  "report.json and snapshots/ into this folder, all or nothing");
+  auto* bag = cmd->add_option_group("bag input", "for a ROS1 bag");
+  bag->add_option("--cloud-topic", args->bag.cloud_topic, "sensor_msgs/PointCloud2 with fields x, y, z (time: de-skew)")
+      ->capture_default_str();
+  bag->add_option("--odom-topic", args->bag.odom_topic,
+                  "nav_msgs/Odometry; when absent (and not given), /tf ODOM_FRAME -> BASE_FRAME is the odometry")
+      ->capture_default_str()
+      ->each([args](const std::string&) { args->bag.odom_topic_given = true; });
+  bag->add_option("--odom-frame", args->bag.odom_frame, "odometry frame (REP 105)")->capture_default_str();
+  bag->add_option("--base-frame", args->bag.base_frame, "robot frame: the localized pose is of it")->capture_default_str();
+  bag->add_option("--mount", args->mount,
+                  "lidar mount base_frame -> cloud frame as x,y,z,roll,pitch,yaw (m, rad); default: from /tf_static or /tf");
+  bag->add_option("--truth-topic", args->bag.truth_topic, "nav_msgs/Odometry ground truth in map, scored when present")
+      ->capture_default_str();
+  bag->add_flag("--no-deskew", args->no_deskew, "use the clouds as they are, even with a per-point time field");
   cmd->callback([args] { run(*args); });
 }

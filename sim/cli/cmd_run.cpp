@@ -84,6 +84,18 @@ void run(const RunArgs& args) {
 
 }  // namespace
 
+CLI::Validator bimloc::cli::siteCheck() {
+  return CLI::Validator(
+      [](const std::string& v) {  // a typo gets the nearest preset, as in scenario files
+        const auto& names = sitePresetNames();
+        if (std::find(names.begin(), names.end(), v) != names.end()) return std::string();
+        const std::string guess = bimloc::sim::detail::nearestWord(v, names);
+        return "no site preset '" + v + "' (exact, as_built, construction, heavy)" +
+               (guess.empty() ? std::string() : "; did you mean '" + guess + "'?");
+      },
+      "");
+}
+
 void addRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand(
@@ -133,13 +145,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--site", args->site,
                   "simulate every scenario on a site that is not its plan: exact, as_built, construction or heavy "
                   "(replaces the scenarios' site: sections; the localizer still gets only the plan)")
-      ->check([](const std::string& v) {  // a typo gets the nearest preset, as in scenario files
-        const auto& names = sitePresetNames();
-        if (std::find(names.begin(), names.end(), v) != names.end()) return std::string();
-        const std::string guess = bimloc::sim::detail::nearestWord(v, names);
-        return "no site preset '" + v + "' (exact, as_built, construction, heavy)" +
-               (guess.empty() ? std::string() : "; did you mean '" + guess + "'?");
-      });
+      ->check(bimloc::cli::siteCheck());
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->callback([args, method, duration] {
     args->method_given = method->count() > 0;

@@ -17,6 +17,9 @@ inline constexpr const char* kMethodHelp =
     "amcl (peer: ROS-style AMCL on a 2D slice of the plan) or ndt (peer: HDL-style branch-and-bound, then NDT)";
 inline CLI::IsMember methodCheck() { return CLI::IsMember({"sgraph", "pf", "pf-no-rooms", "amcl", "ndt"}); }
 
+// `--site PRESET`: one of sim/world/site_config.hpp's presets; a typo gets the nearest one.
+CLI::Validator siteCheck();
+
 }  // namespace bimloc::cli
 
 void addExtractCommand(CLI::App& app);
@@ -31,3 +34,4 @@ void addSimulateCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
 void addLocalizeCommand(CLI::App& app);
 void addSweepCommand(CLI::App& app);
+void addCompareCommand(CLI::App& app);

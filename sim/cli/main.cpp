@@ -2,6 +2,8 @@
 #include "sim/cli/commands.hpp"
 #include "sim/world/interrupt_cleanup.hpp"
 
+#include <bimloc/verbosity.hpp>
+
 #include <iostream>
 
 int main(int argc, char** argv) {
@@ -10,12 +12,18 @@ int main(int argc, char** argv) {
   CLI::App app{"bimloc: robot localization from building plans (BIM/IFC), and the simulator that tests it.\n"
                "Run 'bimloc SUBCOMMAND --help' for the options of each subcommand."};
   app.require_subcommand(1);
+  // Anywhere on the line (`bimloc --verbose localize ...` or `bimloc localize ... --verbose`: the
+  // subcommands pass options they do not know to here): the libraries' own messages (PCL) are
+  // shown; without it they stay off the results.
+  app.add_flag_callback("--verbose", [] { bimloc::setVerbose(true); }, "show the libraries' own messages (PCL)");
+  app.fallthrough();
   addExtractCommand(app);
   addWorldgenCommand(app);
   addSimulateCommand(app);
   addRunCommand(app);
   addLocalizeCommand(app);
   addSweepCommand(app);
+  addCompareCommand(app);
   addBenchCommand(app);
   try {
     app.parse(argc, argv);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
 #include <thread>
 
 namespace bimloc::cli {
@@ -20,18 +21,39 @@ const World& WorldCache::get(const std::string& path) {
   return *it->second;
 }
 
-ScenarioResult runChecked(const Scenario& s, const World& world, bool room_mode, const SnapshotHook& hook,
-                          std::vector<TraceRow>* trace) {
+namespace {
+
+void addWarning(ScenarioResult& r, const std::string& w) { r.warnings.insert(r.warnings.begin(), w); }
+void addWarning(std::vector<ScenarioResult>& rs, const std::string& w) {
+  for (auto& r : rs) addWarning(r, w);
+}
+
+// `run` on the scenario checked against its world, or in room mode, when that finds no path
+// out of the start room, on the same scenario walking inside it.
+template <typename Run>
+auto checked(const Scenario& s, const World& world, bool room_mode, std::vector<TraceRow>* trace, const Run& run) {
   try {
     checkScenarioAgainstWorld(s, world);
-    return runScenario(s, world, hook, trace);
+    return run(s);
   } catch (const ScenarioError& e) {
     if (!room_mode) throw;
     if (trace) trace->clear();
-    ScenarioResult r = runScenario(stayInRoom(s), world, hook, trace);
-    r.warnings.insert(r.warnings.begin(), std::string("no path out of the room, walked inside it: ") + e.what());
+    auto r = run(stayInRoom(s));
+    addWarning(r, std::string("no path out of the room, walked inside it: ") + e.what());
     return r;
   }
+}
+
+}  // namespace
+
+ScenarioResult runChecked(const Scenario& s, const World& world, bool room_mode, const SnapshotHook& hook,
+                          std::vector<TraceRow>* trace) {
+  return checked(s, world, room_mode, trace, [&](const Scenario& one) { return runScenario(one, world, hook, trace); });
+}
+
+std::vector<ScenarioResult> runCheckedMethods(const Scenario& s, const World& world, bool room_mode,
+                                              const std::vector<std::string>& methods) {
+  return checked(s, world, room_mode, nullptr, [&](const Scenario& one) { return runScenarioMethods(one, world, methods); });
 }
 
 namespace {
@@ -91,29 +113,36 @@ void keepStartRooms(std::vector<Scenario>& scenarios, const std::vector<std::str
   scenarios = std::move(kept);
 }
 
-std::vector<PooledRun> runPool(const std::vector<Scenario>& scenarios, const std::vector<bool>& generated, WorldCache& worlds,
-                               const RunPoolOptions& options) {
-  std::vector<PooledRun> runs(scenarios.size());
+void forEachInParallel(std::size_t count, int jobs, const std::string& progress_label,
+                       const std::function<void(std::size_t)>& work) {
   std::atomic<std::size_t> next{0}, done{0};
-  Progress progress(options.progress_label);
+  Progress progress(progress_label);
   std::mutex progress_mutex;
-  const auto work = [&] {
-    for (std::size_t i = next++; i < scenarios.size(); i = next++) {
-      try {
-        runs[i].result = runOne(scenarios[i], worlds, options, i < generated.size() && generated[i]);
-      } catch (const std::exception& e) {
-        runs[i].error = e.what();
-        runs[i].result.name = scenarios[i].name;
-        runs[i].result.failures.push_back(e.what());
-      }
+  const auto worker = [&] {
+    for (std::size_t i = next++; i < count; i = next++) {
+      work(i);
       std::lock_guard<std::mutex> lock(progress_mutex);
-      progress.update(++done, scenarios.size());
+      progress.update(++done, count);
     }
   };
   std::vector<std::thread> pool;
-  for (int j = 1; j < std::min<int>(options.jobs, static_cast<int>(scenarios.size())); ++j) pool.emplace_back(work);
-  work();
+  for (int j = 1; j < std::min<int>(jobs, static_cast<int>(count)); ++j) pool.emplace_back(worker);
+  worker();
   for (auto& t : pool) t.join();
+}
+
+std::vector<PooledRun> runPool(const std::vector<Scenario>& scenarios, const std::vector<bool>& generated, WorldCache& worlds,
+                               const RunPoolOptions& options) {
+  std::vector<PooledRun> runs(scenarios.size());
+  forEachInParallel(scenarios.size(), options.jobs, options.progress_label, [&](std::size_t i) {
+    try {
+      runs[i].result = runOne(scenarios[i], worlds, options, i < generated.size() && generated[i]);
+    } catch (const std::exception& e) {
+      runs[i].error = e.what();
+      runs[i].result.name = scenarios[i].name;
+      runs[i].result.failures.push_back(e.what());
+    }
+  });
   return runs;
 }
 

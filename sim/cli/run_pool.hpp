@@ -4,6 +4,7 @@
 
 #include "sim/runner/run_scenario.hpp"
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -34,6 +35,16 @@ struct RunPoolOptions {
 // of the room: the base walks inside it instead, and the result says so in a warning.
 sim::ScenarioResult runChecked(const sim::Scenario& s, const sim::World& world, bool room_mode,
                                const sim::SnapshotHook& hook = {}, std::vector<sim::TraceRow>* trace = nullptr);
+
+// The same for several methods on one simulation (sim::runScenarioMethods).
+std::vector<sim::ScenarioResult> runCheckedMethods(const sim::Scenario& s, const sim::World& world, bool room_mode,
+                                                   const std::vector<std::string>& methods);
+
+// work(i) for every i in [0, count) on `jobs` threads (the caller's among them), with a
+// progress bar on stderr labelled `progress_label`. `work` must not throw; each i writes its
+// own slot of the caller's results, so they come out in input order whatever `jobs`.
+void forEachInParallel(std::size_t count, int jobs, const std::string& progress_label,
+                       const std::function<void(std::size_t)>& work);
 
 struct PooledRun {
   sim::ScenarioResult result;

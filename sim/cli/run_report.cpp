@@ -3,6 +3,7 @@
 #include "sim/cli/table.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace bimloc::cli {
 namespace {
@@ -36,12 +37,13 @@ nlohmann::json wallsJson(const std::vector<sim::ScenarioResult::WallEstimate>& w
   return out;
 }
 
+}  // namespace
+
 double median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::sort(v.begin(), v.end());
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
-
-}  // namespace
 
 nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double wall_seconds) {
   nlohmann::json scenarios = nlohmann::json::array();

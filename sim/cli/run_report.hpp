@@ -10,6 +10,9 @@
 
 namespace bimloc::cli {
 
+// The middle value (the mean of the middle two for an even count); NaN for none.
+double median(std::vector<double> values);
+
 nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double wall_seconds);
 void printRunTable(const std::vector<sim::ScenarioResult>& results, const nlohmann::json& report, std::ostream& out);
 

@@ -16,22 +16,6 @@ namespace {
 constexpr int kMinSidePx = 160;  // room for two panels and their labels
 constexpr int kMaxSidePx = 16384;
 
-// Whole decades around the finite values, from `floor` up (an error below it, or zero, is
-// "better than we can tell"); a flat series gets a decade of its own.
-void valueRange(const std::vector<double>& values, double floor, double cap, double& lo, double& hi) {
-  double smallest = std::numeric_limits<double>::infinity(), largest = 0;
-  for (const double v : values)
-    if (std::isfinite(v) && v > 0) smallest = std::min(smallest, v), largest = std::max(largest, v);
-  if (!(largest > 0)) {  // nothing to show: a default decade pair
-    lo = 10 * floor;
-    hi = 1000 * floor;
-    return;
-  }
-  lo = std::pow(10.0, std::floor(std::log10(std::max(smallest, floor)) + 1e-9));
-  hi = std::pow(10.0, std::ceil(std::log10(std::min(std::max(largest, lo), cap)) - 1e-9));
-  if (hi <= lo * 1.5) hi = lo * 10;
-}
-
 }  // namespace
 
 Eigen::Vector2d ErrorPlotPanel::toPixel(double time_s, double value) const {
@@ -71,8 +55,8 @@ ErrorPlotLayout errorPlotLayout(const ErrorPlotData& data, const ErrorPlotOption
   p.time_min = t_min;
   p.time_max = t_max;
   l.position = l.yaw = p;
-  valueRange(position, 1e-3, 1e3, l.position.value_min, l.position.value_max);
-  valueRange(yaw, 1e-2, 1e3, l.yaw.value_min, l.yaw.value_max);
+  render::logDecadeRange(position, 1e-3, 1e3, l.position.value_min, l.position.value_max);
+  render::logDecadeRange(yaw, 1e-2, 1e3, l.yaw.value_min, l.yaw.value_max);
 
   // Left: the widest decade label and its tick; top: the header; above each panel its name;
   // below the lower one the time labels and the axis name.

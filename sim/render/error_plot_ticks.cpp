@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace bimloc::sim::render {
 
@@ -42,6 +43,20 @@ std::string tickLabel(double value, double step) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.*f", digits, std::abs(value) < 0.5 * step * 1e-6 ? 0.0 : value);
   return buf;
+}
+
+void logDecadeRange(const std::vector<double>& values, double floor, double cap, double& lo, double& hi) {
+  double smallest = std::numeric_limits<double>::infinity(), largest = 0;
+  for (const double v : values)
+    if (std::isfinite(v) && v > 0) smallest = std::min(smallest, v), largest = std::max(largest, v);
+  if (!(largest > 0)) {  // nothing to show: a default decade pair
+    lo = 10 * floor;
+    hi = 1000 * floor;
+    return;
+  }
+  lo = std::pow(10.0, std::floor(std::log10(std::max(smallest, floor)) + 1e-9));
+  hi = std::pow(10.0, std::ceil(std::log10(std::min(std::max(largest, lo), cap)) - 1e-9));
+  if (hi <= lo * 1.5) hi = lo * 10;
 }
 
 }  // namespace bimloc::sim::render

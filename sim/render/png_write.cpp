@@ -1,5 +1,7 @@
 #include "sim/render/png_write.hpp"
 
+#include "sim/world/atomic_file.hpp"
+
 #include <png.h>
 
 #include <cstring>
@@ -29,6 +31,16 @@ std::string encodePng(const Image& image) {
   bytes.resize(size);
   png_image_free(&png);
   return bytes;
+}
+
+void writePng(const std::string& png_path, const std::function<Image()>& render) {
+  std::string png;
+  try {
+    png = encodePng(render());
+  } catch (const std::exception& e) {
+    throw std::runtime_error(png_path + ": " + e.what());
+  }
+  writeFileAtomically(png_path, png);  // names the path itself, and leaves no file on failure
 }
 
 }  // namespace bimloc::sim::render

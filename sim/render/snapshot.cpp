@@ -4,7 +4,6 @@
 #include "sim/render/layers.hpp"
 #include "sim/render/layout.hpp"
 #include "sim/render/png_write.hpp"
-#include "sim/world/atomic_file.hpp"
 
 #include <stdexcept>
 
@@ -27,13 +26,7 @@ Image renderSnapshotImage(const SnapshotScene& scene, const SnapshotOptions& opt
 }
 
 void renderSnapshot(const SnapshotScene& scene, const std::string& png_path, const SnapshotOptions& options) {
-  std::string png;
-  try {
-    png = render::encodePng(renderSnapshotImage(scene, options));
-  } catch (const std::exception& e) {
-    throw std::runtime_error(png_path + ": " + e.what());
-  }
-  writeFileAtomically(png_path, png);  // names the path itself, and leaves no file on failure
+  render::writePng(png_path, [&] { return renderSnapshotImage(scene, options); });
 }
 
 Eigen::Vector2d worldToPixel(const SnapshotScene& scene, const SnapshotOptions& options, double x, double y) {

@@ -122,4 +122,12 @@ struct TraceRow {
 ScenarioResult runScenario(const Scenario& scenario, const World& world, const SnapshotHook& snapshot = {},
                            std::vector<TraceRow>* trace = nullptr);
 
+// Several localizers on one simulation, each stepped on every turn before the next turn is
+// made: each method gets the same scans and the same odometry, bit for bit, and its own
+// score by the same rule (RunScore). `methods` ("sgraph", "pf", "pf-no-rooms", "amcl", "ndt")
+// each replace the scenario's `localizer.method`; result k is what runScenario gives for the
+// scenario with method k (only wall_seconds, which counts every method, differs).
+std::vector<ScenarioResult> runScenarioMethods(const Scenario& scenario, const World& world,
+                                               const std::vector<std::string>& methods);
+
 }  // namespace bimloc::sim

@@ -23,6 +23,7 @@ Cloud validPoints(const Cloud& points, double min_range_m, double max_range_m) {
 
 Cloud voxelDownsample(const Cloud& points, double voxel_size_m) {
   if (points.empty() || !(voxel_size_m > 0)) return points;
+  applyPclVerbosity();
   pcl::PointCloud<pcl::PointXYZ>::Ptr input(new pcl::PointCloud<pcl::PointXYZ>);
   input->reserve(points.size());
   for (const auto& p : points) input->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));

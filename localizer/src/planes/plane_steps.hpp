@@ -73,4 +73,7 @@ Indices pointsNearPlane(const Cloud& cloud, const PlaneFit& fit, double band_m, 
 // extents, RMS, covariance of the minimal parameters (see ObservedPlane); `vertical` unset.
 ObservedPlane describePlane(const Cloud& cloud, const Indices& support, const PlaneFit& fit);
 
+// PCL's console level from bimloc::verbose() (bimloc/verbosity.hpp), before each use of PCL.
+void applyPclVerbosity();
+
 }  // namespace bimloc::planes::detail

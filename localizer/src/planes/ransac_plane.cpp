@@ -4,12 +4,16 @@
 // wall clock), which would give every call the same sample sequence and no way to vary it.
 #include "plane_steps.hpp"
 
+#include <bimloc/verbosity.hpp>
+
+#include <pcl/console/print.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
 
 #include <Eigen/Eigenvalues>
+#include <atomic>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -18,6 +22,16 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+
+// Here, where PCL is used: its level is one global, set before every use, so the library is
+// quiet without its user having to call anything.
+namespace bimloc {
+namespace {
+std::atomic<bool> g_verbose{false};
+}  // namespace
+void setVerbose(bool verbose) { g_verbose = verbose; }
+bool verbose() { return g_verbose; }
+}  // namespace bimloc
 
 namespace bimloc::planes::detail {
 namespace {
@@ -98,8 +112,13 @@ class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
 
 }  // namespace
 
+void applyPclVerbosity() {
+  pcl::console::setVerbosityLevel(verbose() ? pcl::console::L_INFO : pcl::console::L_ALWAYS);
+}
+
 std::optional<RansacPlane> ransacPlane(const Cloud& cloud, const Indices& pool, int iterations, double threshold_m,
                                        std::uint32_t seed) {
+  applyPclVerbosity();
   if (pool.size() < 3 || iterations < 1 || !(threshold_m > 0) || lineLike(cloud, pool)) return std::nullopt;
   pcl::PointCloud<pcl::PointXYZ>::Ptr points(new pcl::PointCloud<pcl::PointXYZ>);
   points->reserve(cloud.size());

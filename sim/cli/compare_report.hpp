@@ -1,0 +1,46 @@
+// The results of `bimloc compare`: the paper's two tables (convergence time, and ATE after
+// convergence, per start room and method) as one JSON object, as terminal tables, and as
+// figures (a bar chart of the convergence times, the position error over time per method).
+#pragma once
+
+#include "sim/runner/run_scenario.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace bimloc::cli {
+
+struct CompareSetup {
+  std::string plan, storey, site = "exact";
+  double duration_s = 0;
+  int seeds = 1;
+  std::vector<std::string> methods;
+};
+
+// One simulated run (a start room and a seed) and what each method made of it.
+struct CompareRun {
+  std::string room, name;
+  std::uint64_t seed = 0;
+  std::vector<sim::ScenarioResult> results;  // one per method, in CompareSetup::methods' order; empty on error
+  std::string error;                         // the run could not be made at all
+};
+
+// {"format": "bimloc.compare", "version": 1, plan, storey, site, duration_s, seeds, methods,
+//  "rooms": [{"room", "runs": [{"seed", "name", "error", "methods": {METHOD: {converged,
+//  convergence_time_s, false_convergence, ate_m, ...}}}]}], "summary": {METHOD: {runs,
+//  localized, false_convergences, median_convergence_s, median_ate_m, losses}}, "errors",
+//  "timing": {wall_seconds, sim_seconds, localizer_seconds: {METHOD: s}}}. Everything but
+//  "timing" is the same for the same input, whatever the number of jobs.
+nlohmann::json compareReport(const CompareSetup& setup, const std::vector<CompareRun>& runs, double wall_seconds);
+
+// The two tables (the second with the summary rows under it) and what the marks mean.
+void printCompareTables(const nlohmann::json& report, std::ostream& out);
+
+// DIR/convergence_times.png and DIR/errors_over_time.png (the median over the runs of each
+// method's position error at each turn), each written atomically.
+void writeCompareFigures(const CompareSetup& setup, const std::vector<CompareRun>& runs, const std::string& dir);
+
+}  // namespace bimloc::cli

@@ -1,0 +1,82 @@
+// A recorded ROS1 bag as `bimloc localize` uses it: the lidar turns (sensor_msgs/PointCloud2),
+// the odometry (nav_msgs/Odometry, or the /tf transform odom -> base_link), the lidar mount
+// (base_link -> the cloud's frame on /tf_static or /tf, or given), and the ground truth when
+// the bag has it (as `bimloc simulate` writes it). rosbag stays inside bag_reader.cpp.
+#pragma once
+
+#include "sim/dataset/dataset_reader.hpp"
+
+#include <Eigen/Geometry>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bimloc::sim {
+
+struct BagInputOptions {
+  std::string cloud_topic = "/velodyne_points";  // the velodyne_pointcloud driver's
+  // nav_msgs/Odometry; when the bag does not have it and odom_topic_given is false, the /tf
+  // transform odom_frame -> base_frame is the odometry.
+  std::string odom_topic = "/odom";
+  bool odom_topic_given = false;
+  std::string odom_frame = "odom";  // REP 105
+  std::string base_frame = "base_link";
+  std::string truth_topic = "/ground_truth";  // nav_msgs/Odometry in map; optional
+  std::string tf_topic = "/tf", tf_static_topic = "/tf_static";
+  std::optional<Eigen::Isometry3d> mount;  // base_link -> lidar; else from the bag's tf
+  bool deskew = true;                      // with the clouds' per-point `time` field
+};
+
+// A lidar turn of the bag, its points decoded (and de-skewed) only when asked.
+struct BagTurn {
+  double stamp_s = 0;      // the turn's middle: the reference of the de-skew
+  std::size_t index = 0;   // among the cloud topic's messages
+  std::function<std::vector<Eigen::Vector3f>()> points;  // in the lidar frame at stamp_s
+};
+
+class BagInput {
+ public:
+  // Reads and checks everything but the clouds' points. Throws std::runtime_error
+  // "BAG: problem": not a bag, damaged, a topic missing (listing the bag's topics and types),
+  // no odometry, no mount.
+  BagInput(const std::string& path, const BagInputOptions& options);
+  ~BagInput();
+  BagInput(const BagInput&) = delete;
+  BagInput& operator=(const BagInput&) = delete;
+
+  const std::string& path() const { return path_; }
+  const Eigen::Isometry3d& T_base_lidar() const { return T_base_lidar_; }
+  const std::string& lidarFrame() const { return lidar_frame_; }
+  const std::string& odometrySource() const { return odometry_source_; }  // "/odom (nav_msgs/Odometry)", ...
+  const std::string& mountSource() const { return mount_source_; }
+  double turnPeriod() const { return turn_period_s_; }
+  std::size_t turns() const { return turns_; }
+  double firstTurnStamp() const { return first_turn_s_; }  // BagTurn::stamp_s of the first turn
+  bool timed() const { return timed_; }  // the clouds carry a `time` field
+  const std::vector<StampedPose>& odometry() const { return odometry_; }        // odom <- base_link
+  const std::vector<StampedPose>& groundTruth() const { return ground_truth_; }  // map <- base_link; may be empty
+  // "topic (type, N messages)" for each topic of the bag, one a line.
+  std::string topicList() const;
+
+  // Calls `visit` for each turn in order. Throws as the constructor for a damaged cloud.
+  void forEachTurn(const std::function<void(const BagTurn&)>& visit) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string path_;
+  BagInputOptions options_;
+  Eigen::Isometry3d T_base_lidar_ = Eigen::Isometry3d::Identity();
+  std::string lidar_frame_, odometry_source_, mount_source_;
+  double turn_period_s_ = 0.1, first_offset_s_ = 0.0, first_turn_s_ = 0.0;
+  std::size_t turns_ = 0;
+  bool timed_ = false;
+  std::vector<StampedPose> odometry_, ground_truth_;
+};
+
+// True when the file starts with the ROS1 bag magic "#ROSBAG V2.0".
+bool isRosBag(const std::string& path);
+
+}  // namespace bimloc::sim

@@ -1,0 +1,26 @@
+// Motion de-skew of a lidar turn: a spinning lidar on a moving robot measures each point from
+// where the sensor was at that point's firing, so a turn taken while walking or turning is
+// bent. With the per-point `time` of the Velodyne driver and the odometry over the turn,
+// every point is moved into the sensor frame at one reference instant (the turn's middle, the
+// stamp the localizer is given), as LIO-SAM's deskewPoint does with its IMU/odometry.
+#pragma once
+
+#include "sim/dataset/dataset_reader.hpp"
+
+#include <Eigen/Geometry>
+#include <vector>
+
+namespace bimloc::sim {
+
+// odom <- base_link at t, interpolated between the two samples around t (linear in
+// translation, slerp in rotation); the first or last sample outside their span.
+// `samples` sorted by stamp, not empty.
+Eigen::Isometry3d interpolatePose(const std::vector<StampedPose>& samples, double t);
+
+// Moves each point, measured at stamp_s + time_s[i] in the lidar frame of that instant, into
+// the lidar frame at reference_s: p' = (T_odom_lidar(ref))^-1 T_odom_lidar(t_i) p, with
+// T_odom_lidar(t) = T_odom_base(t) T_base_lidar. `time_s` has one value per point.
+void deskew(std::vector<Eigen::Vector3f>& points, const std::vector<double>& time_s, double stamp_s, double reference_s,
+            const std::vector<StampedPose>& odometry, const Eigen::Isometry3d& T_base_lidar);
+
+}  // namespace bimloc::sim

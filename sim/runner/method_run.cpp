@@ -1,0 +1,136 @@
+#include "sim/runner/method_run.hpp"
+
+#include "sim/base/room_lookup.hpp"
+
+#include <bimloc/bim/geometry2d.hpp>
+#include <bimloc/geometry/planar_pose.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace bimloc::sim {
+namespace {
+
+constexpr int kClusteringUpdate = 5;  // the snapshot of the clustering particles
+
+// The path evidence's distinct places, with their rooms and relative weights.
+std::vector<ScenarioResult::Place> placesOf(const pf::UpdateReport& report, const bim::Storey& storey) {
+  // Places of one storey: the path evidence weighs places of other storeys apart (StoreyBank).
+  std::vector<std::pair<Eigen::Vector3d, double>> all{{*report.path_best, 0.0}};
+  all.insert(all.end(), report.path_rivals.begin(), report.path_rivals.end());
+  double sum = 0;
+  for (const auto& [pose, margin] : all) sum += std::exp(-std::min(margin, 700.0));
+  std::vector<ScenarioResult::Place> places;
+  for (const auto& [pose, margin] : all) {
+    const bim::Room* room = roomAt(storey, pose.head<2>());
+    places.push_back({pose.x(), pose.y(), pose.z() * 180.0 / M_PI, std::exp(-std::min(margin, 700.0)) / sum,
+                      room ? room->name : std::string("(outside)"), storey.name});
+  }
+  return places;
+}
+
+void judge(const Scenario& s, ScenarioResult& r) {
+  const Expectations& e = s.expect;
+  if (e.converge && !r.converged) r.failures.push_back("did not converge");
+  if (e.converge && r.convergence_time_s && *r.convergence_time_s > e.max_convergence_time_s)
+    r.failures.push_back("converged after " + std::to_string(*r.convergence_time_s) + " s");
+  if (r.false_convergence) r.failures.push_back("false convergence");
+  if (r.converged && r.position_error_m > e.max_position_error_m)
+    r.failures.push_back("final position error " + std::to_string(r.position_error_m) + " m");
+  if (r.converged && r.yaw_error_deg > e.max_yaw_error_deg)
+    r.failures.push_back("final yaw error " + std::to_string(r.yaw_error_deg) + " deg");
+  if (r.ate_m && *r.ate_m > e.max_ate_m) r.failures.push_back("ATE " + std::to_string(*r.ate_m) + " m");
+  if (!e.converge && r.converged && r.false_convergence) r.failures.push_back("converged falsely");
+  r.passed = r.failures.empty();
+}
+
+// The S-Graph's wall estimates against the site's truth (how each wall was built).
+void scoreWalls(const std::vector<sgraph::WallDeviation>& estimates, const SiteTruth& truth, ScenarioResult& r) {
+  constexpr int kWellSeen = 5;  // keyframe-plane factors: fewer, and the offset is barely estimated
+  for (const auto& e : estimates) {
+    ScenarioResult::WallEstimate w{e, std::nullopt, std::nullopt};
+    if (const WallTruth* t = truth.findWall(e.wall_id); t && !t->missing) {
+      w.true_offset_m = t->offset_m, w.true_angle_deg = t->angle_deg;
+      if (e.observations >= kWellSeen && t->offset_m != 0.0)
+        r.wall_offset_error_m = std::max(r.wall_offset_error_m.value_or(0.0), std::abs(e.offset_m - t->offset_m));
+    }
+    r.wall_deviations.push_back(w);
+  }
+}
+
+}  // namespace
+
+MethodRun::MethodRun(const Scenario& s, const World& plan, const Simulator& sim, const LocalizerSettings& settings,
+                     const ScenarioResult& shared)
+    : scenario_(s), building_(plan.building()), sim_(sim), r_(shared), score_(building_, sim.storey()), map_error_(building_),
+      verdict_storey_(sim.storey()) {
+  // The localizer: told the storey, or (storey auto) not, every storey that could hold the robot.
+  const bim::Building& building = building_;
+  LocalizerConfig config = settings.config;
+  r_.storey_auto = settings.storey_auto;
+  r_.method = toString(config.method);
+  if (!r_.storey_auto) config.storey = storeyKey(building, sim.storey());
+  try {
+    localizer_.emplace(building, s.sensor.T_base_lidar, config);
+  } catch (const std::invalid_argument& e) {
+    throw ScenarioError(s.file + ": " + e.what());
+  }
+}
+
+void MethodRun::snapshotNow(const char* phase, double t, const Eigen::Isometry3d& truth, const SnapshotHook& snapshot) const {
+  const pf::StoreyBank* bank = localizer_->filter();  // null for the peers (AMCL, NDT)
+  snapshot({phase, t, bank ? &bank->filter() : nullptr, bank ? bank->leader() : sim_.storey(), truth, localizer_->tracker(),
+            estimate_});
+}
+
+void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Localizer::PointSource& points,
+                     const Eigen::Isometry3d& truth, const SnapshotHook& snapshot, std::vector<TraceRow>* trace) {
+  const bim::Building& building = building_;
+  const auto step_start = std::chrono::steady_clock::now();
+  const LocalizationResult step = localizer_->step(t, T_odom_base, points);
+  estimate_ = step.T_map_base;
+  const auto minute = static_cast<std::size_t>(t / 60.0);
+  if (r_.localizer_seconds_by_minute.size() <= minute) r_.localizer_seconds_by_minute.resize(minute + 1, 0.0);
+  r_.localizer_seconds_by_minute[minute] += std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
+  ++updates_;
+  for (const auto& w : step.warnings) r_.warnings.push_back("t=" + std::to_string(t) + ": " + w);
+  r_.error_series.push_back({t, (step.T_map_base.translation() - truth.translation()).head<2>().norm(),
+                             yawErrorDeg(step.T_map_base, truth), step.state});
+  if (step.filter) {
+    const pf::StoreyBankReport& bank = *step.filter;
+    if (r_.storey_auto && bank.decided && !(last_bank_ && last_bank_->decided)) r_.storey_margin = bank.storey_margin;
+    last_bank_ = bank;
+    const pf::UpdateReport& report = bank.filter;
+    if (trace && report.weighed)
+      trace->push_back({t, planarPose(truth), planarPose(step.T_map_base), report,
+                        r_.storey_auto ? building.storeys[bank.leader].name : std::string(), bank.storey_margin});
+    if (report.path_best) last_verdict_ = report, verdict_storey_ = bank.leader;
+  }
+  if (snapshot && updates_ == kClusteringUpdate && step.state == LocalizationState::Searching)
+    snapshotNow("clustering", t, truth, snapshot);
+  map_error_.step(step, scenario_.sensor.T_base_lidar, points);
+  if (score_.add(t, step, truth)) {
+    if (step.filter) r_.convergence_margin = step.filter->filter.path_margin;
+    if (snapshot) snapshotNow("convergence", t, truth, snapshot);
+  }
+}
+
+ScenarioResult MethodRun::finish(double t_end, const Eigen::Isometry3d& truth_end, const SnapshotHook& snapshot) {
+  const bim::Building& building = building_;
+  const bool converged = score_.converged();
+  if (!converged && last_verdict_) r_.hypotheses = placesOf(*last_verdict_, building.storeys[verdict_storey_]);
+  if (localizer_->filter() && !localizer_->filter()->storey() && r_.storey_auto && last_bank_)
+    for (const auto& c : last_bank_->candidates)
+      r_.storey_candidates.push_back({building.storeys[c.storey].name, c.converged, c.path_log_likelihood});
+  // The last picture shows where the particles were left and why, or the graph the tracker built.
+  if (snapshot && updates_ > 0 && (!converged || localizer_->tracker())) snapshotNow("end", t_end, truth_end, snapshot);
+  score_.finish(r_);
+  r_.map_rmse_m = map_error_.rmse_m();
+  r_.site = scenario_.site.preset;
+  if (const sgraph::SGraphTracker* tracker = localizer_->tracker()) scoreWalls(tracker->wallDeviations(), sim_.world().siteTruth(), r_);
+  judge(scenario_, r_);
+  return r_;
+}
+
+}  // namespace bimloc::sim
