@@ -1,5 +1,7 @@
 #include "peers/ndt_tracker.hpp"
 
+#include <bimloc/verbosity.hpp>
+
 #include <pcl/console/print.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
@@ -11,11 +13,10 @@ namespace bimloc::peers {
 using PclCloud = pcl::PointCloud<pcl::PointXYZ>;
 
 namespace {
-// PCL prints to stderr (a flat voxel's "Invalid eigen value"); the library stays quiet.
+// PCL prints to stderr (a flat voxel's "Invalid eigen value"): quiet unless bimloc::verbose(),
+// as planes/ransac_plane.cpp sets it before PCL runs.
 struct QuietPcl {
-  pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel();
-  QuietPcl() { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
-  ~QuietPcl() { pcl::console::setVerbosityLevel(level); }
+  QuietPcl() { pcl::console::setVerbosityLevel(verbose() ? pcl::console::L_INFO : pcl::console::L_ALWAYS); }
 };
 
 PclCloud::Ptr toPcl(const Cloud3& points) {
