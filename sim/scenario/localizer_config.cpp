@@ -166,6 +166,35 @@ std::vector<Field> amclFields(peers::AmclConfig& c) {
           {"lost_yaw_std_deg", &c.lost_yaw_std_deg, positive(180)}};
 }
 
+std::vector<Field> ndtFields(peers::NdtConfig& c) {
+  return {{"map_spacing_m", &c.map_spacing_m, closed(0.02, 2)},
+          {"ndt_resolution_m", &c.ndt_resolution_m, closed(0.1, 10)},
+          {"ndt_step_size_m", &c.ndt_step_size_m, positive(10)},
+          {"ndt_max_iterations", &c.ndt_max_iterations, closed(1, 1000)},
+          {"ndt_epsilon_m", &c.ndt_epsilon_m, positive(1)},
+          {"downsample_m", &c.downsample_m, closed(0.01, 2)},
+          {"ndt_max_points", &c.ndt_max_points, closed(10, 1e7)},
+          {"max_range_m", &c.max_range_m, positive(1000)},
+          {"update_min_d_m", &c.update_min_d_m, closed(0, 100)},
+          {"update_min_a_rad", &c.update_min_a_rad, closed(0, 2 * M_PI)},
+          {"fitness_max_distance_m", &c.fitness_max_distance_m, positive(100)},
+          {"max_fitness_m2", &c.max_fitness_m2, positive(100)},
+          {"min_inlier_fraction", &c.min_inlier_fraction, closed(0, 1)},
+          {"lost_after_bad_scans", &c.lost_after_bad_scans, closed(1, 1e6)},
+          {"grid_resolution_m", &c.grid_resolution_m, closed(0.05, 10)},
+          {"pyramid_levels", &c.pyramid_levels, closed(1, 12)},
+          {"scan_min_z_m", &c.scan_min_z_m, closed(-10, 10)},
+          {"scan_max_z_m", &c.scan_max_z_m, closed(-10, 10)},
+          {"base_height_m", &c.base_height_m, closed(-10, 10)},
+          {"global_window_m", &c.global_window_m, closed(0, 1000)},
+          {"global_period_s", &c.global_period_s, closed(0, 1e4)},
+          {"min_scan_cells", &c.min_scan_cells, closed(1, 1e6)},
+          {"min_hit_fraction", &c.min_hit_fraction, closed(0, 1)},
+          {"min_margin_fraction", &c.min_margin_fraction, closed(0, 1)},
+          {"distinct_m", &c.distinct_m, closed(0, 1000)},
+          {"distinct_deg", &c.distinct_deg, closed(0, 180)}};
+}
+
 // The field named `key` of `fields`, under another name (an alias keeps its field's range).
 Field alias(const std::string& name, const std::vector<Field>& fields, const std::string& key) {
   for (const Field& f : fields)
@@ -187,7 +216,7 @@ std::vector<Field> topFields(LocalizerConfig& c) {
           alias("voxel_size_m", planeFields(c.planes), "voxel_size_m")};
 }
 
-const std::vector<std::string> kOtherTopKeys{"method", "storey", "prior_rooms", "prior_pose", "planes", "pf", "sgraph", "amcl"};
+const std::vector<std::string> kOtherTopKeys{"method", "storey", "prior_rooms", "prior_pose", "planes", "pf", "sgraph", "amcl", "ndt"};
 
 struct Reader {
   const std::string& file;
@@ -277,6 +306,7 @@ LocalizerSettings readLocalizerSettings(const nlohmann::json& block, const std::
   if (block.contains("pf")) read.section(block["pf"], "localizer.pf", pfFields(c.pf));
   if (block.contains("sgraph")) read.section(block["sgraph"], "localizer.sgraph", sgraphFields(c.sgraph));
   if (block.contains("amcl")) read.section(block["amcl"], "localizer.amcl", amclFields(c.amcl));
+  if (block.contains("ndt")) read.section(block["ndt"], "localizer.ndt", ndtFields(c.ndt));
   return out;
 }
 
@@ -325,6 +355,7 @@ std::vector<std::pair<std::string, std::string>> localizerKeys(const LocalizerCo
   add("pf.", pfFields(c.pf));
   add("sgraph.", sgraphFields(c.sgraph));
   add("amcl.", amclFields(c.amcl));
+  add("ndt.", ndtFields(c.ndt));
   out.emplace_back("method", toString(c.method));
   out.emplace_back("storey", "auto, or told by the caller");
   out.emplace_back("prior_rooms", "[]");

@@ -17,6 +17,8 @@ struct PeerReport {
   int particles = 0;         // AMCL: the particle count after this step (KLD); NDT: 0
   double score = 0;          // AMCL: the largest sqrt(eigenvalue) of the xy covariance [m];
                              // NDT: the fitness (mean squared distance of matched points) [m^2]
+  double hit_fraction = 0;   // NDT: the last global search's share of scan cells on occupied map cells
+  double margin_fraction = 0; // NDT: its lead over the best distinct pose, as a share of the scan cells
   std::vector<Eigen::Vector3d> poses;  // AMCL: the particles (x, y, yaw) for pictures; NDT: empty
 };
 
