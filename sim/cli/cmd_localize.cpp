@@ -88,7 +88,7 @@ Recording openDataset(const std::string& dir) {
     for (const auto& scan : d->scans) {
       RecordedTurn turn;
       turn.stamp_s = scan.stamp_s + 0.5 * d->turn_period_s;  // mid-turn, as the runner
-      turn.T_odom_base = nearest(d->odometry, turn.stamp_s).pose;
+      turn.T_odom_base = interpolatePose(d->odometry, turn.stamp_s);  // as the bag path: samples straddle the middle
       // The scan's file is read only when the localizer looks at it, as the runner extracts planes.
       turn.points = [file = scan.file] { return readPcdPoints(file); };
       turn.name = scan.file;
@@ -162,7 +162,7 @@ void run(const LocalizeArgs& args) {
   if (output)
     observe = [&](const RecordedTurn& turn, const bimloc::LocalizationResult& step) {
       std::optional<Eigen::Isometry3d> truth;
-      if (!rec.ground_truth.empty()) truth = nearest(rec.ground_truth, turn.stamp_s).pose;
+      if (!rec.ground_truth.empty()) truth = interpolatePose(rec.ground_truth, turn.stamp_s);  // as the scorer
       output->step(turn, step, truth);
     };
   RecordingRun recording =

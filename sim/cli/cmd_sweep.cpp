@@ -38,6 +38,7 @@ struct SweepArgs {
   std::string plot;                         // --plot FILE.png (robustness sweep)
   std::vector<std::string> prior_rooms;
   std::string prior_pose;
+  std::string config;  // --config FILE.yaml: localizer settings (each method reads its own sections)
 };
 
 // One row: a group of runs (a plan's storey, or all of them).
@@ -83,6 +84,8 @@ void run(const SweepArgs& args) {
   }
   if (scenarios.empty()) throw std::runtime_error("no storey with rooms and walls in the given plans");
   bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
+  if (!args.config.empty()) bimloc::cli::applyConfig(scenarios, args.config);
+  for (auto& s : scenarios) s.localizer["method"] = args.method;  // the sweep's, over a config file's
   if (!args.sites.empty() || !args.methods.empty() || !args.plot.empty()) {
     bimloc::cli::RobustnessOptions o;
     o.sites = args.sites.empty() ? std::vector<std::string>{args.site.empty() ? "exact" : args.site} : args.sites;
@@ -193,5 +196,9 @@ void addSweepCommand(CLI::App& app) {
   cmd->add_flag("--json", args->json, "one JSON object: groups, summary, every run");
   cmd->add_option("--prior-room", args->prior_rooms, "the start was in one of these rooms (comma-separated)")->delimiter(',');
   cmd->add_option("--prior-pose", args->prior_pose, "the start was near x,y,yaw_deg,sigma_m (map frame)");
+  cmd->add_option("--config", args->config,
+                  "YAML file of localizer settings (a scenario's `localizer:` keys, e.g. `amcl: {...}`); each method reads "
+                  "its own sections, the method is the sweep's")
+      ->check(CLI::ExistingFile);
   cmd->callback([args] { run(*args); });
 }
