@@ -55,6 +55,12 @@ void run(const CompareArgs& args) {
   bimloc::cli::keepStartRooms(scenarios, args.rooms);
   if (scenarios.empty()) throw std::runtime_error(args.plan + ": storey '" + args.storey + "' has no room to start in");
   if (!args.config.empty()) bimloc::cli::applyConfig(scenarios, args.config);
+  // AMCL's ROS defaults model poor wheel odometry (odom_alpha 0.2): on the bench's legged
+  // odometry its particles never get tight enough to declare convergence. Say so up front.
+  const bool amcl = std::find(args.methods.begin(), args.methods.end(), "amcl") != args.methods.end();
+  if (amcl && !scenarios.front().localizer.contains("amcl"))
+    std::cerr << "note: amcl runs with the ROS defaults (odom_alpha1..4 0.2, for poor wheel odometry); for the bench's "
+                 "legged odometry, as the ROS amcl documentation advises, add --config scenarios/configs/amcl_legged.yaml\n";
   if (!args.site.empty())
     for (auto& s : scenarios) s.site = sitePreset(args.site);
   // The output folder is refused (or made) before the runs, not after minutes of them.
