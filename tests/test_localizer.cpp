@@ -5,6 +5,7 @@
 #include "sim/scenario/scenario.hpp"
 #include "sim/simulation/simulator.hpp"
 #include "sim/world/world.hpp"
+#include "localizer_walk.hpp"
 #include "sim_fixtures.hpp"
 #include "test_support.hpp"
 
@@ -21,56 +22,21 @@ namespace {
 
 using namespace bimloc;
 
-struct Walk {
-  sim::Scenario scenario;
-  std::unique_ptr<sim::Simulator> sim;
-  std::vector<sim::OdometrySample> odometry;
-};
+using Walk = test::OfficeWalk;
+using Step = test::WalkStep;
 
 // S100 to the corridor and on to R108: the filter converges within 20 s (test_run).
-std::unique_ptr<Walk> walk(double duration_s) {
-  const std::string path = test::tempDir("localizer") + "/walk.yaml";
-  std::ofstream(path) << "world: " << BIMLOC_WORLDS_DIR << "/site_office.ifc\n"
-                      << "start: {random_in_room: S100}\nmotion: {type: tour, rooms: [C100, R108, C100, R101, C100, R105]}\n"
-                      << "odometry: {preset: legged}\nduration_s: " << duration_s << "\nseed: 1\n";
-  auto w = std::make_unique<Walk>();
-  w->scenario = sim::loadScenario(path);
-  w->sim = std::make_unique<sim::Simulator>(w->scenario, test::officeWorld());
-  w->odometry = w->sim->odometry();
-  return w;
-}
-
-struct Step {
-  LocalizationResult result;
-  Eigen::Isometry3d truth, odom;
-};
+std::unique_ptr<Walk> walk(double duration_s) { return test::officeWalk(duration_s, "localizer"); }
 
 // Every turn of the walk through a localizer; `blind(t)`: that turn's points are withheld.
 std::vector<Step> run(const Walk& w, LocalizerMethod method, const std::function<bool(double)>& blind = {}) {
   LocalizerConfig config;
   config.method = method;
-  config.storey = "0";
   config.seed = 1;
-  Localizer localizer(test::officeWorld().building(), w.scenario.sensor.T_base_lidar, config);
-  std::vector<Step> steps;
-  const double half = 0.5 * w.sim->lidar().turnPeriod_s();
-  for (std::size_t i = 0; i < w.sim->turnCount(); ++i) {
-    const double t = w.sim->turnStamp(i) + half;
-    const auto k = std::min(static_cast<std::size_t>(std::llround(t * w.scenario.odometry.rate_hz)), w.odometry.size() - 1);
-    const bool withheld = blind && blind(t);
-    const auto points = [&] {
-      std::vector<Eigen::Vector3f> out;
-      if (withheld) return out;
-      for (const auto& p : w.sim->turn(i).points) out.emplace_back(p.x, p.y, p.z);
-      return out;
-    };
-    const Eigen::Isometry3d& odom = w.odometry[k].T_odom_base;
-    steps.push_back({localizer.step(t, odom, Localizer::PointSource(points)), w.sim->trajectory().T_map_base(t), odom});
-  }
-  return steps;
+  return test::walkThrough(w, config, blind);
 }
 
-double error(const Step& s) { return (s.result.T_map_base.translation() - s.truth.translation()).head<2>().norm(); }
+double error(const Step& s) { return test::positionError(s); }
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 #include "sim/scenario/scenario.hpp"
 #include "sim/simulation/simulator.hpp"
 #include "sim/world/world.hpp"
+#include "localizer_walk.hpp"
 #include "sim_fixtures.hpp"
 #include "test_support.hpp"
 
@@ -137,50 +138,17 @@ TEST(NdtTracking, RecoversAKnownTransformOfTheMapCloud) {
 
 namespace {
 
-struct Walk {
-  sim::Scenario scenario;
-  std::unique_ptr<sim::Simulator> sim;
-  std::vector<sim::OdometrySample> odometry;
-};
+using Step = test::WalkStep;
 
-std::unique_ptr<Walk> walk(double duration_s) {
-  const std::string path = test::tempDir("ndt") + "/walk.yaml";
-  std::ofstream(path) << "world: " << BIMLOC_WORLDS_DIR << "/site_office.ifc\n"
-                      << "start: {random_in_room: S100}\nmotion: {type: tour, rooms: [C100, R108, C100, R101, C100, R105]}\n"
-                      << "odometry: {preset: legged}\nduration_s: " << duration_s << "\nseed: 1\n";
-  auto w = std::make_unique<Walk>();
-  w->scenario = sim::loadScenario(path);
-  w->sim = std::make_unique<sim::Simulator>(w->scenario, test::officeWorld());
-  w->odometry = w->sim->odometry();
-  return w;
-}
+std::unique_ptr<test::OfficeWalk> walk(double duration_s) { return test::officeWalk(duration_s, "ndt"); }
 
-struct Step {
-  LocalizationResult result;
-  Eigen::Isometry3d truth;
-};
-
-std::vector<Step> runNdt(const Walk& w) {
+std::vector<Step> runNdt(const test::OfficeWalk& w) {
   LocalizerConfig config;
   config.method = LocalizerMethod::Ndt;
-  config.storey = "0";
-  Localizer localizer(test::officeWorld().building(), w.scenario.sensor.T_base_lidar, config);
-  std::vector<Step> steps;
-  const double half = 0.5 * w.sim->lidar().turnPeriod_s();
-  for (std::size_t i = 0; i < w.sim->turnCount(); ++i) {
-    const double t = w.sim->turnStamp(i) + half;
-    const auto k = std::min(static_cast<std::size_t>(std::llround(t * w.scenario.odometry.rate_hz)), w.odometry.size() - 1);
-    const auto points = [&] {
-      std::vector<Eigen::Vector3f> out;
-      for (const auto& p : w.sim->turn(i).points) out.emplace_back(p.x, p.y, p.z);
-      return out;
-    };
-    steps.push_back({localizer.step(t, w.odometry[k].T_odom_base, Localizer::PointSource(points)), w.sim->trajectory().T_map_base(t)});
-  }
-  return steps;
+  return test::walkThrough(w, config);
 }
 
-double error(const Step& s) { return (s.result.T_map_base.translation() - s.truth.translation()).head<2>().norm(); }
+double error(const Step& s) { return test::positionError(s); }
 double yawError(const Step& s) { return std::abs(wrapAngle(yawOf(s.result.T_map_base.linear()) - yawOf(s.truth.linear()))); }
 
 }  // namespace
