@@ -1,9 +1,8 @@
 #include "sim/dataset/bag_writer.hpp"
 
-#include "sim/dataset/tum_writer.hpp"
+#include "sim/dataset/ros_messages.hpp"
 #include "sim/dataset/velodyne_points.hpp"
 
-#include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -16,21 +15,13 @@ namespace bimloc::sim {
 
 namespace {
 
-std_msgs::Header header(std::uint64_t stamp_ns, std::uint32_t seq, const char* frame_id) {
-  std_msgs::Header h;
-  h.seq = seq;
-  h.stamp.fromNSec(stamp_ns);
-  h.frame_id = frame_id;
-  return h;
-}
-
 std::uint8_t rosDatatype(PointFieldType type) {
   return type == PointFieldType::kFloat32 ? sensor_msgs::PointField::FLOAT32 : sensor_msgs::PointField::UINT16;
 }
 
 sensor_msgs::PointCloud2 cloudMessage(std::uint64_t stamp_ns, std::uint32_t seq, const LidarScan& scan) {
   sensor_msgs::PointCloud2 cloud;
-  cloud.header = header(stamp_ns, seq, kLidarFrame);
+  cloud.header = header(rosTime(stamp_ns), seq, kLidarFrame);
   for (const PointFieldLayout& f : velodynePointFields()) {
     sensor_msgs::PointField field;
     field.name = f.name;
@@ -50,32 +41,6 @@ sensor_msgs::PointCloud2 cloudMessage(std::uint64_t stamp_ns, std::uint32_t seq,
     dense = dense && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
   cloud.is_dense = dense;
   return cloud;
-}
-
-geometry_msgs::Pose poseMessage(const Eigen::Isometry3d& T) {
-  geometry_msgs::Pose pose;
-  pose.position.x = T.translation().x();
-  pose.position.y = T.translation().y();
-  pose.position.z = T.translation().z();
-  const Eigen::Quaterniond q = canonicalRotation(T);
-  pose.orientation.x = q.x();
-  pose.orientation.y = q.y();
-  pose.orientation.z = q.z();
-  pose.orientation.w = q.w();
-  return pose;
-}
-
-geometry_msgs::TransformStamped transformMessage(std::uint64_t stamp_ns, const char* parent, const char* child,
-                                                 const Eigen::Isometry3d& T_parent_child) {
-  geometry_msgs::TransformStamped tf;
-  tf.header = header(stamp_ns, 0, parent);
-  tf.child_frame_id = child;
-  const geometry_msgs::Pose pose = poseMessage(T_parent_child);
-  tf.transform.translation.x = pose.position.x;
-  tf.transform.translation.y = pose.position.y;
-  tf.transform.translation.z = pose.position.z;
-  tf.transform.rotation = pose.orientation;
-  return tf;
 }
 
 // Row-major 6x6 (x, y, z, roll, pitch, yaw) with the given diagonal.
@@ -135,7 +100,7 @@ void BagWriter::writeScan(std::uint64_t stamp_ns, std::uint32_t seq, const Lidar
 
 void BagWriter::writeOdometry(std::uint64_t stamp_ns, std::uint32_t seq, const OdometrySample& odom) {
   nav_msgs::Odometry msg;
-  msg.header = header(stamp_ns, seq, kOdomFrame);
+  msg.header = header(rosTime(stamp_ns), seq, kOdomFrame);
   msg.child_frame_id = kBaseFrame;
   msg.pose.pose = poseMessage(odom.T_odom_base);
   msg.pose.covariance = diagonalCovariance(impl_->info.odometry_pose_variance);
@@ -153,8 +118,8 @@ void BagWriter::writeOdometry(std::uint64_t stamp_ns, std::uint32_t seq, const O
   // has no latching a player must honour, and tf then finds base_link -> velodyne at any
   // time the odometry covers, without extrapolating past its last stamp.
   tf2_msgs::TFMessage tf;
-  tf.transforms.push_back(transformMessage(stamp_ns, kOdomFrame, kBaseFrame, odom.T_odom_base));
-  tf.transforms.push_back(transformMessage(stamp_ns, kBaseFrame, kLidarFrame, impl_->info.T_base_lidar));
+  tf.transforms.push_back(transformMessage(rosTime(stamp_ns), kOdomFrame, kBaseFrame, odom.T_odom_base));
+  tf.transforms.push_back(transformMessage(rosTime(stamp_ns), kBaseFrame, kLidarFrame, impl_->info.T_base_lidar));
   impl_->write(kTfTopic, stamp_ns, tf);
   ++topics_[kTfTopic].messages;
 }
@@ -162,7 +127,7 @@ void BagWriter::writeOdometry(std::uint64_t stamp_ns, std::uint32_t seq, const O
 void BagWriter::writeGroundTruth(std::uint64_t stamp_ns, std::uint32_t seq, const GroundTruthSample& truth) {
   // Exact pose, hence zero covariance; the twist is not simulated for the ground truth.
   nav_msgs::Odometry msg;
-  msg.header = header(stamp_ns, seq, kMapFrame);
+  msg.header = header(rosTime(stamp_ns), seq, kMapFrame);
   msg.child_frame_id = kBaseFrame;
   msg.pose.pose = poseMessage(truth.T_map_base);
   impl_->write(kGroundTruthTopic, stamp_ns, msg);

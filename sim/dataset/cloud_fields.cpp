@@ -1,5 +1,7 @@
 #include "sim/dataset/cloud_fields.hpp"
 
+#include "sim/dataset/velodyne_points.hpp"
+
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -41,13 +43,6 @@ double readValue(const std::uint8_t* p, std::uint8_t datatype, bool swap) {
   }
 }
 
-bool hostIsBigEndian() {
-  const std::uint16_t probe = 1;
-  std::uint8_t first = 0;
-  std::memcpy(&first, &probe, 1);
-  return first == 0;
-}
-
 }  // namespace
 
 CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std::size_t size, const std::string& where) {
@@ -75,7 +70,7 @@ CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std
     fail(where, "data holds " + std::to_string(size) + " bytes, the layout (" + std::to_string(width) + " x " +
                     std::to_string(height) + " points of " + std::to_string(layout.point_step) + ") needs " +
                     std::to_string(needed));
-  const bool swap = layout.is_bigendian != hostIsBigEndian();
+  const bool swap = layout.is_bigendian == hostIsLittleEndian();
   CloudPoints out;
   out.xyz.reserve(width * height);
   if (time) out.time_s.reserve(width * height);

@@ -1,6 +1,6 @@
 #include "sim/dataset/localized_bag_writer.hpp"
 
-#include "sim/dataset/tum_writer.hpp"
+#include "sim/dataset/ros_messages.hpp"
 
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <rosbag/bag.h>
@@ -45,29 +45,12 @@ void LocalizedBagWriter::add(double stamp_s, const Eigen::Isometry3d& T_map_odom
                              const Eigen::Matrix3d& covariance_xy_yaw) {
   ros::Time stamp;
   stamp.fromSec(stamp_s);
-  const Eigen::Quaterniond q_odom = canonicalRotation(T_map_odom), q_base = canonicalRotation(T_map_base);
-
   tf2_msgs::TFMessage tf;
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = stamp;
-  t.header.frame_id = impl_->map_frame;
-  t.child_frame_id = impl_->odom_frame;
-  t.transform.translation.x = T_map_odom.translation().x();
-  t.transform.translation.y = T_map_odom.translation().y();
-  t.transform.translation.z = T_map_odom.translation().z();
-  t.transform.rotation.x = q_odom.x(), t.transform.rotation.y = q_odom.y();
-  t.transform.rotation.z = q_odom.z(), t.transform.rotation.w = q_odom.w();
-  tf.transforms.push_back(t);
+  tf.transforms.push_back(transformMessage(stamp, impl_->map_frame, impl_->odom_frame, T_map_odom));
 
   geometry_msgs::PoseWithCovarianceStamped pose;
-  pose.header.seq = impl_->seq++;
-  pose.header.stamp = stamp;
-  pose.header.frame_id = impl_->map_frame;
-  pose.pose.pose.position.x = T_map_base.translation().x();
-  pose.pose.pose.position.y = T_map_base.translation().y();
-  pose.pose.pose.position.z = T_map_base.translation().z();
-  pose.pose.pose.orientation.x = q_base.x(), pose.pose.pose.orientation.y = q_base.y();
-  pose.pose.pose.orientation.z = q_base.z(), pose.pose.pose.orientation.w = q_base.w();
+  pose.header = header(stamp, impl_->seq++, impl_->map_frame);
+  pose.pose.pose = poseMessage(T_map_base);
   // (x, y, yaw) -> rows/columns 0, 1, 5 of the row-major 6x6 (x y z roll pitch yaw).
   const int index[3] = {0, 1, 5};
   for (int i = 0; i < 3; ++i)

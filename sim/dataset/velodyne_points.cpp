@@ -5,8 +5,6 @@
 
 namespace bimloc::sim {
 
-namespace {
-
 // Both file formats are little-endian by declaration (is_bigendian false, PCD binary is
 // the host's order in practice): copying host floats byte for byte needs a little-endian host.
 static_assert(sizeof(float) == 4, "FLOAT32 fields need a 4-byte float");
@@ -17,8 +15,6 @@ bool hostIsLittleEndian() {
   std::memcpy(&first, &probe, 1);
   return first == 1;
 }
-
-}  // namespace
 
 const std::array<PointFieldLayout, 6>& velodynePointFields() {
   static const std::array<PointFieldLayout, 6> fields{{

@@ -28,6 +28,9 @@ struct PointFieldLayout {
 inline constexpr std::uint32_t kVelodynePointStepBytes = 22;
 const std::array<PointFieldLayout, 6>& velodynePointFields();
 
+// Whether this machine stores numbers least significant byte first (x86, ARM as run).
+bool hostIsLittleEndian();
+
 // The points packed in that layout, little-endian (as ROS and PCD binary on x86/ARM).
 std::vector<std::uint8_t> packVelodynePoints(const std::vector<LidarPoint>& points);
 
