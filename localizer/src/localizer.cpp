@@ -108,6 +108,7 @@ struct Localizer::Impl {
   void handOver(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
   void searchAgain(LocalizationResult& r);
   void describe(LocalizationResult& r) const;
+  void placeInRoom(LocalizationResult& r) const;
   void stepPeer(const Eigen::Isometry3d& T_odom_base, const PointSource& points_lidar, LocalizationResult& r);
 };
 
@@ -242,6 +243,11 @@ void Localizer::Impl::describe(LocalizationResult& r) const {
     r.covariance = particleCovariance(bank->filter());
   }
   if (converged_now && r.state == LocalizationState::Tracking) r.state = LocalizationState::Converged;
+  placeInRoom(r);
+}
+
+// The room of the estimate, on the decided (or leading) storey.
+void Localizer::Impl::placeInRoom(LocalizationResult& r) const {
   const bim::Storey& storey = building.storeys.at(r.leading_storey);
   const bim::Room* room = storey.roomAt(r.T_map_base.translation().head<2>());
   r.room = room ? static_cast<int>(room - storey.rooms.data()) : -1;
@@ -278,10 +284,7 @@ void Localizer::Impl::stepPeer(const Eigen::Isometry3d& T_odom_base, const Point
   else
     r.state = convergence_stamp ? LocalizationState::Lost : LocalizationState::Searching;
   r.peer = std::move(s.report);
-  const bim::Storey& storey = building.storeys.at(r.leading_storey);
-  const bim::Room* room = storey.roomAt(r.T_map_base.translation().head<2>());
-  r.room = room ? static_cast<int>(room - storey.rooms.data()) : -1;
-  r.room_name = room ? room->name : std::string();
+  placeInRoom(r);
 }
 
 const LocalizerConfig& Localizer::config() const { return impl_->config; }

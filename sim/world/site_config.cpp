@@ -49,7 +49,6 @@ SiteConfig sitePreset(const std::string& name) {
   c.doors.ajar_fraction = 0.3;
   c.clutter.density_per_m2 = 0.2;
   c.people.count_per_storey = 2;
-  // Dropout and mixed points: of the order a VLP-16 shows on glass and at door jambs.
   if (name == "construction") return c;
   if (name == "heavy") {
     c.walls.max_offset_m = 0.20;
@@ -61,7 +60,8 @@ SiteConfig sitePreset(const std::string& name) {
     c.doors.ajar_fraction = 0.4;
     c.clutter.density_per_m2 = 0.4;
     c.people.count_per_storey = 6;
-    // Sensor effects only here: the construction site has none (they are keys).
+    // Sensor effects only here (the construction site has none; they are keys): of the
+    // order a VLP-16 shows on glass and at door jambs.
     c.sensor.glass_dropout = 0.5;
     c.sensor.dark_fraction = 0.2;
     c.sensor.dark_dropout = 0.5;
