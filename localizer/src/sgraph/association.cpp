@@ -2,6 +2,7 @@
 
 #include "plane_factor.hpp"
 
+#include <algorithm>
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -155,6 +156,7 @@ void associate(Graph& g, Keyframe& kf, const std::vector<ScanObservation>& obser
       m.face = best_face;
       kf.planes.push_back(m);
       ++node.observations;
+      node.last_keyframe = kf.id;
       a.mahalanobis2 = best;
       if (node.kind == WallNode::Kind::Plan) {
         a.kind = PlaneAssociation::Kind::PlanWall, a.wall = node.wall, a.face = best_face;
@@ -205,6 +207,7 @@ void associate(Graph& g, Keyframe& kf, const std::vector<ScanObservation>& obser
         m.face = 0;
         w.planes.push_back(m);
         ++node.observations;
+        node.last_keyframe = std::max(node.last_keyframe, id);
       }
     }
     for (const auto& [id, m] : cand.sightings) {  // this keyframe's sighting is now on the new plane

@@ -36,8 +36,6 @@ SGraphConfig checkedConfig(const SGraphConfig& config, std::vector<std::string>&
       {"wall_thickness_sigma_m", &SGraphConfig::wall_thickness_sigma_m},
       {"room_prior_sigma_m", &SGraphConfig::room_prior_sigma_m},
       {"room_factor_sigma_m", &SGraphConfig::room_factor_sigma_m},
-      {"wall_evidence_min_sigma_m", &SGraphConfig::wall_evidence_min_sigma_m},
-      {"wall_evidence_min_sigma_deg", &SGraphConfig::wall_evidence_min_sigma_deg},
       {"huber_plane_sigmas", &SGraphConfig::huber_plane_sigmas},
       {"huber_odometry_sigmas", &SGraphConfig::huber_odometry_sigmas},
       {"cauchy_wall_prior_sigmas", &SGraphConfig::cauchy_wall_prior_sigmas},
@@ -75,6 +73,7 @@ SGraphConfig checkedConfig(const SGraphConfig& config, std::vector<std::string>&
       {"max_iterations", &SGraphConfig::max_iterations},
       {"lost_after_keyframes", &SGraphConfig::lost_after_keyframes},
       {"recover_after_keyframes", &SGraphConfig::recover_after_keyframes},
+      {"prior_max_walls", &SGraphConfig::prior_max_walls},
   };
   for (const auto& [name, member] : at_least_one) {
     if (c.*member >= 1) continue;

@@ -5,6 +5,7 @@
 // The Ceres problem is built from it for each optimization (window_solver.cpp).
 #pragma once
 
+#include "marginal_prior.hpp"
 #include "wall_geometry.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
@@ -67,10 +68,8 @@ struct WallNode {
   std::array<FaceGeometry, 2> face;
   std::array<Eigen::Vector2d, 2> start{}, end{};  // extent of each face along the floor
   std::array<double, 3> params{};                 // s, alpha, tau: the Ceres block
-  // Evidence of marginalized keyframes, canonical form: 1/2 p'Hp - eta'p.
-  Eigen::Matrix3d evidence_information = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d evidence_vector = Eigen::Vector3d::Zero();
   int observations = 0;
+  int last_keyframe = -1;  // the newest keyframe that saw it
   std::vector<int> rooms;  // room nodes it is part of
 
   Eigen::Vector2d normal(int k) const;  // current estimate
@@ -110,9 +109,9 @@ struct Graph {
   std::vector<WallNode> nodes;  // the storey's walls first (index = wall index), then new planes
   std::vector<RoomData> rooms;
   std::vector<Candidate> candidates;
-  // The prior on window.front() (what was marginalized, or the initial pose).
-  Eigen::Vector3d anchor_mean = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d anchor_sqrt_information = Eigen::Matrix3d::Identity();
+  // The prior on window.front() and the walls the marginalized keyframes saw (or, before any
+  // was marginalized, the initial pose).
+  MarginalPrior prior;
   int next_keyframe_id = 0;
   int next_new_plane_id = 0;
 };

@@ -1,10 +1,8 @@
 // Unary factors: what the graph knows of a node before (or besides) the window's scans.
-//   PosePrior      the oldest keyframe of the window: what the marginalized keyframes said
-//                  about it (marginalization.cpp), or the particle filter's pose at the start.
-//   GaussianPrior  a node's evidence from marginalized keyframes (canonical form -> mean and
-//                  square-root information), and the room nodes' plan centres.
+//   GaussianPrior  the room nodes' plan centres.
 //   WallPrior      a plan wall at its plan position, to its as-built tolerance (s, alpha).
 //   ThicknessPrior the plan's thickness (tau = 0).
+// (What marginalized keyframes said is the MarginalPrior, marginal_prior.hpp.)
 #pragma once
 
 #include "wall_geometry.hpp"
@@ -13,26 +11,6 @@
 #include <ceres/autodiff_cost_function.h>
 
 namespace bimloc::sgraph::detail {
-
-class PosePrior {
- public:
-  PosePrior(const Eigen::Vector3d& mean, const Eigen::Matrix3d& sqrt_information) : mean_(mean), L_(sqrt_information) {}
-
-  template <typename T>
-  bool operator()(const T* pose, T* residual) const {
-    const T e[3] = {pose[0] - mean_.x(), pose[1] - mean_.y(), wrapAngle(T(pose[2] - mean_.z()))};
-    for (int i = 0; i < 3; ++i) residual[i] = L_(i, 0) * e[0] + L_(i, 1) * e[1] + L_(i, 2) * e[2];
-    return true;
-  }
-
-  static ceres::CostFunction* create(const Eigen::Vector3d& mean, const Eigen::Matrix3d& sqrt_information) {
-    return new ceres::AutoDiffCostFunction<PosePrior, 3, 3>(new PosePrior(mean, sqrt_information));
-  }
-
- private:
-  Eigen::Vector3d mean_;
-  Eigen::Matrix3d L_;
-};
 
 template <int N>
 class GaussianPrior {

@@ -1,5 +1,6 @@
 #include "room_association.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -79,6 +80,7 @@ void mergeInto(Graph& g, int from, int to, int k, SGraphResult& result) {
     for (PlaneMeasurement& m : kf.planes)
       if (m.node == from) m.node = to, m.face = k;
   target.observations += source.observations;
+  target.last_keyframe = std::max(target.last_keyframe, source.last_keyframe);
   source.active = false;
   for (PlaneAssociation& a : result.associations) {
     if (a.kind != PlaneAssociation::Kind::NewPlane || a.new_plane != source.new_id) continue;

@@ -156,9 +156,7 @@ detail::Keyframe& SGraphTracker::Impl::addKeyframe(double stamp_s, const Eigen::
   kf.odometry_jump = jump_pending && !graph.window.empty();
   jump_pending = false;
   if (graph.window.empty()) {  // the first keyframe: the particle filter's pose, to its precision
-    graph.anchor_mean = predicted;
-    graph.anchor_sqrt_information = Eigen::Vector3d(1.0 / config.initial_sigma_xy_m, 1.0 / config.initial_sigma_xy_m,
-                                                    1.0 / (config.initial_sigma_yaw_deg * kDeg)).asDiagonal();
+    graph.prior = detail::posePrior(predicted, {config.initial_sigma_xy_m, config.initial_sigma_xy_m, config.initial_sigma_yaw_deg * kDeg});
   }
   KeyframeInfo info;
   info.id = kf.id;

@@ -7,7 +7,6 @@
 
 #include <ceres/ceres.h>
 
-#include <Eigen/Cholesky>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -18,22 +17,15 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-// A node's evidence as a prior: mean and square-root information of its canonical form.
-void addEvidence(ceres::Problem& problem, WallNode& node) {
-  if (node.evidence_information.trace() <= 0) return;
-  const Eigen::Matrix3d H = node.evidence_information + 1e-9 * Eigen::Matrix3d::Identity();
-  const Eigen::LLT<Eigen::Matrix3d> llt(H);
-  if (llt.info() != Eigen::Success) return;
-  const Eigen::Vector3d mean = llt.solve(node.evidence_vector);
-  problem.AddResidualBlock(GaussianPrior<3>::create(mean, llt.matrixL().transpose()), nullptr, node.params.data());
-}
-
 // How well the window knows where the robot is now: the newest pose's block of the inverse
 // Hessian. Sparse QR, which fails on a rank-deficient Jacobian rather than invent a
 // pseudo-inverse; single-threaded: same input, same output.
 std::optional<Eigen::Matrix3d> newestCovariance(ceres::Problem& problem, const double* pose) {
   ceres::Covariance::Options options;
   options.num_threads = 1;
+  // Eigen's sparse QR rather than SuiteSparse's: SuiteSparseQR splits its work over threads of
+  // its own (TBB), and the covariance then differed in its last digits from run to run.
+  options.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
   ceres::Covariance covariance(options);
   const std::vector<std::pair<const double*, const double*>> blocks{{pose, pose}};
   if (!covariance.Compute(blocks, &problem)) return std::nullopt;
@@ -84,9 +76,8 @@ SolveReport optimizeWindow(Graph& g, const SGraphConfig& c) {
   ceres::LossFunction* cauchy_wall = new ceres::CauchyLoss(c.cauchy_wall_prior_sigmas);
   ceres::LossFunction* huber_room = new ceres::HuberLoss(c.huber_room_sigmas);
 
-  // Tracking layer: the window's keyframes, the prior on the oldest, odometry between them.
+  // Tracking layer: the window's keyframes, odometry between them.
   for (Keyframe& kf : g.window) problem.AddParameterBlock(kf.pose.data(), 3);
-  problem.AddResidualBlock(PosePrior::create(g.anchor_mean, g.anchor_sqrt_information), nullptr, g.window.front().pose.data());
   for (std::size_t i = 0; i + 1 < g.window.size(); ++i)
     problem.AddResidualBlock(odometryCost(g.window[i], g.window[i + 1], c), huber_odometry, g.window[i].pose.data(),
                              g.window[i + 1].pose.data());
@@ -121,8 +112,17 @@ SolveReport optimizeWindow(Graph& g, const SGraphConfig& c) {
     else
       problem.AddResidualBlock(RoomFactor::create({faces[0], faces[1], faces[2], faces[3]}, c.room_factor_sigma_m), huber_room, blocks);
   }
-  // Metric-semantic layer: plan walls at their as-built tolerance; what marginalized
-  // keyframes said of each node; a new plane has one face and no thickness.
+  // What the marginalized keyframes said, on the oldest keyframe and the walls they saw.
+  if (g.prior.J.rows() > 0) {
+    std::vector<double*> blocks{g.window.front().pose.data()};
+    for (int n : g.prior.nodes) {
+      blocks.push_back(g.nodes[static_cast<std::size_t>(n)].params.data());
+      nodes.insert(n);
+    }
+    problem.AddResidualBlock(new MarginalPriorFactor(g.prior), nullptr, blocks);
+  }
+  // Metric-semantic layer: plan walls at their as-built tolerance (never marginalized: they
+  // are the map's own knowledge, not the keyframes'); a new plane has one face and no thickness.
   for (int n : nodes) {
     WallNode& node = g.nodes[static_cast<std::size_t>(n)];
     if (node.kind == WallNode::Kind::Plan) {
@@ -131,7 +131,6 @@ SolveReport optimizeWindow(Graph& g, const SGraphConfig& c) {
     } else {
       problem.SetManifold(node.params.data(), new ceres::SubsetManifold(3, {2}));
     }
-    addEvidence(problem, node);
   }
 
   // Keep the state to restore it if the solver fails.

@@ -26,7 +26,7 @@ struct SGraphConfig {
   double keyframe_spacing_m = 1.0;
   double keyframe_spacing_deg = 20.0;
   // Sliding window: the keyframes optimized together; older ones are marginalized into a
-  // prior on the oldest kept keyframe and into the evidence of the walls they saw.
+  // prior on the oldest kept keyframe and the walls they saw.
   int window_keyframes = 10;
 
   // Keyframe-plane factor (reference: S-Graphs' keyframe-plane edge in (azimuth, elevation,
@@ -79,10 +79,12 @@ struct SGraphConfig {
   // with one wall 0.4 m off has its centre 0.2 m off (a tight prior would pull the walls back).
   double room_prior_sigma_m = 0.5;
   double room_factor_sigma_m = 0.02;
-  // What marginalized keyframes said about a wall is kept as its evidence, at most this
-  // certain: the keyframes' poses were correlated through odometry, which the evidence forgets.
-  double wall_evidence_min_sigma_m = 0.005;
-  double wall_evidence_min_sigma_deg = 0.1;
+  // What marginalized keyframes said is one Gaussian over the oldest kept keyframe and the walls
+  // they saw (marginal_prior.hpp). It holds at most this many walls: beyond, the walls no
+  // keyframe of the window sees, least recently seen first, are marginalized out of it too
+  // (their plan prior stays; what the robot learned of them is forgotten), so that its cost is
+  // bounded by what the robot saw lately, not by the building.
+  int prior_max_walls = 40;
 
   // Robust kernels, in sigmas of each factor (residuals are whitened): Huber on measurements.
   double huber_plane_sigmas = 2.0;
