@@ -85,17 +85,6 @@ Eigen::Vector2d roomGoal(const FreeSpace& space, const bim::Room& room) {
   return *spot;
 }
 
-std::vector<Eigen::Vector2d> legTo(FreeSpace& space, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
-                                   const std::string& what) {
-  std::vector<Eigen::Vector2d> leg = space.path(from, to);
-  if (leg.empty())
-    throw MotionError("no path from " + xy(from) + " to " + what + " " + xy(to) + " for a body of radius " +
-                          metres(space.radius()),
-                      MotionError::Where::Script);
-  leg.erase(leg.begin());  // `from`: where the base already is
-  return leg;
-}
-
 void randomWalk(ScriptBuilder& script, const bim::Storey& storey, const MotionConfig& motion, const Pose2& start,
                 double duration_s, std::uint64_t seed) {
   const bim::Room* room = motion.walk_room.empty() ? roomAt(storey, {start.x, start.y})
@@ -132,8 +121,17 @@ void randomWalk(ScriptBuilder& script, const bim::Storey& storey, const MotionCo
 // After a tour: on to the nearest room not yet visited that the base can reach, until the
 // duration is used; with none left, a random walk where it stands (if that is a room).
 // From where the base is, through the doors, to a free spot near the room's centre.
+// The spot nearest the centre may be walled in by furniture: then the reachable spot of the
+// room nearest it (FreeSpace::pathInto).
 void legToRoom(ScriptBuilder& script, const bim::Room& room) {
-  script.addLeg(legTo(script.space, script.timeline.position(), roomGoal(script.space, room), "room " + room.name));
+  const Eigen::Vector2d from = script.timeline.position(), goal = roomGoal(script.space, room);
+  std::vector<Eigen::Vector2d> leg = script.space.pathInto(from, goal, room.footprint);
+  if (leg.empty())
+    throw MotionError("no path from " + xy(from) + " into room " + room.name + " for a body of radius " +
+                          metres(script.space.radius()),
+                      MotionError::Where::Script);
+  leg.erase(leg.begin());  // `from`: where the base already is
+  script.addLeg(leg);
 }
 
 void explore(ScriptBuilder& script, const bim::Storey& storey, const MotionConfig& motion,
@@ -235,8 +233,10 @@ BaseTrajectory BaseTrajectory::plan(const World& world, std::size_t storey, cons
           if (!motion.skip_unreachable_rooms) throw;
         }
       }
-      if (!moved && motion.skip_unreachable_rooms) randomWalk(script, st, motion, start, duration_s, seed);
-      else if (motion.explore_after_tour) explore(script, st, motion, std::move(visited), duration_s, seed);
+      // No listed room reachable (the tour's rooms in another flat): exploring still takes the
+      // base out of its start room to the rooms it can reach, as it does after a tour.
+      if (motion.explore_after_tour) explore(script, st, motion, std::move(visited), duration_s, seed);
+      else if (!moved && motion.skip_unreachable_rooms) randomWalk(script, st, motion, start, duration_s, seed);
       break;
     }
     case MotionConfig::Kind::RandomWalk:

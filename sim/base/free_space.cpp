@@ -122,14 +122,15 @@ bool FreeSpace::edgeClear(int cell, int direction) {
   return clear;
 }
 
-std::vector<int> FreeSpace::aStar(int from, int to) {
+std::vector<int> FreeSpace::aStar(int from, int to, std::vector<bool>* reached) {
   const std::size_t n = grid_.edges.size();
   const float inf = std::numeric_limits<float>::infinity();
   std::vector<float> g(n, inf);
   std::vector<int> parent(n, -1);
   std::vector<bool> closed(n, false);
   const int tx = to % grid_.nx, ty = to / grid_.nx;
-  const auto h = [&](int c) {  // octile distance in cells
+  const auto h = [&](int c) {  // octile distance in cells (none without a goal: a flood)
+    if (to < 0) return 0.0f;
     const int dx = std::abs(c % grid_.nx - tx), dy = std::abs(c / grid_.nx - ty);
     return static_cast<float>(std::max(dx, dy) + (M_SQRT2 - 1.0) * std::min(dx, dy));
   };
@@ -156,7 +157,10 @@ std::vector<int> FreeSpace::aStar(int from, int to) {
       open.emplace(cost + h(nb), nb);
     }
   }
-  if (!closed[static_cast<std::size_t>(to)]) return {};
+  if (to < 0 || !closed[static_cast<std::size_t>(to)]) {
+    if (reached) *reached = std::move(closed);
+    return {};
+  }
   std::vector<int> cells{to};
   while (cells.back() != from) cells.push_back(parent[static_cast<std::size_t>(cells.back())]);
   std::reverse(cells.begin(), cells.end());
@@ -229,7 +233,7 @@ bool FreeSpace::passable(const Eigen::Vector2d& a, const Eigen::Vector2d& b, dou
   return segmentClear(a, b, margin_m);
 }
 
-std::vector<Eigen::Vector2d> FreeSpace::path(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+void FreeSpace::useRule(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   // Tours stay in the building (the localizer knows rooms, not the street): out of doors only
   // when a or b is.
   const bool indoors_only = indoors(a) && indoors(b);
@@ -237,33 +241,69 @@ std::vector<Eigen::Vector2d> FreeSpace::path(const Eigen::Vector2d& a, const Eig
     indoors_only_ = indoors_only;
     std::fill(grid_.edges.begin(), grid_.edges.end(), std::uint8_t{0});  // cached for the other rule
   }
-  if (passable(a, b, kMargin_m)) return {a, b};
-  if (grid_.edges.empty()) makeGrid(a, b);
-  // Join a and b to the grid: the nearest grid point reached by a clear segment (with the
-  // margin if possible: a start given close to a wall may not allow it).
-  const auto join = [&](const Eigen::Vector2d& p) {
-    const int c = cellNear(p);
-    if (c < 0) return -1;
-    std::vector<std::pair<double, int>> near;
-    for (int d = -1; d < 8; ++d) {
-      const int x = c % grid_.nx + (d < 0 ? 0 : kDx[d]), y = c / grid_.nx + (d < 0 ? 0 : kDy[d]);
-      if (x >= 0 && y >= 0 && x < grid_.nx && y < grid_.ny) near.emplace_back((centre(y * grid_.nx + x) - p).norm(), y * grid_.nx + x);
-    }
-    std::sort(near.begin(), near.end());
-    for (const double margin : {kMargin_m, 0.0})
-      for (const auto& [d, cell] : near)
-        if (segmentClear(p, centre(cell), margin)) return cell;
-    return -1;
-  };
-  const int from = join(a), to = join(b);
-  if (from < 0 || to < 0) return {};
-  const std::vector<int> cells = aStar(from, to);
-  if (cells.empty()) return {};
+}
+
+int FreeSpace::joinGrid(const Eigen::Vector2d& p) const {
+  // The nearest grid point reached by a clear segment (with the margin if possible: a start
+  // given close to a wall may not allow it).
+  const int c = cellNear(p);
+  if (c < 0) return -1;
+  std::vector<std::pair<double, int>> near;
+  for (int d = -1; d < 8; ++d) {
+    const int x = c % grid_.nx + (d < 0 ? 0 : kDx[d]), y = c / grid_.nx + (d < 0 ? 0 : kDy[d]);
+    if (x >= 0 && y >= 0 && x < grid_.nx && y < grid_.ny) near.emplace_back((centre(y * grid_.nx + x) - p).norm(), y * grid_.nx + x);
+  }
+  std::sort(near.begin(), near.end());
+  for (const double margin : {kMargin_m, 0.0})
+    for (const auto& [d, cell] : near)
+      if (segmentClear(p, centre(cell), margin)) return cell;
+  return -1;
+}
+
+std::vector<Eigen::Vector2d> FreeSpace::corners(const Eigen::Vector2d& a, const std::vector<int>& cells,
+                                                const Eigen::Vector2d& b) const {
   std::vector<Eigen::Vector2d> points{a};
   for (const int c : cells)
     if ((centre(c) - points.back()).norm() > 1e-9) points.push_back(centre(c));
   if ((b - points.back()).norm() > 1e-9) points.push_back(b);
   return straighten(pullTaut(points));
+}
+
+std::vector<Eigen::Vector2d> FreeSpace::path(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  useRule(a, b);
+  if (passable(a, b, kMargin_m)) return {a, b};
+  if (grid_.edges.empty()) makeGrid(a, b);
+  const int from = joinGrid(a), to = joinGrid(b);
+  if (from < 0 || to < 0) return {};
+  const std::vector<int> cells = aStar(from, to);
+  if (cells.empty()) return {};
+  return corners(a, cells, b);
+}
+
+std::vector<Eigen::Vector2d> FreeSpace::pathInto(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                                 const bim::Polygon2& area) {
+  useRule(a, b);
+  if (passable(a, b, kMargin_m)) return {a, b};
+  if (grid_.edges.empty()) makeGrid(a, b);
+  const int from = joinGrid(a);
+  if (from < 0) return {};
+  // b off the grid's free cells (to = -1): A* closes the whole component of `from`.
+  const int to = joinGrid(b);
+  std::vector<bool> reached;
+  const std::vector<int> cells = aStar(from, to, &reached);
+  if (!cells.empty()) return corners(a, cells, b);
+  // The reached cell inside the area nearest b: every reached cell's centre is the end of a
+  // clear sweep with the margin, so the body fits there.
+  int best = -1;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < reached.size(); ++c) {
+    if (!reached[c]) continue;
+    const Eigen::Vector2d q = centre(static_cast<int>(c));
+    const double d = (q - b).norm();
+    if (d < best_d && bim::pointInPolygon(area, q)) best_d = d, best = static_cast<int>(c);
+  }
+  if (best < 0) return {};
+  return corners(a, aStar(from, best), centre(best));
 }
 
 }  // namespace bimloc::sim

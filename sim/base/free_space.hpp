@@ -48,6 +48,11 @@ class FreeSpace {
   // A path from a to b as its corners (a first, b last), clear with the margin except where a
   // or b themselves are closer; empty when b cannot be reached.
   std::vector<Eigen::Vector2d> path(const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+  // A path from a into `area` (a room's outline): to b when b can be reached, else to the
+  // reachable grid point inside `area` nearest b; empty when no point of `area` can be reached.
+  // A room's free spot nearest its centre may be a pocket walled in by furniture (a living
+  // room's centre between sofa and table): the room is still reachable, that spot is not.
+  std::vector<Eigen::Vector2d> pathInto(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const bim::Polygon2& area);
   std::size_t sweepCount() const { return sweeps_; }
 
  private:
@@ -63,7 +68,13 @@ class FreeSpace {
   bool indoors(const Eigen::Vector2d& p) const;
   // segmentClear, and indoors all along when paths must stay in the building.
   bool passable(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin_m) const;
-  std::vector<int> aStar(int from, int to);
+  // Cells from `from` to `to`; empty when `to` cannot be reached, and then, if `reached` is
+  // given, the cells that can be (the whole component of `from`: A* closed them all).
+  std::vector<int> aStar(int from, int to, std::vector<bool>* reached = nullptr);
+  int joinGrid(const Eigen::Vector2d& p) const;  // grid point reached from p by a clear segment, -1 if none
+  void useRule(const Eigen::Vector2d& a, const Eigen::Vector2d& b);  // indoors_only_ for a path a -> b
+  std::vector<Eigen::Vector2d> corners(const Eigen::Vector2d& a, const std::vector<int>& cells,
+                                       const Eigen::Vector2d& b) const;  // a, the cells, b pulled taut
   std::vector<Eigen::Vector2d> pullTaut(const std::vector<Eigen::Vector2d>& points) const;
   std::vector<Eigen::Vector2d> straighten(std::vector<Eigen::Vector2d> corners) const;
 

@@ -28,7 +28,8 @@ struct MotionConfig {
   std::vector<std::string> rooms;   // Kind::Tour: room names or ids, visited in order through the doors
   std::string walk_room;            // Kind::RandomWalk: the room to wander in (default: the start room)
   // Kind::Tour: rooms out of reach (another flat, closed doors) are left out instead of an
-  // error; reaching none, the base wanders in its start room. Generated tours set it.
+  // error; reaching none, the base explores (explore_after_tour) or else wanders in its start
+  // room. Generated tours set it.
   bool skip_unreachable_rooms = false;
   // Kind::Tour: the listed rooms visited before the duration is up, the base goes on exploring
   // (the nearest room not yet visited that it can reach, and so on; with none left, it wanders
