@@ -241,6 +241,10 @@ TEST(SGraphFactors, MarginalizingAKeyframePropagatesItsPriorThroughOdometry) {
   g.prior = posePrior(k0.planar(), sigma0);
   g.history.resize(2);
   g.window = {k0, k1};
+  // The window's covariance of its newest pose, before: the same propagation (checked below).
+  const SolveReport solved = optimizeWindow(g, config);
+  ASSERT_TRUE(solved.newest_covariance.has_value());
+  const Eigen::Matrix3d window_covariance = *solved.newest_covariance;
   marginalizeOldest(g, config);
   ASSERT_EQ(g.window.size(), 1u);
   ASSERT_EQ(g.prior.J.rows(), 3);
@@ -259,6 +263,7 @@ TEST(SGraphFactors, MarginalizingAKeyframePropagatesItsPriorThroughOdometry) {
   const Eigen::Matrix3d P = J * sigma0.cwiseAbs2().asDiagonal() * J.transpose() + R * q.cwiseAbs2().asDiagonal() * R.transpose();
   const Eigen::Matrix3d information = g.prior.J.transpose() * g.prior.J;
   EXPECT_LT((information.inverse() - P).norm(), 1e-6 * P.norm());
+  EXPECT_LT((window_covariance - P).norm(), 1e-6 * P.norm());
 }
 
 // The oracle for the window's marginalization: on a walk whose factors are all near their

@@ -7,6 +7,8 @@
 
 #include <ceres/ceres.h>
 
+#include <Eigen/Cholesky>
+
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -18,20 +20,29 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 
 // How well the window knows where the robot is now: the newest pose's block of the inverse
-// Hessian. Sparse QR, which fails on a rank-deficient Jacobian rather than invent a
-// pseudo-inverse; single-threaded: same input, same output.
-std::optional<Eigen::Matrix3d> newestCovariance(ceres::Problem& problem, const double* pose) {
-  ceres::Covariance::Options options;
+// Gauss-Newton Hessian J'J (robust kernels applied, tangent space of each block), from the
+// Jacobian Ceres evaluates in the order given here. Ceres' own Covariance orders the blocks by
+// their addresses in memory, which differ from run to run, and the result then differed in
+// its last digits; this order does not. Unset when J'J is rank deficient.
+std::optional<Eigen::Matrix3d> newestCovariance(ceres::Problem& problem, const std::vector<double*>& blocks) {
+  ceres::Problem::EvaluateOptions options;
+  options.parameter_blocks = blocks;
   options.num_threads = 1;
-  // Eigen's sparse QR rather than SuiteSparse's: SuiteSparseQR splits its work over threads of
-  // its own (TBB), and the covariance then differed in its last digits from run to run.
-  options.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
-  ceres::Covariance covariance(options);
-  const std::vector<std::pair<const double*, const double*>> blocks{{pose, pose}};
-  if (!covariance.Compute(blocks, &problem)) return std::nullopt;
-  Eigen::Matrix<double, 3, 3, Eigen::RowMajor> block;
-  if (!covariance.GetCovarianceBlock(pose, pose, block.data())) return std::nullopt;
-  return Eigen::Matrix3d(block);
+  ceres::CRSMatrix crs;
+  if (!problem.Evaluate(options, nullptr, nullptr, nullptr, &crs)) return std::nullopt;
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r)
+    for (int k = crs.rows[static_cast<std::size_t>(r)]; k < crs.rows[static_cast<std::size_t>(r) + 1]; ++k)
+      J(r, crs.cols[static_cast<std::size_t>(k)]) = crs.values[static_cast<std::size_t>(k)];
+  const Eigen::MatrixXd H = J.transpose() * J;
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(H);
+  const Eigen::VectorXd pivots = ldlt.vectorD();
+  if (ldlt.info() != Eigen::Success || pivots.size() < 3 || pivots.minCoeff() <= 1e-12 * std::max(pivots.maxCoeff(), 1e-300))
+    return std::nullopt;
+  // The newest pose comes first in `blocks`: its covariance is the top-left 3x3 of H^-1.
+  const Eigen::MatrixXd columns = ldlt.solve(Eigen::MatrixXd::Identity(H.rows(), 3));
+  Eigen::Matrix3d covariance = columns.topRows<3>();
+  return Eigen::Matrix3d(0.5 * (covariance + covariance.transpose()));
 }
 
 }  // namespace
@@ -168,7 +179,11 @@ SolveReport optimizeWindow(Graph& g, const SGraphConfig& c) {
     for (int n : nodes) g.nodes[static_cast<std::size_t>(n)].params = params[i++];
     return report;
   }
-  report.newest_covariance = newestCovariance(problem, g.window.back().pose.data());
+  std::vector<double*> blocks{g.window.back().pose.data()};
+  for (std::size_t i = 0; i + 1 < g.window.size(); ++i) blocks.push_back(g.window[i].pose.data());
+  for (int n : nodes) blocks.push_back(g.nodes[static_cast<std::size_t>(n)].params.data());
+  for (int r : rooms) blocks.push_back(g.rooms[static_cast<std::size_t>(r)].centre.data());
+  report.newest_covariance = newestCovariance(problem, blocks);
   for (Keyframe& kf : g.window) kf.pose[2] = wrapAngle(kf.pose[2]);
   return report;
 }
