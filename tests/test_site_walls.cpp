@@ -4,6 +4,7 @@
 // same seed gives the same world bit for bit, and the exact site is the plan's world.
 #include "sim/world/world.hpp"
 #include "sim_fixtures.hpp"
+#include "test_support.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -166,6 +167,35 @@ TEST(SiteWalls, PartitionsStandWhereTheTruthSaysClearOfTheWalls) {
 
 TEST(SiteWalls, EditNamingNoWallIsRefused) {
   EXPECT_THROW(test::officeWorld().withSite(editOne("no-such-wall", 0.1, std::nullopt, false), 1), std::invalid_argument);
+}
+
+// SampleHouse4's curtain walls are wall landmarks of the plan, but their bodies are their panels
+// and mullions, which the world does not move as one: a site leaves them as drawn, and says so.
+TEST(SiteWalls, CurtainWallsAreBuiltAsDrawnAndCannotBeEdited) {
+  BIMLOC_REQUIRE_SHARED(path, "SampleHouse4.ifc");
+  const World plan = World::fromPlan(path);
+  SiteConfig every;
+  every.preset = "test";
+  every.walls.fraction = 1.0, every.walls.max_offset_m = 0.2, every.walls.max_angle_deg = 1.0;
+  every.walls.missing_fraction = 0.5;
+  const World site = plan.withSite(every, 3);
+  int curtain = 0, moved = 0;
+  for (const auto& storey : plan.building().storeys)
+    for (const auto& w : storey.walls)
+      for (const auto& t : site.siteTruth().walls) {
+        if (t.id != w.id) continue;
+        if (w.ifc_type == "IfcCurtainWall") {
+          ++curtain;
+          EXPECT_EQ(t.offset_m, 0.0) << w.id;
+          EXPECT_EQ(t.angle_deg, 0.0) << w.id;
+          EXPECT_FALSE(t.missing) << w.id;
+        } else {
+          moved += t.missing || t.offset_m != 0.0;
+        }
+      }
+  EXPECT_EQ(curtain, 2);
+  EXPECT_EQ(moved, 5);  // every other wall shifted or left out
+  EXPECT_THROW(plan.withSite(editOne("3cUkl32yn9qRSPvBJVyW_P", 0.1, std::nullopt, false), 1), std::invalid_argument);
 }
 
 }  // namespace

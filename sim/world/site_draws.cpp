@@ -94,6 +94,12 @@ SiteTruth drawSite(const bim::Building& building, const std::vector<PlanStorey>&
   SeededRandom wall_random(seed, RandomStream::SiteWalls);
   for (std::size_t s = 0; s < building.storeys.size(); ++s)
     for (const auto& w : building.storeys[s].walls) {
+      // A curtain wall is built as drawn: its body is its parts' (plates, members), which the
+      // world does not move with it; no draw taken, so the other walls' draws are as before.
+      if (w.ifc_type == "IfcCurtainWall") {
+        truth.walls.push_back({w.id, w.name, s, 0.0, 0.0, false});
+        continue;
+      }
       const double shifted = wall_random.uniform(), offset = wall_random.uniform(-1.0, 1.0),
                    angle = wall_random.uniform(-1.0, 1.0), missing = wall_random.uniform();
       WallTruth t{w.id, w.name, s, 0.0, 0.0, false};
@@ -105,6 +111,10 @@ SiteTruth drawSite(const bim::Building& building, const std::vector<PlanStorey>&
   for (const auto& edit : walls.edits) {
     const auto named = wallsNamed(building, edit.id);
     if (named.empty()) throw std::invalid_argument("site.walls.edit: no wall '" + edit.id + "' in the plan");
+    for (const bim::Wall* w : named)
+      if (w->ifc_type == "IfcCurtainWall")
+        throw std::invalid_argument("site.walls.edit: '" + edit.id + "' is a curtain wall (" + w->id +
+                                    "): its panels and mullions cannot be moved or left out as one wall");
     for (const bim::Wall* w : named)
       for (auto& t : truth.walls)
         if (t.id == w->id) t.offset_m = edit.offset_m.value_or(0.0), t.angle_deg = edit.angle_deg.value_or(0.0), t.missing = edit.missing;

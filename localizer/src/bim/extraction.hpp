@@ -16,11 +16,30 @@ namespace bimloc::bim::detail {
 // Returns nothing and says why in `problem` when the product has no usable geometry.
 std::optional<Wall> wallFromGeometry(const RawProduct& product, std::string& problem);
 
+// A curtain wall (IfcCurtainWall) as one body: its own, if any, and its parts' (IfcRelAggregates:
+// plates, members), with the wall box fitted to it (curtain_walls.cpp).
+struct CurtainWall {
+  RawProduct body;  // the curtain wall's ids and name, the mesh of all its parts
+  int parts = 0;
+  Wall wall;
+};
+
+bool isCurtainWall(const RawProduct& product);
+
+// The straight curtain walls of the model as walls; the others are named in `warnings`.
+std::vector<CurtainWall> curtainWallsOf(const RawModel& raw, std::vector<std::string>& warnings);
+
 // A room's footprint, area and centre from its space's body.
 std::optional<Room> roomFromGeometry(const RawProduct& space, std::string& problem);
 
 // Does `face` lie on the footprint edge a→b of a counter-clockwise room polygon, looking in?
 bool faceBoundsEdge(const WallFace& face, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                    const ExtractOptions& options);
+
+// Does the footprint edge a→b run inside the body of `wall` (between its faces, or on one),
+// with face `f` looking into the room? Rooms drawn to a wall's centre line, or to the outer
+// line of a curtain wall's assembly, are bounded by it as much as rooms drawn to its face.
+bool edgeInWallBody(const Wall& wall, int f, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                     const ExtractOptions& options);
 
 // Fills Room::walls for every room of the storey: IfcRelSpaceBoundary where the file has

@@ -79,6 +79,19 @@ std::unordered_map<int, int> parentMap(const BuildingModel& model) {
   return parent;
 }
 
+// Maps every part to the element it makes up (IfcRelAggregates between elements: a curtain
+// wall and its plates and members, IFC4 IfcCurtainWall "decomposition").
+std::unordered_map<int, int> wholeMap(const BuildingModel& model) {
+  std::unordered_map<int, int> whole;
+  for (const auto& [id, entity] : model.getMapIfcEntities())
+    if (auto agg = dynamic_pointer_cast<IfcRelAggregates>(entity)) {
+      if (!dynamic_pointer_cast<IfcElement>(agg->m_RelatingObject)) continue;
+      for (const auto& object : agg->m_RelatedObjects)
+        if (object) whole.emplace(object->m_entity_id, agg->m_RelatingObject->m_entity_id);
+    }
+  return whole;
+}
+
 int storeyOf(int entity_id, const std::unordered_map<int, int>& parent,
              const std::unordered_map<int, int>& storey_index) {
   for (int hops = 0; hops < 64; ++hops) {  // bounded: a broken file may hold a cycle
@@ -239,6 +252,7 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
     raw.warnings.push_back("geometry conversion stopped early: unknown error");
   }
   const auto parent = parentMap(*model);
+  const auto whole = wholeMap(*model);
   ProfileReader profiles(converter.getRepresentationConverter()->getPlacementConverter(), raw.length_unit_m);
 
   // Storeys first: every product is filed under one of them.
@@ -276,6 +290,7 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
                             !dynamic_pointer_cast<IfcVirtualElement>(product);
     if (!is_wall && !is_space && !is_element) continue;
     RawProduct p = makeProduct(product, *shape, storeyOf(id, parent, storey_index));
+    if (const auto w = whole.find(id); w != whole.end()) p.whole_entity_id = w->second;
     const auto drop = drops.find(id);
     if (drop != drops.end() && (drop->second.all ? !is_wall && !is_space : true))
       raw.warnings.push_back(describeProduct(p) + (drop->second.all ? ": geometry skipped: " : ": ignored ") +

@@ -188,8 +188,8 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     }
     building.storeys[static_cast<std::size_t>(s)].rooms.push_back(std::move(*room));
   }
-  // Curtain walls are no wall landmarks (glass), but they bound rooms; a façade filed under
-  // the storey below may stand through this one (Jesse.1.ifc).
+  // Curtain walls bound rooms, as barriers of each part (a bent one is no wall landmark, and a
+  // façade filed under the storey below may stand through this one: Jesse.1.ifc).
   RoomBounds bounds{std::move(shapes), {}, {}};
   for (const auto& p : raw.elements) {
     const int s = storeyFor(p, new_index, building.storeys);
@@ -209,6 +209,12 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
   }
   const auto dropped = dropRoomsOfLowerStoreys(building.storeys, options.room_inference);
   building.warnings.insert(building.warnings.end(), dropped.begin(), dropped.end());
+  // Straight curtain walls are walls too (curtain_walls.cpp), filed under their own storey;
+  // added after the room inference, which has their parts as barriers already.
+  for (auto& cw : detail::curtainWallsOf(raw, building.warnings)) {
+    const int s = storeyFor(cw.body, new_index, building.storeys);
+    if (s >= 0) building.storeys[static_cast<std::size_t>(s)].walls.push_back(std::move(cw.wall));
+  }
   for (std::size_t s = 0; s < building.storeys.size(); ++s) {
     auto& storey = building.storeys[s];
     if (inferred[s]) {

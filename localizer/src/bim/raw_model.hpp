@@ -30,6 +30,8 @@ struct RawProduct {
   std::string long_name;  // IfcSpace only
   std::string ifc_class;  // e.g. IfcWallStandardCase
   int storey = -1;        // index into RawModel::storeys, -1 when outside the spatial tree
+  int whole_entity_id = 0;  // the element it is a part of (IfcRelAggregates), 0 when none:
+                            // a curtain wall's plates and members (IFC4 IfcCurtainWall)
   TriangleMesh mesh;      // world frame, metres
   std::optional<Extrusion> extrusion;
   std::string geometry_problem;  // why there is neither mesh nor extrusion

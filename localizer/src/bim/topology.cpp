@@ -52,6 +52,27 @@ bool faceBoundsEdge(const WallFace& face, const Eigen::Vector2d& a, const Eigen:
   return overlap >= options.adjacency_min_overlap_m;
 }
 
+bool edgeInWallBody(const Wall& wall, int f, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                    const ExtractOptions& options) {
+  const WallFace& face = wall.faces[f];
+  const Eigen::Vector2d edge = b - a;
+  const double length = edge.norm();
+  if (length < 1e-6) return false;
+  const Eigen::Vector2d dir = edge / length;
+  const Eigen::Vector2d inward(-dir.y(), dir.x());
+  if (xy(face.plane.n).normalized().dot(inward) < std::cos(options.adjacency_angle_deg * M_PI / 180.0)) return false;
+  // How far the face stands in front of the edge's line, into the room: 0 when the edge runs
+  // along the face, the thickness when it runs along the wall's back.
+  const auto in_body = [&](const Eigen::Vector3d& p) {
+    const double h = inward.dot(xy(p) - a);
+    return h >= -options.adjacency_tolerance_m && h <= wall.thickness_m + options.adjacency_tolerance_m;
+  };
+  if (!in_body(face.start) || !in_body(face.end)) return false;
+  const double s0 = dir.dot(xy(face.start) - a), s1 = dir.dot(xy(face.end) - a);
+  const double overlap = std::min(length, std::max(s0, s1)) - std::max(0.0, std::min(s0, s1));
+  return overlap >= options.adjacency_min_overlap_m;
+}
+
 void linkRoomsToWalls(Storey& storey, const std::vector<SpaceBoundary>& boundaries,
                       const ExtractOptions& options) {
   for (auto& room : storey.rooms) {
@@ -84,7 +105,8 @@ void linkRoomByGeometry(Room& room, const std::vector<Wall>& walls, const Extrac
     for (int f = 0; f < 2; ++f) {
       bool bounds = false;
       for (std::size_t i = 0; i < poly.size() && !bounds; ++i)
-        bounds = faceBoundsEdge(wall.faces[f], poly[i], poly[(i + 1) % poly.size()], options);
+        bounds = faceBoundsEdge(wall.faces[f], poly[i], poly[(i + 1) % poly.size()], options) ||
+                 edgeInWallBody(wall, f, poly[i], poly[(i + 1) % poly.size()], options);
       if (bounds) {
         room.walls.push_back({wall.id, f});
         break;
