@@ -237,6 +237,7 @@ TEST(SGraphFactors, MarginalizingAKeyframePropagatesItsPriorThroughOdometry) {
   k1.odom = compose(k0.odom, {2.0, 0.5, 0.2});
   const Eigen::Vector3d x1 = compose(k0.planar(), between(k0.odom, k1.odom));
   k1.pose = {x1.x(), x1.y(), x1.z()};
+  k0.predicted = k0.planar(), k1.predicted = x1;
   const Eigen::Vector3d sigma0(0.1, 0.2, 0.05);
   g.prior = posePrior(k0.planar(), sigma0);
   g.history.resize(2);
@@ -312,6 +313,7 @@ TEST(SGraphFactors, SlidingTheWindowGivesWhatTheBatchGivesForWhatIsLeft) {
   const auto place = [&](Keyframe kf, int i) {
     const Eigen::Vector3d p = deadReckoned(i);
     kf.pose = {p.x(), p.y(), p.z()};
+    kf.predicted = p;
     return kf;
   };
   Graph batch = base;
@@ -328,6 +330,7 @@ TEST(SGraphFactors, SlidingTheWindowGivesWhatTheBatchGivesForWhatIsLeft) {
     if (!sliding.window.empty()) {  // predicted from the last optimized keyframe, as the tracker does
       const Eigen::Vector3d p = compose(sliding.window.back().planar(), between(sliding.window.back().odom, kf.odom));
       kf.pose = {p.x(), p.y(), p.z()};
+      kf.predicted = p;
     }
     sliding.window.push_back(kf);
     ASSERT_TRUE(optimizeWindow(sliding, config).usable);

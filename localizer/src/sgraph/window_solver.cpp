@@ -170,9 +170,19 @@ SolveReport optimizeWindow(Graph& g, const SGraphConfig& c) {
     const auto& p = g.nodes[static_cast<std::size_t>(n)].params;
     finite = finite && std::isfinite(p[0] + p[1] + p[2]);
   }
-  if (!summary.IsSolutionUsable() || !finite) {
+  // A solution that carries the newest keyframe farther from its odometry prediction than the
+  // loss check allows moved the window's keyframes and their walls together: the walls' plan
+  // priors are robust (Cauchy), so when few walls hold an axis, the robot and those walls can
+  // slide together into another basin (SampleHouse4: its two x walls and the robot, 0.65 m in
+  // one keyframe, while turning in place). The odometry says the robot did not move so: the
+  // estimate is kept and the keyframe counts as bad (loss_monitor.cpp).
+  const Keyframe& newest = g.window.back();
+  const double correction = (newest.planar() - newest.predicted).head<2>().norm();
+  const bool jumped = finite && !newest.odometry_jump && correction > c.loss_correction_m;
+  if (!summary.IsSolutionUsable() || !finite || jumped) {
     report.usable = false;
-    report.message = summary.message;
+    report.message = jumped ? "it moved the keyframe " + std::to_string(correction).substr(0, 4) + " m from its odometry prediction"
+                            : summary.message;
     std::size_t i = 0;
     for (Keyframe& kf : g.window) kf.pose = poses[i++];
     i = 0;
