@@ -34,6 +34,7 @@ std::optional<Particle> solvePair(const std::vector<Observation>& obs, std::size
                                   const Landmark& b, double z, int room, const RoomIndex& rooms) {
   const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
   if (std::abs(wrapAngle(b.azimuth - a.azimuth - turn)) > kAngleTolerance) return std::nullopt;
+  if (!atFaceHeight(obs[i], a, z) || !atFaceHeight(obs[j], b, z)) return std::nullopt;
   const double yaw = wrapAngle(a.azimuth - obs[i].azimuth_base);
   // With the heading fixed, each plane is one line for (x, y): n·(x, y) = d_off - d - n_z z.
   Eigen::Matrix2d A;

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 
 namespace bimloc::pf::detail {
 
@@ -22,10 +23,24 @@ struct Landmark {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
   Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  // unit, start -> end
   double length_m = 0;
+  // The face's vertical extent in the map (the wall's body, base to top): an observed plane
+  // is this face only where its points lie at heights the wall has. A wall hung above the
+  // rooms' ceilings (a stair well's enclosure on the storey above, a bulkhead) is in the plan
+  // but never in a scan taken from the floor; matched, it pulls a pose onto furniture or a
+  // counter front that happens to stand a few decimetres off it (the Duplex: 0.4 m in y).
+  double z_bottom = -std::numeric_limits<double>::infinity();
+  double z_top = std::numeric_limits<double>::infinity();
   int id = -1;  // which face of the storey: 2 * wall index + face index
 };
 
-Landmark makeLandmark(const bim::WallFace& face, int id = -1);
+// How far outside a face's vertical extent an observed plane's points may lie and still be
+// that face: the plane's vertical span is estimated from its support's centroid and height
+// extent (not its exact ends), the base's height from odometry. 0.5 m covers both; walls that
+// are seen are floor to ceiling, and a wall 0.5 m clear of the scan's points is not what it saw.
+constexpr double kVerticalMarginM = 0.5;
+
+// height_m: the wall's height from the face's base (start.z); 0 or less: unknown, unbounded.
+Landmark makeLandmark(const bim::WallFace& face, int id = -1, double height_m = 0.0);
 using bimloc::wrapAngle;  // geometry/planar_pose.hpp
 
 }  // namespace bimloc::pf::detail

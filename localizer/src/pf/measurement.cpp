@@ -57,6 +57,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const Landmark* best_landmark = nullptr;
     const auto consider = [&](const Landmark& l) {
       if (l.axis != axis) return;  // the paper's semantic classes: x walls with x walls
+      if (!atFaceHeight(o, l, z_base)) return;  // a wall above (or below) what the scan saw of it
       // Paper Eq. (plane error): the squared Mahalanobis distance of the minimal planes, with
       // d taken at the particle (the landmark moved to a frame centred on it, axes of the map):
       // compared at the map's origin instead, a heading error of 1 degree would cost 0.17 m of

@@ -20,7 +20,17 @@ struct Observation {
   double elevation = 0;         // asin(n_z): the same for every particle
   Eigen::Vector2d centroid_base = Eigen::Vector2d::Zero();  // of its points, x y in the yaw-free base frame
   double range_m = 0;  // 3D distance of the centroid from the base's origin (bounds where a match can lie)
+  // The heights its points span, above the base's origin (yaw-free base frame): the centroid's
+  // height -+ half the support's vertical extent; unbounded when the extraction gave none.
+  double z_low = -std::numeric_limits<double>::infinity();
+  double z_high = std::numeric_limits<double>::infinity();
 };
+
+// Whether the observed plane's points lie at heights the face has (within kVerticalMarginM),
+// for a base at map height z_base.
+inline bool atFaceHeight(const Observation& o, const Landmark& l, double z_base) {
+  return z_base + o.z_high >= l.z_bottom - kVerticalMarginM && z_base + o.z_low <= l.z_top + kVerticalMarginM;
+}
 
 struct MatchResult {
   double log_likelihood = 0;

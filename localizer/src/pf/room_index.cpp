@@ -1,5 +1,7 @@
 #include "room_index.hpp"
 
+#include "buried_faces.hpp"
+
 #include <bimloc/bim/geometry2d.hpp>
 
 #include <cmath>
@@ -7,9 +9,10 @@
 
 namespace bimloc::pf::detail {
 
-Landmark makeLandmark(const bim::WallFace& face, int id) {
+Landmark makeLandmark(const bim::WallFace& face, int id, double height_m) {
   Landmark l;
   l.id = id;
+  if (height_m > 0.0 && std::isfinite(face.start.z())) l.z_bottom = face.start.z(), l.z_top = face.start.z() + height_m;
   l.normal = face.plane.n.normalized();
   l.d = face.plane.d;
   l.start = face.start.head<2>();
@@ -29,14 +32,14 @@ namespace {
 constexpr double kDoorwayM = 0.3;
 
 // The faces of a room's walls that look into it (both, where the side is unknown).
-std::vector<Landmark> facesOf(const bim::Storey& storey, const bim::Room& room) {
+std::vector<Landmark> facesOf(const bim::Storey& storey, const bim::Room& room, const std::vector<bool>& buried) {
   std::vector<Landmark> faces;
   for (const auto& rw : room.walls) {
     const bim::Wall* wall = storey.findWall(rw.wall_id);
     if (!wall) continue;
     const int w = static_cast<int>(wall - storey.walls.data());
     for (int f = 0; f < 2; ++f)
-      if (rw.face < 0 || rw.face == f) faces.push_back(makeLandmark(wall->faces[f], 2 * w + f));
+      if ((rw.face < 0 || rw.face == f) && !buried[static_cast<std::size_t>(2 * w + f)]) faces.push_back(makeLandmark(wall->faces[f], 2 * w + f, wall->height_m));
   }
   return faces;
 }
@@ -52,9 +55,12 @@ bool shareAWall(const bim::Room& a, const bim::Room& b) {
 
 RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours, double cell_m, bool index_faces)
     : use_rooms_(use_rooms), cell_m_(cell_m) {
+  // Faces inside another wall's body are no landmarks (buried_faces.hpp); ids stay 2 w + f.
+  const std::vector<bool> buried = buriedFaces(storey);
   std::vector<Landmark> every_face;
   for (std::size_t w = 0; w < storey.walls.size(); ++w)
-    for (int f = 0; f < 2; ++f) every_face.push_back(makeLandmark(storey.walls[w].faces[f], static_cast<int>(2 * w) + f));
+    for (int f = 0; f < 2; ++f)
+      if (!buried[2 * w + static_cast<std::size_t>(f)]) every_face.push_back(makeLandmark(storey.walls[w].faces[f], static_cast<int>(2 * w) + f, storey.walls[w].height_m));
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   // 2 m cells: a match radius is 3-7 m, and with 1 m cells walking the cells cost more than
   // matching the faces in them.
@@ -69,11 +75,11 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
       for (const auto& p : room.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
       continue;
     }
-    std::vector<Landmark> faces = facesOf(storey, room);
+    std::vector<Landmark> faces = facesOf(storey, room, buried);
     if (use_rooms && neighbours)
       for (const auto& other : storey.rooms)
         if (&other != &room && shareAWall(room, other)) {
-          const auto more = facesOf(storey, other);
+          const auto more = facesOf(storey, other, buried);
           faces.insert(faces.end(), more.begin(), more.end());
         }
     landmarks_.push_back(std::move(faces));
