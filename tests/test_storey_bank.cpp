@@ -128,8 +128,18 @@ TEST(StoreyBank, StoreysThatAreCopiesOfEachOtherAreNeverToldApart) {
   bim::Building twins;
   twins.storeys.push_back(test::officeWorld().building().storeys[0]);
   twins.storeys.push_back(twins.storeys[0]);
-  twins.storeys[1].elevation_m = 3.0;
-  twins.storeys[1].name = "copy";
+  // A copy 3 m up, everything in it 3 m up (the filter matches a face only at the heights its
+  // wall has: a copy whose walls stayed below would differ from the original, by its heights).
+  bim::Storey& copy = twins.storeys[1];
+  copy.elevation_m += 3.0;
+  copy.name = "copy";
+  const Eigen::Vector3d up(0, 0, 3.0);
+  for (bim::Wall& w : copy.walls) {
+    w.start += up, w.end += up;
+    for (bim::WallFace& f : w.faces) f.start += up, f.end += up;
+  }
+  for (bim::Room& r : copy.rooms) r.floor_z += 3.0;
+  for (Eigen::Vector3f& v : copy.mesh.vertices) v.z() += 3.0f;
   pf::StoreyBank bank(twins, {0, 1}, sim::Vlp16Config{}.T_base_lidar, {});
   bool any_filter_converged = false;
   Loop loop;
