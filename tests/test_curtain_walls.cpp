@@ -66,12 +66,43 @@ TEST(CurtainWalls, StraightAssemblyIsOneWallWhoseFacesAreItsOuterSurfaces) {
   EXPECT_NEAR(w.length_m(), 4.5 + 0.03, 1e-5);  // mullion edge to mullion edge
   EXPECT_NEAR(w.thickness_m, 0.055, 1e-5);
   EXPECT_NEAR(w.height_m, 2.7, 1e-5);
-  // One face is the glass (y = 0.025, looking +y), the other the mullions' back (y = -0.03).
+  // The box's faces: the glass (y = 0.025, looking +y) and the mullions' back (y = -0.03).
   std::vector<double> ys;
   for (const auto& f : w.faces) ys.push_back(-f.plane.d / f.plane.n.y());
   std::sort(ys.begin(), ys.end());
   EXPECT_NEAR(ys[0], -0.03, 1e-5);
   EXPECT_NEAR(ys[1], 0.025, 1e-5);
+  // What a lidar sees: on the glass side the glass; behind, the panels' backs (12.15 m2 at
+  // y = 0) between the mullions (0.32 m2 at y = -0.03), 3 cm behind the box's face.
+  const auto depth = walls[0].visible_depth_m;
+  const bool glass0 = w.faces[0].plane.n.y() > 0;
+  EXPECT_NEAR(depth[glass0 ? 0 : 1], 0.0, 1e-5);
+  EXPECT_NEAR(depth[glass0 ? 1 : 0], 0.03, 1e-5);
+}
+
+TEST(CurtainWalls, FacesLieOnThePanelsWhenDeepMullionsStandInFrontOfThem) {
+  // As Jesse.1's curtain walls: 150 mm deep mullions in y in [0, 0.15], 25 mm panels between
+  // them set back in y in [0.025, 0.05]. The box's faces are the mullions' fronts; what a
+  // lidar sees on either side is the panels: y = 0.05 looking +y (0.10 m behind the front),
+  // y = 0.025 looking -y (0.025 m behind the back).
+  RawModel raw;
+  raw.elements.push_back(curtainWall(7, "deep"));
+  for (int i = 0; i < 4; ++i) raw.elements.push_back(part("IfcPlate", 7, 1.5 * i + 0.03, 1.5 * (i + 1) - 0.03, 0.025, 0.05, 3.0));
+  for (int i = 0; i < 5; ++i) raw.elements.push_back(part("IfcMember", 7, 1.5 * i - 0.03, 1.5 * i + 0.03, 0.0, 0.15, 3.0));
+  std::vector<std::string> warnings;
+  auto walls = curtainWallsOf(raw, warnings);
+  ASSERT_EQ(walls.size(), 1u);
+  Wall w = walls[0].wall;
+  EXPECT_NEAR(w.thickness_m, 0.15, 1e-5);
+  moveFacesToVisibleSurfaces(w, walls[0].visible_depth_m);
+  for (const auto& f : w.faces) {
+    const double y = -f.plane.d / f.plane.n.y();
+    EXPECT_NEAR(y, f.plane.n.y() > 0 ? 0.05 : 0.025, 1e-5);
+    EXPECT_NEAR(f.start.y(), y, 1e-5);  // the face's corners moved with its plane
+    EXPECT_NEAR(f.end.y(), y, 1e-5);
+  }
+  EXPECT_NEAR(w.thickness_m, 0.15, 1e-5);  // the box (what rooms are linked to) is kept
+  EXPECT_NEAR(w.start.y(), walls[0].wall.start.y(), 1e-12);
 }
 
 TEST(CurtainWalls, BentAssemblyIsNoWallAndIsNamedInTheWarnings) {

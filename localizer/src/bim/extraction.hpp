@@ -21,13 +21,23 @@ std::optional<Wall> wallFromGeometry(const RawProduct& product, std::string& pro
 struct CurtainWall {
   RawProduct body;  // the curtain wall's ids and name, the mesh of all its parts
   int parts = 0;
-  Wall wall;
+  Wall wall;  // the box of the assembly (its faces the outermost surfaces)
+  // How far each face of `wall` lies in front of the assembly's main surface on that side
+  // (visibleSurfaceDepths); moveFacesToVisibleSurfaces applies it once the rooms are linked.
+  std::array<double, 2> visible_depth_m{0.0, 0.0};
 };
 
 bool isCurtainWall(const RawProduct& product);
 
 // The straight curtain walls of the model as walls; the others are named in `warnings`.
 std::vector<CurtainWall> curtainWallsOf(const RawModel& raw, std::vector<std::string>& warnings);
+
+// For each face of `wall`, the depth behind it (>= 0, metres) of the surface with the most
+// area among the mesh's surfaces facing the same way: what a lidar sees of that side.
+std::array<double, 2> visibleSurfaceDepths(const TriangleMesh& mesh, const Wall& wall);
+
+// Moves each face back by its depth (along -normal), keeping the wall's box and axis.
+void moveFacesToVisibleSurfaces(Wall& wall, const std::array<double, 2>& depth_m);
 
 // A room's footprint, area and centre from its space's body.
 std::optional<Room> roomFromGeometry(const RawProduct& space, std::string& problem);

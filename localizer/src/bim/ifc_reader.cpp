@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 #include <unordered_map>
 
 namespace bimloc::bim {
@@ -211,9 +212,14 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
   building.warnings.insert(building.warnings.end(), dropped.begin(), dropped.end());
   // Straight curtain walls are walls too (curtain_walls.cpp), filed under their own storey;
   // added after the room inference, which has their parts as barriers already.
+  // Their faces move onto the panels once the rooms are linked to the assembly's box.
+  std::vector<std::tuple<std::size_t, std::size_t, std::array<double, 2>>> visible;  // storey, wall, depths
   for (auto& cw : detail::curtainWallsOf(raw, building.warnings)) {
     const int s = storeyFor(cw.body, new_index, building.storeys);
-    if (s >= 0) building.storeys[static_cast<std::size_t>(s)].walls.push_back(std::move(cw.wall));
+    if (s < 0) continue;
+    auto& walls = building.storeys[static_cast<std::size_t>(s)].walls;
+    visible.emplace_back(static_cast<std::size_t>(s), walls.size(), cw.visible_depth_m);
+    walls.push_back(std::move(cw.wall));
   }
   for (std::size_t s = 0; s < building.storeys.size(); ++s) {
     auto& storey = building.storeys[s];
@@ -230,6 +236,7 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
         building.warnings.push_back((room.source == "IfcSpace" ? "IfcSpace " + room.id : "storey '" + storey.name + "': room") +
                                     " '" + room.name + "': no bounding wall found");
   }
+  for (const auto& [s, w, depth] : visible) detail::moveFacesToVisibleSurfaces(building.storeys[s].walls[w], depth);
   if (options.build_meshes) buildStoreyMeshes(raw, new_index, options.door_leaves, building);
 
   building.times.parse_s = raw.parse_s;
