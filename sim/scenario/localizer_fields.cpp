@@ -80,6 +80,7 @@ std::vector<Field> sgraphFields(sgraph::SGraphConfig& c) {
           {"association_sigma_d_m", &c.association_sigma_d_m, positive(10)},
           {"association_gate_mahalanobis2", &c.association_gate_mahalanobis2, positive(1e6)},
           {"segment_margin_m", &c.segment_margin_m, closed(0, 100)},
+          {"opening_margin_m", &c.opening_margin_m, closed(0, 100)},
           {"new_plane_min_sightings", &c.new_plane_min_sightings, closed(1, 1000)},
           {"candidate_max_age_keyframes", &c.candidate_max_age_keyframes, closed(1, 1e5)},
           {"room_match_distance_m", &c.room_match_distance_m, positive(100)},

@@ -26,7 +26,18 @@ Eigen::Vector2d vec2(const json& j, const std::string& where) {
 }
 
 json faceJson(const WallFace& f) {
-  return {{"n", vec(f.plane.n)}, {"d", f.plane.d}, {"axis", toString(f.axis)}, {"start", vec(f.start)}, {"end", vec(f.end)}};
+  json openings = json::array();
+  for (const auto& o : f.openings) openings.push_back({{"along_m", {o.along_min_m, o.along_max_m}}, {"z_m", {o.z_min_m, o.z_max_m}}});
+  return {{"n", vec(f.plane.n)}, {"d", f.plane.d},       {"axis", toString(f.axis)},
+          {"start", vec(f.start)}, {"end", vec(f.end)}, {"openings", openings}};
+}
+
+FaceOpening openingFromJson(const json& j, const std::string& where) {
+  const json& along = field(j, "along_m", where);
+  const json& z = field(j, "z_m", where);
+  if (!along.is_array() || along.size() != 2 || !z.is_array() || z.size() != 2)
+    throw std::runtime_error(where + ": expected along_m: [min, max] and z_m: [min, max]");
+  return {along[0].get<double>(), along[1].get<double>(), z[0].get<double>(), z[1].get<double>()};
 }
 
 WallFace faceFromJson(const json& j, const std::string& where) {
@@ -36,6 +47,12 @@ WallFace faceFromJson(const json& j, const std::string& where) {
   f.axis = field(j, "axis", where).get<std::string>() == "x" ? WallAxis::X : WallAxis::Y;
   f.start = vec3(field(j, "start", where), where + ".start");
   f.end = vec3(field(j, "end", where), where + ".end");
+  if (j.contains("openings")) {  // absent in files written before openings were extracted
+    const json& openings = j.at("openings");
+    if (!openings.is_array()) throw std::runtime_error(where + ".openings: expected an array");
+    for (std::size_t i = 0; i < openings.size(); ++i)
+      f.openings.push_back(openingFromJson(openings[i], where + ".openings[" + std::to_string(i) + "]"));
+  }
   return f;
 }
 

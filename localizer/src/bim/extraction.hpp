@@ -16,6 +16,12 @@ namespace bimloc::bim::detail {
 // Returns nothing and says why in `problem` when the product has no usable geometry.
 std::optional<Wall> wallFromGeometry(const RawProduct& product, std::string& problem);
 
+// The openings of a wall face (windows, doors, recesses) from the wall's body mesh, openings
+// cut: the rectangles of at least 0.3 m x 0.3 m on the face, between z0 and z0 + height_m,
+// where no triangle of the body lies on it (face_openings.cpp). None when the body has no
+// triangle on the face at all.
+std::vector<FaceOpening> faceOpenings(const WallFace& face, double z0, double height_m, const TriangleMesh& body);
+
 // A curtain wall (IfcCurtainWall) as one body: its own, if any, and its parts' (IfcRelAggregates:
 // plates, members), with the wall box fitted to it (curtain_walls.cpp).
 struct CurtainWall {

@@ -64,9 +64,9 @@ bool isSlab(const RawProduct& p) {
 // (slabs that belong to the storey below or above, depending on the authoring tool).
 bool isDoor(const RawProduct& p) { return p.ifc_class == "IfcDoor" || p.ifc_class == "IfcDoorStandardCase"; }
 
-void buildStoreyMeshes(const RawModel& raw, const std::vector<int>& new_index, bool door_leaves, Building& building) {
+void buildStoreyMeshes(const RawModel& raw, const std::vector<int>& new_index, bool door_leaves,
+                       const std::unordered_map<int, TriangleMesh>& rebuilt, Building& building) {
   auto& storeys = building.storeys;
-  const auto rebuilt = detail::rebuiltBodies(raw, building.warnings);
   for (std::size_t s = 0; s < storeys.size(); ++s) {
     const double floor = storeys[s].elevation_m;
     double top = s + 1 < storeys.size() ? storeys[s + 1].elevation_m : floor;
@@ -163,6 +163,7 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     building.storeys.push_back(storey);
   }
 
+  const auto rebuilt = detail::rebuiltBodies(raw, building.warnings);  // bodies read from extrusions, openings cut
   WallShapes shapes;  // the exact footprints of the walls that are not boxes, for room inference
   for (const auto& p : raw.walls) {
     std::string problem;
@@ -174,6 +175,8 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     }
     if (!problem.empty()) building.warnings.push_back(describeProduct(p) + ": " + problem);
     if (wall->approximated) shapes[wall->id] = footprintShape(p);
+    else
+      for (auto& face : wall->faces) face.openings = detail::faceOpenings(face, wall->start.z(), wall->height_m, bodyMesh(p, rebuilt));
     building.storeys[static_cast<std::size_t>(s)].walls.push_back(std::move(*wall));
   }
   if (std::all_of(building.storeys.begin(), building.storeys.end(), [](const Storey& s) { return s.walls.empty(); }))
@@ -237,7 +240,7 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
                                     " '" + room.name + "': no bounding wall found");
   }
   for (const auto& [s, w, depth] : visible) detail::moveFacesToVisibleSurfaces(building.storeys[s].walls[w], depth);
-  if (options.build_meshes) buildStoreyMeshes(raw, new_index, options.door_leaves, building);
+  if (options.build_meshes) buildStoreyMeshes(raw, new_index, options.door_leaves, rebuilt, building);
 
   building.times.parse_s = raw.parse_s;
   building.times.geometry_s = raw.geometry_s;

@@ -103,8 +103,11 @@ std::vector<ScanObservation> prepareObservations(const Keyframe& kf, const std::
     }
     o.covariance = fit + floors.cwiseAbs2().asDiagonal().toDenseMatrix();
     o.normal_map = n_map.head<2>().normalized();
-    o.centroid_map = (T_map_lidar * w.centroid).head<2>();
+    const Eigen::Vector3d centroid_map = T_map_lidar * w.centroid;
+    o.centroid_map = centroid_map.head<2>();
+    o.z_map = centroid_map.z();
     o.extent_m = std::isfinite(w.extent_m) ? w.extent_m : 0.0;
+    o.height_extent_m = std::isfinite(w.height_extent_m) ? w.height_extent_m : 0.0;
     o.axis = std::abs(o.normal_map.x()) >= std::abs(o.normal_map.y()) ? bim::WallAxis::X : bim::WallAxis::Y;
     out.push_back(o);
   }
@@ -125,6 +128,12 @@ double matchDistance2(const WallNode& node, int k, const Keyframe& kf, const Sca
   // The observed wall's points must lie along the face, not beside its end.
   const double u = node.along(k, o.centroid_map);
   if (u < -c.segment_margin_m || u > node.length(k) + c.segment_margin_m) return kInfinity;
+  // ... and not in a hole of it. The support's box (centroid -+ half its extents) inside an
+  // opening grown by the margin the pose and the extents' estimate need.
+  const double hu = 0.5 * o.extent_m, hz = 0.5 * o.height_extent_m;
+  if (node.kind == WallNode::Kind::Plan &&
+      bim::insideOpening(node.openings[static_cast<std::size_t>(k)], u - hu, u + hu, o.z_map - hz, o.z_map + hz, c.opening_margin_m))
+    return kInfinity;
   return m2;
 }
 

@@ -21,6 +21,8 @@ struct ScanObservation {
   Eigen::Vector2d normal_map = Eigen::Vector2d::UnitX();
   Eigen::Vector2d centroid_map = Eigen::Vector2d::Zero();
   double extent_m = 0;
+  double z_map = 0;            // the centroid's height in the map
+  double height_extent_m = 0;  // the support's vertical span
   bim::WallAxis axis = bim::WallAxis::X;
 };
 
@@ -30,7 +32,8 @@ std::vector<ScanObservation> prepareObservations(const Keyframe& kf, const std::
 
 // Squared Mahalanobis distance between an observation and face k of a node seen from the
 // keyframe, with the prediction's uncertainty added; infinity when the class or the extent
-// rule it out.
+// rule it out, or when its points lie in one of the face's openings (a window's glass, a
+// door leaf: parallel to the face, behind it, and not the wall).
 double matchDistance2(const WallNode& node, int k, const Keyframe& kf, const ScanObservation& o, const SGraphConfig& config);
 
 // Associates the keyframe's observations: measurements on kf.planes (and, for new planes

@@ -49,6 +49,7 @@ SGraphConfig checkedConfig(const SGraphConfig& config, std::vector<std::string>&
   }
   const std::pair<const char*, double SGraphConfig::*> non_negative[] = {
       {"segment_margin_m", &SGraphConfig::segment_margin_m},
+      {"opening_margin_m", &SGraphConfig::opening_margin_m},
       {"odometry_sigma_xy_per_m", &SGraphConfig::odometry_sigma_xy_per_m},
       {"odometry_sigma_yaw_per_rad", &SGraphConfig::odometry_sigma_yaw_per_rad},
       {"odometry_sigma_yaw_per_m_deg", &SGraphConfig::odometry_sigma_yaw_per_m_deg},

@@ -67,6 +67,7 @@ struct WallNode {
   int faces = 2;       // New: 1
   std::array<FaceGeometry, 2> face;
   std::array<Eigen::Vector2d, 2> start{}, end{};  // extent of each face along the floor
+  std::array<std::vector<bim::FaceOpening>, 2> openings;  // Plan: the face's holes (along from start, z)
   std::array<double, 3> params{};                 // s, alpha, tau: the Ceres block
   int observations = 0;
   int last_keyframe = -1;  // the newest keyframe that saw it

@@ -50,6 +50,7 @@ bool makePlanNode(const bim::Wall& wall, WallNode& node, std::string& problem) {
     node.face[k].h = -node.face[k].side * d - e.dot(c);
     node.start[k] = f.start.head<2>();
     node.end[k] = f.end.head<2>();
+    node.openings[k] = f.openings;
   }
   return true;
 }

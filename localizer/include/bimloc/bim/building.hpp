@@ -25,14 +25,41 @@ struct Plane {
 enum class WallAxis { X, Y };
 const char* toString(WallAxis axis);
 
+// A hole in a wall face (a window, a door, a recess): a rectangle on the face, along it from
+// the face's start and in world z. Seen through it are a window's glass, a door leaf, the
+// room beyond: planes parallel to the face but not on it.
+struct FaceOpening {
+  double along_min_m = 0, along_max_m = 0;
+  double z_min_m = 0, z_max_m = 0;
+};
+
 // One side of a wall, as the lidar sees it. The normal points out of the wall.
 struct WallFace {
   Plane plane;
   WallAxis axis = WallAxis::X;
   Eigen::Vector3d start = Eigen::Vector3d::Zero();  // face's first corner at the wall's base
   Eigen::Vector3d end = Eigen::Vector3d::Zero();    // face's last corner at the wall's base
+  std::vector<FaceOpening> openings;  // where the wall's body has no surface on this face
   double length_m() const { return (end - start).norm(); }
+  // Whether the rectangle [along_min, along_max] x [z_min, z_max] lies inside one opening
+  // grown by margin_m on every side.
+  bool inOpening(double along_min_m, double along_max_m, double z_min_m, double z_max_m, double margin_m) const;
 };
+
+// Whether the rectangle lies inside one of `openings` grown by margin_m on every side.
+inline bool insideOpening(const std::vector<FaceOpening>& openings, double along_min_m, double along_max_m,
+                          double z_min_m, double z_max_m, double margin_m) {
+  for (const auto& o : openings)
+    if (along_min_m >= o.along_min_m - margin_m && along_max_m <= o.along_max_m + margin_m &&
+        z_min_m >= o.z_min_m - margin_m && z_max_m <= o.z_max_m + margin_m)
+      return true;
+  return false;
+}
+
+inline bool WallFace::inOpening(double along_min_m, double along_max_m, double z_min_m, double z_max_m,
+                                double margin_m) const {
+  return insideOpening(openings, along_min_m, along_max_m, z_min_m, z_max_m, margin_m);
+}
 
 struct Wall {
   std::string id;        // IFC GlobalId

@@ -43,6 +43,10 @@ struct SGraphConfig {
   double association_sigma_d_m = 0.08;
   double association_gate_mahalanobis2 = 11.34;  // chi-square, 3 DoF, 99 %
   double segment_margin_m = 0.5;  // the observed plane's centroid must lie along the face, to within this
+  // An observed plane whose support (centroid -+ half its extents) lies inside one of a plan
+  // face's openings, grown by this, is not that face (a window's glass, a door leaf): the
+  // extents come from 0.1 m voxels, and the pose while tracking is good to a few centimetres.
+  double opening_margin_m = 0.15;
   int new_plane_min_sightings = 3;  // an unmatched wall seen in this many keyframes becomes a new plane
   int candidate_max_age_keyframes = 10;  // ... and is forgotten when unseen for this many
   // Room association (paper, "Room Association"): a room seen from its walls matches a plan
