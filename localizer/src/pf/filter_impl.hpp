@@ -33,6 +33,7 @@ struct ParticleFilter::Impl {
   detail::RoomIndex rooms;
   detail::StartPrior prior;
   detail::PathEvidence evidence;
+  detail::PoseRefinementConfig refinement;
   std::optional<detail::Pose2> odom_start;  // the first odometry pose: where the prior applies
   std::mt19937_64 rng;
   std::vector<Particle> particles;

@@ -136,7 +136,15 @@ void ParticleFilter::Impl::checkConvergence(const std::vector<detail::Observatio
     // follows the filter's weighted mean (tracking, until an S-Graph takes over): smoother
     // than the best particle, which the roughening keeps shaking.
     Particle at = top;
-    if (T_map_odom) at.x = mean.x(), at.y = mean.y(), at.yaw = mean.z();
+    if (T_map_odom) {
+      at.x = mean.x(), at.y = mean.y(), at.yaw = mean.z();
+    } else {
+      // The place is decided; the pose within it is fitted again with the sensor's own noise
+      // (pose_refinement.hpp): the wide sigmas let furniture before a wall pull it.
+      const detail::Pose2 fine = detail::refinePose({top.x, top.y, top.yaw}, planarPose(odom), evidence.latestScans(refinement.window_m),
+                                                    evidence.everyFace(), detail::refinementModel(config, refinement), refinement);
+      at.x = fine.x(), at.y = fine.y(), at.yaw = fine.z();
+    }
     T_map_odom = poseOf(at) * odom.inverse();
   }
   report.converged = T_map_odom.has_value();

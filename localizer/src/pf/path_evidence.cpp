@@ -338,4 +338,14 @@ PathEvidence::WindowFit PathEvidence::windowFit(const Pose2& map_pose, const Pos
   return fit;
 }
 
+std::vector<RefinementScan> PathEvidence::latestScans(double path_m) const {
+  std::vector<RefinementScan> out;
+  for (auto it = scans_.rbegin(); it != scans_.rend(); ++it) {
+    if (!out.empty() && travelled_m_ - it->travelled_m > path_m) break;
+    out.push_back({it->odom, it->z_base, &it->observations});
+  }
+  std::reverse(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace bimloc::pf::detail

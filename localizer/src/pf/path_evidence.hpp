@@ -11,6 +11,7 @@
 #pragma once
 
 #include "measurement.hpp"
+#include "pose_refinement.hpp"
 #include "start_prior.hpp"
 
 #include <deque>
@@ -120,6 +121,10 @@ class PathEvidence {
     std::vector<std::vector<ObservationMatch>> matches;
   };
   WindowFit windowFit(const Pose2& map_pose, const Pose2& odom) const;
+  // The latest scans of the window over `path_m` of path (the newest at least), oldest first,
+  // and every face of the storey: what the converged pose is refined on (pose_refinement.hpp).
+  std::vector<RefinementScan> latestScans(double path_m) const;
+  const RoomIndex& everyFace() const { return rooms_; }
 
  private:
   struct Scan {

@@ -1,0 +1,77 @@
+#include "pose_refinement.hpp"
+
+#include <bimloc/geometry/planar_pose.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace bimloc::pf::detail {
+
+ParticleFilterConfig refinementModel(const ParticleFilterConfig& filter, const PoseRefinementConfig& r) {
+  ParticleFilterConfig c = filter;
+  const double drift_m = filter.evidence_drift_fraction * r.window_m;
+  c.sigma_d_m = std::sqrt(r.range_sigma_m * r.range_sigma_m + filter.evidence_plan_tolerance_m * filter.evidence_plan_tolerance_m +
+                          drift_m * drift_m);
+  c.use_rooms = false;
+  return c;
+}
+
+namespace {
+
+double windowScore(const Eigen::Vector3d& pose_now, const Eigen::Vector3d& odom_now, const std::vector<RefinementScan>& scans,
+                   const RoomIndex& faces, const ParticleFilterConfig& model) {
+  const Eigen::Vector3d T_map_odom = compose(pose_now, inverse(odom_now));
+  double sum = 0;
+  for (const auto& s : scans) {
+    const Eigen::Vector3d p = compose(T_map_odom, s.odom);
+    Particle particle;
+    particle.x = p.x(), particle.y = p.y(), particle.yaw = p.z(), particle.room = faces.roomAt(p.x(), p.y());
+    // Out of rooms or not, as the path evidence scores (a doorway is no worse a place).
+    sum += matchObservations(particle, s.z_base, *s.observations, faces, model, nullptr, /*out_of_rooms_penalised=*/false)
+               .log_likelihood;
+  }
+  return sum;
+}
+
+}  // namespace
+
+Eigen::Vector3d refinePose(const Eigen::Vector3d& converged, const Eigen::Vector3d& odom_now, const std::vector<RefinementScan>& scans,
+                           const RoomIndex& every_face, const ParticleFilterConfig& model, const PoseRefinementConfig& r) {
+  if (scans.empty() || !converged.allFinite() || r.grid_step_m <= 0.0) return converged;
+  const auto score = [&](const Eigen::Vector3d& pose) { return windowScore(pose, odom_now, scans, every_face, model); };
+  // The grid's cells from the centre out: of poses that fit alike, the nearest stays.
+  const int n = static_cast<int>(std::floor(r.search_m / r.grid_step_m));
+  std::vector<Eigen::Vector2d> offsets;
+  for (int i = -n; i <= n; ++i)
+    for (int j = -n; j <= n; ++j) {
+      const Eigen::Vector2d o(i * r.grid_step_m, j * r.grid_step_m);
+      if (o.norm() <= r.search_m + 1e-9) offsets.push_back(o);
+    }
+  std::stable_sort(offsets.begin(), offsets.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.squaredNorm() < b.squaredNorm();
+  });
+  Eigen::Vector3d best = converged;
+  double best_score = score(converged);
+  for (const auto& o : offsets) {
+    const Eigen::Vector3d pose(converged.x() + o.x(), converged.y() + o.y(), converged.z());
+    const double s = score(pose);
+    if (s > best_score + 1e-9) best = pose, best_score = s;
+  }
+  // Then x, y and yaw, halving the steps (the association is discrete: no useful gradient).
+  double step_m = 0.5 * r.grid_step_m, step_rad = 0.5 * M_PI / 180.0;
+  for (int level = 0; level < 4; ++level, step_m *= 0.5, step_rad *= 0.5)
+    for (bool improved = true; improved;) {
+      improved = false;
+      for (const Eigen::Vector3d& d : {Eigen::Vector3d(step_m, 0, 0), Eigen::Vector3d(-step_m, 0, 0), Eigen::Vector3d(0, step_m, 0),
+                                       Eigen::Vector3d(0, -step_m, 0), Eigen::Vector3d(0, 0, step_rad), Eigen::Vector3d(0, 0, -step_rad)}) {
+        Eigen::Vector3d pose = best + d;
+        pose.z() = wrapAngle(pose.z());
+        if ((pose.head<2>() - converged.head<2>()).norm() > r.search_m) continue;
+        const double s = score(pose);
+        if (s > best_score + 1e-9) best = pose, best_score = s, improved = true;
+      }
+    }
+  return best;
+}
+
+}  // namespace bimloc::pf::detail
