@@ -114,6 +114,13 @@ int associateRooms(Graph& g, const Keyframe& kf, const SGraphConfig& c, SGraphRe
   const RoomData& room = g.rooms[static_cast<std::size_t>(r)];
   int merged = 0;
   for (const Pair& p : pairs) {
+    // A pair of two new planes says where two unknown planes are, not where the room's walls
+    // are: its merges would rest on nothing the map knows (Duplex B202: a counter front 0.49 m
+    // before one wall and a plane 0.34 m behind the opposite one, merged together, moved the
+    // robot 0.32 m). Only a pair with a wall already matched to the plan anchors the room.
+    if (g.nodes[static_cast<std::size_t>(p.a.node)].kind == WallNode::Kind::New &&
+        g.nodes[static_cast<std::size_t>(p.b.node)].kind == WallNode::Kind::New)
+      continue;
     for (const Seen* s : {&p.a, &p.b}) {
       if (g.nodes[static_cast<std::size_t>(s->node)].kind != WallNode::Kind::New) continue;
       // The room's face on that side, along which the new plane's points lie, not seen directly.
