@@ -12,6 +12,7 @@
 #include "sgraph/room_factor.hpp"
 #include "sgraph/window_solver.hpp"
 
+#include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -50,6 +51,12 @@ void expectJacobiansMatchNumeric(const ceres::CostFunction& cost, std::vector<st
             << "block " << b << " parameter " << k << " residual " << i;
     }
   }
+  // And Ceres' own checker (its numeric differentiation, a second oracle): every block, the
+  // relative error of each Jacobian entry.
+  const ceres::NumericDiffOptions diff;
+  const ceres::GradientChecker checker(&cost, static_cast<const std::vector<const ceres::Manifold*>*>(nullptr), diff);
+  ceres::GradientChecker::ProbeResults results;
+  EXPECT_TRUE(checker.Probe(blocks.data(), 1e-6, &results)) << results.error_log;
 }
 
 // A storey of one box room [0, 4] x [0, 5] with 0.2 m walls: S, E, N, W.

@@ -119,7 +119,10 @@ void randomWalk(ScriptBuilder& script, const bim::Storey& storey, const MotionCo
 }
 
 // After a tour: on to the nearest room not yet visited that the base can reach, until the
-// duration is used; with none left, a random walk where it stands (if that is a room).
+// duration is used; every reachable room visited, a new round from where it stands (a robot
+// on a long walk keeps walking its rooms: in a small house a random walk in the last room
+// turned on the spot for minutes, and 5-minute walks covered 67-95 m); a round that reached
+// no room, a random walk where it stands (if that is a room).
 // From where the base is, through the doors, to a free spot near the room's centre.
 // The spot nearest the centre may be walled in by furniture: then the reachable spot of the
 // room nearest it (FreeSpace::pathInto).
@@ -137,6 +140,8 @@ void legToRoom(ScriptBuilder& script, const bim::Room& room) {
 void explore(ScriptBuilder& script, const bim::Storey& storey, const MotionConfig& motion,
              std::vector<const bim::Room*> visited, double duration_s, std::uint64_t seed) {
   const auto seen = [&visited](const bim::Room& r) { return std::find(visited.begin(), visited.end(), &r) != visited.end(); };
+  bool reached_one = script.corners.size() > 1;  // in this round (the tour's legs count)
+  double round_start_s = -1.0;
   while (script.timeline.end_s() < duration_s) {
     const Eigen::Vector2d here = script.timeline.position();
     std::vector<std::pair<double, const bim::Room*>> next;
@@ -154,7 +159,17 @@ void explore(ScriptBuilder& script, const bim::Storey& storey, const MotionConfi
         // out of reach (another flat, a closed door): the next nearest
       }
     }
-    if (moved) continue;
+    if (moved) {
+      reached_one = true;
+      continue;
+    }
+    if (reached_one && script.timeline.end_s() > round_start_s) {
+      // every room it can reach visited: round again, the room it stands in done
+      round_start_s = script.timeline.end_s();
+      visited.assign(1, roomAt(storey, here));
+      reached_one = false;
+      continue;
+    }
     if (!roomAt(storey, here)) return;  // nowhere to wander: it stands
     const Pose2 now{here.x(), here.y(), script.timeline.yaw()};
     MotionConfig wander = motion;

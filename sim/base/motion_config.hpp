@@ -32,8 +32,9 @@ struct MotionConfig {
   // room. Generated tours set it.
   bool skip_unreachable_rooms = false;
   // Kind::Tour: the listed rooms visited before the duration is up, the base goes on exploring
-  // (the nearest room not yet visited that it can reach, and so on; with none left, it wanders
-  // where it is) instead of standing: a robot localizing keeps moving. Generated tours set it.
+  // (the nearest room not yet visited that it can reach, and so on; with none left, the next
+  // round of its rooms, and only when it can reach none, it wanders where it is) instead of
+  // standing: a robot localizing keeps moving. Generated tours set it.
   bool explore_after_tour = false;
   double max_speed_mps = 0.8;
   double max_turn_rate_dps = 60.0;
