@@ -9,6 +9,8 @@
 #include "sim/world/world.hpp"
 
 #include "pf/path_evidence.hpp"
+#include "pf/room_index.hpp"
+#include "pf/start_prior.hpp"
 
 #include <bimloc/pf/particle_filter.hpp>
 
@@ -275,6 +277,48 @@ TEST(PathEvidence, ACandidateThatFittingMovesOntoTheBestPlaceIsThatPlaceNotARiva
       EXPECT_LT(v.margin, config.evidenceMargin());  // the office next door explains it all alike
       ASSERT_FALSE(v.rivals.empty());
       EXPECT_LT((v.rivals.front().first.head<2>() - (truth.head<2>() + twin_offset)).norm(), 0.3);
+    }
+  }
+}
+
+TEST(PathEvidence, FittingNeverCarriesACandidateToAStartThePriorRulesOut) {
+  // The prior says the robot started within 0.15 m (3 sigma) of a pose 0.25 m east of where it
+  // really started: the true place is no place. A candidate proposed 0.12 m east of the truth
+  // (its start inside the prior) is fitted by the verdict's pattern search towards the truth,
+  // which explains the scans better; it must stop where the prior ends, or a place the user
+  // ruled out comes back as a rival (the Duplex's 180 deg twin, proposed with its start just
+  // inside the prior's flat, walked out of it and held A203 undecided for 90 s). The robot
+  // turns on the spot at the odometry origin, so a candidate's start is where it stands now.
+  const auto& storey = officeWorld().building().storeys[0];
+  const bim::Room* r104 = storey.findRoom("R104");
+  ASSERT_TRUE(r104);
+  const pf::detail::Pose2 start(r104->centre.x() - 0.4, r104->centre.y() - 0.5, 0.3);  // map <- odom, the truth
+  pf::ParticleFilterConfig config;
+  config.prior_pose = Eigen::Vector3d(start.x() + 0.25, start.y(), start.z());
+  config.prior_sigma_m = 0.05;
+  config.prior_sigma_yaw_deg = 10.0;
+  const pf::detail::RoomIndex rooms(storey, true);
+  const pf::detail::StartPrior prior(storey, rooms, config);
+  for (const bool with_prior : {false, true}) {
+    pf::detail::PathEvidence evidence(storey, config);
+    if (with_prior) evidence.setPrior(&prior, pf::detail::Pose2::Zero());
+    pf::detail::Pose2 odom = pf::detail::Pose2::Zero();
+    for (int k = 0; k < 8; ++k) {
+      odom = pf::detail::Pose2(0.0, 0.0, 0.35 * k);
+      ASSERT_TRUE(evidence.addScan(odom, 0.0, roomFacesSeenFrom(storey, *r104, pf::detail::compose(start, odom)))) << k;
+    }
+    const pf::detail::Pose2 truth = pf::detail::compose(start, odom);
+    evidence.propose(truth, odom);  // ruled out by the prior: never a candidate
+    evidence.propose(truth + pf::detail::Pose2(0.12, 0.0, 0.0), odom);
+    const pf::detail::PathVerdict v = evidence.verdict(odom);
+    ASSERT_TRUE(v.has_best);
+    const double from_truth = (v.best.head<2>() - truth.head<2>()).norm();
+    const double from_prior = (v.best.head<2>() - config.prior_pose->head<2>()).norm();
+    if (with_prior) {
+      EXPECT_LE(from_prior, 3.0 * config.prior_sigma_m + 1e-9) << "fitted out of the prior";
+      EXPECT_GT(from_truth, 0.09);
+    } else {
+      EXPECT_LT(from_truth, 0.05);  // without a prior the fit finds the truth
     }
   }
 }

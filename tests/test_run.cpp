@@ -40,7 +40,7 @@ TEST(Run, JsonIsTheDocumentedObjectAndJobsDoNotChangeIt) {
     EXPECT_TRUE(j1["scenarios"][0].contains(key)) << key;
   for (const char* key : {"runs", "localized", "false_convergences", "median_convergence_s", "sim_seconds", "wall_seconds"})
     EXPECT_TRUE(j1["summary"].contains(key)) << key;
-  for (const char* key : {"rpe_m_per_m", "losses", "wall_deviations"}) EXPECT_TRUE(j1["scenarios"][0].contains(key)) << key;
+  for (const char* key : {"rpe_m_per_m", "losses", "path_length_m", "wall_deviations"}) EXPECT_TRUE(j1["scenarios"][0].contains(key)) << key;
   for (const char* key : {"median_ate_m", "losses"}) EXPECT_TRUE(j1["summary"].contains(key)) << key;
   EXPECT_EQ(j1["summary"]["false_convergences"], 0);
   // The default method (the paper's: the filter, then the S-Graph) localizes both and tracks.

@@ -52,7 +52,7 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
           {"true_room", r.true_room}, {"position_error_m", r.position_error_m},
           {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", orNull(r.ate_m)},
           {"rpe_m_per_m", orNull(r.rpe_m_per_m)}, {"map_rmse_m", orNull(r.map_rmse_m)}, {"losses", r.losses},
-          {"wall_deviations", wallsJson(r.wall_deviations)}, {"site", r.site},
+          {"path_length_m", r.path_length_m}, {"wall_deviations", wallsJson(r.wall_deviations)}, {"site", r.site},
           {"wall_offset_error_m", orNull(r.wall_offset_error_m)},
           {"false_convergence", r.false_convergence}, {"convergence_margin", orNull(r.convergence_margin)},
           {"hypotheses", placesJson(r.hypotheses)}, {"storey_auto", r.storey_auto},

@@ -121,7 +121,7 @@ PathEvidence::Candidate PathEvidence::scored(const Pose2& T_map_odom, bool detai
 void PathEvidence::propose(const Pose2& map_pose, const Pose2& odom) {
   if (!map_pose.allFinite()) return;
   const Pose2 T_map_odom = compose(map_pose, inverse(odom));
-  if (prior_ && !prior_->admits(compose(T_map_odom, odom_start_))) return;
+  if (!admitted(T_map_odom)) return;
   Candidate fresh = scored(T_map_odom);
   for (auto& c : candidates_)
     if (near(compose(c.T_map_odom, odom), map_pose, kSamePlaceM, kSamePlaceRad)) {
@@ -139,10 +139,17 @@ void PathEvidence::propose(const Pose2& map_pose, const Pose2& odom) {
   }
 }
 
+bool PathEvidence::admitted(const Pose2& T_map_odom) const {
+  return !prior_ || prior_->admits(compose(T_map_odom, odom_start_));
+}
+
 void PathEvidence::refine(Candidate& c, const Pose2& odom) const {
   // Pattern search on the pose now (x, y, yaw), halving the steps: the association is
   // discrete, so the likelihood has no useful gradient. Trials are scored without detail;
-  // the pose kept is scored in full once.
+  // the pose kept is scored in full once. A trial whose start the prior rules out is no
+  // place: a turn of a few degrees now moves the start by as many tenths of a metre at 8 m,
+  // and the Duplex's 180 deg twin, proposed with its start just inside the prior's flat,
+  // walked out of it by such steps and stayed a rival of margin 0 (A203, 90 s undecided).
   Pose2 pose = compose(c.T_map_odom, odom);
   double best = c.log_likelihood;
   bool moved_at_all = false;
@@ -153,6 +160,7 @@ void PathEvidence::refine(Candidate& c, const Pose2& odom) const {
       for (const Pose2& delta : {Pose2(step_m, 0, 0), Pose2(-step_m, 0, 0), Pose2(0, step_m, 0), Pose2(0, -step_m, 0),
                                  Pose2(0, 0, step_rad), Pose2(0, 0, -step_rad)}) {
         const Pose2 moved = pose + delta;
+        if (!admitted(compose(moved, inverse(odom)))) continue;
         const Candidate trial = scored(compose(moved, inverse(odom)), false);
         if (trial.log_likelihood > best + 1e-9) {
           best = trial.log_likelihood;

@@ -110,8 +110,10 @@ class PathEvidence {
   bool proposeEveryFit(const std::vector<Observation>& observations, double z_base, const Pose2& odom,
                        const Pose2& best_now);
   // Candidates whose start pose (at odometry pose `odom_start`) the prior rules out are not
-  // places at all: never proposed, never rivals.
+  // places at all: never proposed, never refined into, never rivals.
   void setPrior(const StartPrior* prior, const Pose2& odom_start) { prior_ = prior, odom_start_ = odom_start; }
+  // Whether the prior (if any) admits the start that map <- odom `T_map_odom` gives.
+  bool admitted(const Pose2& T_map_odom) const;
   // The window's log-likelihood of the base at `map_pose` now (any pose, candidate or not).
   double logLikelihoodOf(const Pose2& map_pose, const Pose2& odom) const;
   // The window's fit of the base at `map_pose` now, observation by observation, scans oldest
