@@ -24,6 +24,12 @@ namespace bimloc::pf::detail {
 using Pose2 = Eigen::Vector3d;
 using bimloc::compose;  // geometry/planar_pose.hpp
 using bimloc::inverse;
+// Farther than this from the best, a candidate is another place: the false-convergence bounds.
+constexpr double kOtherPlaceM = 0.5;
+constexpr double kOtherPlaceRad = 10.0 * M_PI / 180.0;
+// Closer than this to a candidate, a proposal is that candidate.
+constexpr double kSamePlaceM = 0.2;
+constexpr double kSamePlaceRad = 3.0 * M_PI / 180.0;
 // Within `metres` and `radians` of each other.
 bool near(const Pose2& a, const Pose2& b, double metres, double radians);
 // An observation of an earlier scan, seen from the base's frame now: `rel` is that scan's base
