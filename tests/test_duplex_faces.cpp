@@ -9,9 +9,12 @@
 // cause: the party wall is CMU (...FKRi) with a furring wall (0iEHWY1$XA8eQeeULq4jE6) against
 // it; their touching faces are inside the solid, and the pose 0.37 m south put the party
 // wall's real face (y = -9.73) onto the buried one at y = -10.22. Faces with another wall's
-// body in front of them are no landmarks now (pf/buried_faces.hpp): tested on walls built in
+// body in front of them are no landmarks now (bim/buried_faces.hpp): tested on walls built in
 // code (analytic) and on the Duplex.
-#include "pf/buried_faces.hpp"
+#include "bim/buried_faces.hpp"
+#include "sgraph/association.hpp"
+#include "sgraph/plan_layers.hpp"
+#include "sgraph/plane_factor.hpp"
 #include "sgraph_fixtures.hpp"
 #include "sim/runner/room_scenarios.hpp"
 #include "sim/simulation/simulator.hpp"
@@ -48,7 +51,7 @@ TEST(BuriedFaces, TheFacesWhereTwoWallsTouchAreBuriedNoOtherIs) {
   bim::Wall e = test::boxWall("E", {0, 0.3}, {4, 0.3}, 0.2);
   for (auto* p : {&e.start, &e.end, &e.faces[0].start, &e.faces[0].end, &e.faces[1].start, &e.faces[1].end}) p->z() = 3.0;
   s.walls.push_back(e);
-  const std::vector<bool> b = pf::detail::buriedFaces(s);
+  const std::vector<bool> b = bim::buriedFaces(s);
   EXPECT_TRUE(buried(s, b, "A", 0));   // B's body right in front of it
   EXPECT_TRUE(buried(s, b, "B", 1));   // A's body right in front of it
   EXPECT_FALSE(buried(s, b, "A", 1));  // D covers a quarter of it
@@ -57,6 +60,41 @@ TEST(BuriedFaces, TheFacesWhereTwoWallsTouchAreBuriedNoOtherIs) {
   EXPECT_FALSE(buried(s, b, "C", 1));
   EXPECT_TRUE(buried(s, b, "D", 0));   // A's body is in front of all of D's face
   EXPECT_FALSE(buried(s, b, "D", 1));
+}
+
+TEST(BuriedFaces, TheSGraphAssociatesNoBuriedFace) {
+  // A and its furring B as above; a keyframe north of them. A plane observed exactly where A's
+  // buried face is (y = 0.1, as a robot 0.1 m off would see B's real face) matches no face of
+  // A's node; B's real face (y = 0.2) still matches B's.
+  bim::Storey s;
+  s.walls.push_back(test::boxWall("A", {0, 0}, {4, 0}, 0.2));
+  s.walls.push_back(test::boxWall("B", {0, 0.15}, {4, 0.15}, 0.1));
+  sgraph::detail::Graph g;
+  std::vector<std::string> warnings;
+  sgraph::detail::buildPlanLayers(s, g, warnings);
+  ASSERT_EQ(g.nodes.size(), 2u);
+  EXPECT_TRUE(g.nodes[0].buried[0]);
+  EXPECT_FALSE(g.nodes[0].buried[1]);
+  EXPECT_TRUE(g.nodes[1].buried[1]);
+  EXPECT_FALSE(g.nodes[1].buried[0]);
+  sgraph::detail::Keyframe kf;
+  kf.pose = {2.0, 1.5, 0.3};
+  const sgraph::SGraphConfig config;
+  // The observation each face would give, exactly: azimuth, elevation, d in the lidar frame.
+  const auto exactly = [&](const sgraph::detail::WallNode& node, int k) {
+    sgraph::detail::ScanObservation o;
+    double minimal[3];
+    sgraph::detail::PlaneFactor::predict(node.face[k], kf.A, kf.b, kf.pose.data(), node.params.data(), minimal);
+    o.minimal = Eigen::Vector3d(minimal[0], minimal[1], minimal[2]);
+    o.covariance = Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal();
+    o.normal_map = node.normal(k);
+    o.centroid_map = Eigen::Vector2d(2.0, -node.d(k) / node.normal(k).y());
+    o.extent_m = 2.0, o.height_extent_m = 2.0, o.z_map = 1.2;
+    o.axis = bim::WallAxis::Y;
+    return o;
+  };
+  EXPECT_FALSE(std::isfinite(sgraph::detail::matchDistance2(g.nodes[0], 0, kf, exactly(g.nodes[0], 0), config)));
+  EXPECT_LT(sgraph::detail::matchDistance2(g.nodes[1], 0, kf, exactly(g.nodes[1], 0), config), 1e-6);
 }
 
 TEST(DuplexFaces, ACounterAtLidarHeightMatchesNoWallHungAboveTheCeiling) {
@@ -76,7 +114,7 @@ TEST(DuplexFaces, ACounterAtLidarHeightMatchesNoWallHungAboveTheCeiling) {
     ASSERT_TRUE(hung && foyer);
     EXPECT_GT(hung->faces[1].start.z(), foyer->floor_z + foyer->height_m);
     // The layered party wall: the touching faces are buried, the faces into the rooms are not.
-    const std::vector<bool> b = pf::detail::buriedFaces(storey);
+    const std::vector<bool> b = bim::buriedFaces(storey);
     EXPECT_TRUE(buried(storey, b, "2O2Fr$t4X7Zf8NOew3FKRi", 1));
     EXPECT_TRUE(buried(storey, b, "0iEHWY1$XA8eQeeULq4jE6", 0));
     EXPECT_FALSE(buried(storey, b, "2O2Fr$t4X7Zf8NOew3FKRi", 0));

@@ -187,3 +187,18 @@ TEST(FaceOpenings, TheSGraphTakesNoPlaneInAFaceOpeningForTheWall) {
   wall.minimal[2] = 3.0, wall.centroid_map.y() = 0.0, wall.extent_m = 4.0, wall.height_extent_m = 2.4, wall.z_map = 1.2;
   EXPECT_LT(sgraph::detail::matchDistance2(node, 0, kf, wall, config), config.association_gate_mahalanobis2);
 }
+
+TEST(FaceOpenings, ARectangleIsInsideTheHolesWhereOpeningsSideBySideCoverIt) {
+  // A window (along 1.3-4.3, z 0.5-2.5) and a door beside it (4.4-5.3, z 0-2.5): 0.1 m of wall
+  // between them, less than twice the margin.
+  const std::vector<bim::FaceOpening> openings{{1.3, 4.3, 0.5, 2.5}, {4.4, 5.3, 0.0, 2.5}};
+  EXPECT_TRUE(bim::insideOpening(openings, 1.4, 4.2, 0.6, 2.4, 0.0));   // in the window
+  EXPECT_TRUE(bim::insideOpening(openings, 1.4, 5.2, 0.6, 2.4, 0.15));  // across both: one hole
+  EXPECT_FALSE(bim::insideOpening(openings, 1.4, 5.2, 0.6, 2.4, 0.0));  // the 0.1 m of wall between, no margin
+  EXPECT_FALSE(bim::insideOpening(openings, 1.4, 5.2, 0.1, 2.4, 0.15));  // below the window's sill
+  EXPECT_TRUE(bim::insideOpening(openings, 4.5, 5.2, 0.1, 2.4, 0.15));   // the door alone goes down to the floor
+  EXPECT_FALSE(bim::insideOpening(openings, 0.0, 5.2, 0.6, 2.4, 0.15));  // past the window's end
+  EXPECT_FALSE(bim::insideOpening({}, 1.4, 1.5, 0.6, 0.7, 0.15));
+  EXPECT_FALSE(bim::insideOpening(openings, 0.0, 1e12, 0.6, 2.4, 0.15));  // wider than every hole: at once
+  EXPECT_FALSE(bim::insideOpening(openings, 2.0, std::nan(""), 0.6, 2.4, 0.15));
+}

@@ -108,6 +108,32 @@ TEST(PoseRefinement, FromThePulledPoseTheRefinementFindsTheTruth) {
             pf::detail::PoseRefinementConfig{}.search_m + 1e-9);
 }
 
+TEST(PoseRefinement, APaneInAWindowIsNotTheWallsFace) {
+  // The south wall (0.5 m thick) has a window (x 1.0-4.0) and a glazed door beside it (x
+  // 4.1-5.0); one pane of glass spans both, 0.35 m behind the face. Only the pane says where
+  // the robot is in y (the east and west walls fix x). Matched to the face, it pulls the pose
+  // 0.35 m north (the Duplex's foyer, Level 1 A103 seed 2: converged 0.35-0.49 m off); inside
+  // the openings (side by side: one hole), it is no face, and the pose stays where it was.
+  bim::Storey s = room();
+  s.walls[0] = test::boxWall("S", {-0.3, -0.25}, {6.3, -0.25}, 0.5);
+  s.walls[0].faces[0].openings = {{1.3, 4.3, 0.5, 2.5}, {4.4, 5.3, 0.0, 2.5}};  // along from x = -0.3
+  const pf::detail::RoomIndex faces(s, false);
+  const Eigen::Vector3d truth(3.0, 2.0, 0.3);
+  Observation pane = seen(truth, {0, 1}, 0.35, {3.0, -0.35}, 0.6, 2.4);
+  pane.extent_m = 3.8;
+  const std::vector<Observation> obs{pane, seen(truth, {1, 0}, 0.0, {0, 2}, 0, 2.8), seen(truth, {-1, 0}, 6.0, {6, 2}, 0, 2.8)};
+  const std::vector<pf::detail::RefinementScan> scans{{truth, kBaseZ, &obs}};  // odom frame = map frame
+  const auto model = pf::detail::refinementModel(pf::ParticleFilterConfig{});
+  const Eigen::Vector3d start = truth + Eigen::Vector3d(0, 0.1, 0);
+  pf::detail::PoseRefinementConfig without;
+  without.opening_margin_m = -1.0;
+  const Eigen::Vector3d pulled = pf::detail::refinePose(start, truth, scans, faces, model, without);
+  EXPECT_NEAR(pulled.y(), truth.y() + 0.35, 0.02) << "the pane matched to the face";
+  const Eigen::Vector3d kept = pf::detail::refinePose(start, truth, scans, faces, model);
+  EXPECT_NEAR(kept.y(), start.y(), 0.01);
+  EXPECT_NEAR(kept.x(), truth.x(), 0.01);
+}
+
 TEST(PoseRefinement, DuplexB101StartConvergesOnTheTruthNotOnTheCounter) {
   // Before: converged at 2.25 s 0.27 m south of the truth (kitchen counter fronts 0.62 m before
   // the wall ...4jZ1), ATE 0.35 m over 40 s.

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace bimloc::pf::detail {
 
@@ -30,6 +31,9 @@ struct Landmark {
   // counter front that happens to stand a few decimetres off it (the Duplex: 0.4 m in y).
   double z_bottom = -std::numeric_limits<double>::infinity();
   double z_top = std::numeric_limits<double>::infinity();
+  // The face's holes (windows, doors, recesses; along from start, map z): used only where the
+  // association is local (the converged pose's refinement, as the S-Graph), see measurement.hpp.
+  const std::vector<bim::FaceOpening>* openings = nullptr;  // the storey's, which outlives it
   int id = -1;  // which face of the storey: 2 * wall index + face index
 };
 

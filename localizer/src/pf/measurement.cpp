@@ -15,7 +15,7 @@ constexpr double kIndexedRadiusM = 12.0;
 
 MatchResult matchObservations(const Particle& p, double z_base, const std::vector<Observation>& observations,
                               const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<ObservationMatch>* per_observation,
-                              bool out_of_rooms_penalised, double floor) {
+                              bool out_of_rooms_penalised, double floor, double opening_margin_m) {
   MatchResult result;
   const double gate = c.gate_mahalanobis2;
   if (per_observation) per_observation->clear();
@@ -75,6 +75,10 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       // The observed wall's points must lie along the face, not beside its end.
       const double u = (centroid - l.start).dot(l.direction);
       if (u < -margin_m || u > l.length_m + margin_m) return;
+      if (opening_margin_m >= 0.0 && l.openings && !l.openings->empty()) {
+        const double half = 0.5 * o.extent_m;
+        if (bim::insideOpening(*l.openings, u - half, u + half, z_base + o.z_low, z_base + o.z_high, opening_margin_m)) return;
+      }
       best = m2;
       best_face = l.id;
       best_landmark = &l;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace bimloc::pf::detail {
 
@@ -19,7 +20,7 @@ ParticleFilterConfig refinementModel(const ParticleFilterConfig& filter, const P
 namespace {
 
 double windowScore(const Eigen::Vector3d& pose_now, const Eigen::Vector3d& odom_now, const std::vector<RefinementScan>& scans,
-                   const RoomIndex& faces, const ParticleFilterConfig& model) {
+                   const RoomIndex& faces, const ParticleFilterConfig& model, double opening_margin_m) {
   const Eigen::Vector3d T_map_odom = compose(pose_now, inverse(odom_now));
   double sum = 0;
   for (const auto& s : scans) {
@@ -27,7 +28,8 @@ double windowScore(const Eigen::Vector3d& pose_now, const Eigen::Vector3d& odom_
     Particle particle;
     particle.x = p.x(), particle.y = p.y(), particle.yaw = p.z(), particle.room = faces.roomAt(p.x(), p.y());
     // Out of rooms or not, as the path evidence scores (a doorway is no worse a place).
-    sum += matchObservations(particle, s.z_base, *s.observations, faces, model, nullptr, /*out_of_rooms_penalised=*/false)
+    sum += matchObservations(particle, s.z_base, *s.observations, faces, model, nullptr, /*out_of_rooms_penalised=*/false,
+                             -std::numeric_limits<double>::infinity(), opening_margin_m)
                .log_likelihood;
   }
   return sum;
@@ -38,7 +40,9 @@ double windowScore(const Eigen::Vector3d& pose_now, const Eigen::Vector3d& odom_
 Eigen::Vector3d refinePose(const Eigen::Vector3d& converged, const Eigen::Vector3d& odom_now, const std::vector<RefinementScan>& scans,
                            const RoomIndex& every_face, const ParticleFilterConfig& model, const PoseRefinementConfig& r) {
   if (scans.empty() || !converged.allFinite() || r.grid_step_m <= 0.0) return converged;
-  const auto score = [&](const Eigen::Vector3d& pose) { return windowScore(pose, odom_now, scans, every_face, model); };
+  const auto score = [&](const Eigen::Vector3d& pose) {
+    return windowScore(pose, odom_now, scans, every_face, model, r.opening_margin_m);
+  };
   // The grid's cells from the centre out: of poses that fit alike, the nearest stays.
   const int n = static_cast<int>(std::floor(r.search_m / r.grid_step_m));
   std::vector<Eigen::Vector2d> offsets;

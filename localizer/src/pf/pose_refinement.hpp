@@ -29,6 +29,11 @@ struct PoseRefinementConfig {
   // path evidence decides, not this.
   double search_m = 0.5;
   double grid_step_m = 0.05;
+  // A face does not match a plane in one of its openings grown by this margin (a window's pane
+  // 0.1-0.35 m behind the face, a door leaf): the S-Graph's rule (sgraph.opening_margin_m), for
+  // a search as local as its association. The Duplex's living-room windows: panes 0.35 m behind
+  // the south wall's face pulled a converged pose 0.49 m north (Level 1, A103 seed 2).
+  double opening_margin_m = 0.15;
 };
 
 // A scan of the window: its odometry pose (x, y, yaw of odom <- base), base height, planes.

@@ -1,6 +1,6 @@
 #include "room_index.hpp"
 
-#include "buried_faces.hpp"
+#include "bim/buried_faces.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
 
@@ -15,6 +15,7 @@ Landmark makeLandmark(const bim::WallFace& face, int id, double height_m) {
   if (height_m > 0.0 && std::isfinite(face.start.z())) l.z_bottom = face.start.z(), l.z_top = face.start.z() + height_m;
   l.normal = face.plane.n.normalized();
   l.d = face.plane.d;
+  l.openings = &face.openings;
   l.start = face.start.head<2>();
   const Eigen::Vector2d along = face.end.head<2>() - l.start;
   l.length_m = along.norm();
@@ -56,7 +57,7 @@ bool shareAWall(const bim::Room& a, const bim::Room& b) {
 RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours, double cell_m, bool index_faces)
     : use_rooms_(use_rooms), cell_m_(cell_m) {
   // Faces inside another wall's body are no landmarks (buried_faces.hpp); ids stay 2 w + f.
-  const std::vector<bool> buried = buriedFaces(storey);
+  const std::vector<bool> buried = bim::buriedFaces(storey);
   std::vector<Landmark> every_face;
   for (std::size_t w = 0; w < storey.walls.size(); ++w)
     for (int f = 0; f < 2; ++f)

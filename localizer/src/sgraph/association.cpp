@@ -116,6 +116,9 @@ std::vector<ScanObservation> prepareObservations(const Keyframe& kf, const std::
 
 double matchDistance2(const WallNode& node, int k, const Keyframe& kf, const ScanObservation& o, const SGraphConfig& c) {
   if (node.axis(k) != o.axis) return kInfinity;  // the paper's classes: x walls with x walls
+  // A face inside another wall's body is seen by no sensor: matched, it explains the real face
+  // a wall's thickness in front of it, and the robot slides by that thickness (as in the filter).
+  if (node.kind == WallNode::Kind::Plan && node.buried[static_cast<std::size_t>(k)]) return kInfinity;
   if (node.normal(k).dot(o.normal_map) < std::cos(kMaxNormalAngleDeg * kDeg)) return kInfinity;
   double predicted[3];
   PlaneFactor::predict(node.face[k], kf.A, kf.b, kf.pose.data(), node.params.data(), predicted);

@@ -68,6 +68,7 @@ struct WallNode {
   std::array<FaceGeometry, 2> face;
   std::array<Eigen::Vector2d, 2> start{}, end{};  // extent of each face along the floor
   std::array<std::vector<bim::FaceOpening>, 2> openings;  // Plan: the face's holes (along from start, z)
+  std::array<bool, 2> buried{};  // Plan: the face lies inside another wall's body (bim/buried_faces.hpp)
   std::array<double, 3> params{};                 // s, alpha, tau: the Ceres block
   int observations = 0;
   int last_keyframe = -1;  // the newest keyframe that saw it

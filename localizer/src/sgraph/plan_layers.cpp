@@ -1,5 +1,7 @@
 #include "plan_layers.hpp"
 
+#include "bim/buried_faces.hpp"
+
 #include <cmath>
 #include <map>
 
@@ -65,12 +67,14 @@ struct Side {
 void buildPlanLayers(const bim::Storey& storey, Graph& g, std::vector<std::string>& warnings) {
   std::map<std::string, int> index_of;
   g.nodes.resize(storey.walls.size());
+  const std::vector<bool> buried = bim::buriedFaces(storey);
   for (std::size_t i = 0; i < storey.walls.size(); ++i) {
     const bim::Wall& wall = storey.walls[i];
     WallNode& node = g.nodes[i];
     node.wall = static_cast<int>(i);
     std::string problem;
     node.active = makePlanNode(wall, node, problem);
+    for (int k = 0; k < 2; ++k) node.buried[static_cast<std::size_t>(k)] = buried[2 * i + static_cast<std::size_t>(k)];
     if (!node.active) warnings.push_back(wallName(wall, i) + " is not a landmark: " + problem);
     else index_of.emplace(wall.id, static_cast<int>(i));
   }

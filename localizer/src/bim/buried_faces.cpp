@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace bimloc::pf::detail {
+namespace bimloc::bim {
 namespace {
 
 // Just in front of a face: beyond the rounding of the plan's coordinates (mm), well inside
@@ -53,4 +53,4 @@ std::vector<bool> buriedFaces(const bim::Storey& storey) {
   return buried;
 }
 
-}  // namespace bimloc::pf::detail
+}  // namespace bimloc::bim

@@ -10,7 +10,7 @@
 
 #include <vector>
 
-namespace bimloc::pf::detail {
+namespace bimloc::bim {
 
 // Per face of the storey (index 2 * wall + face): true when at least kBuriedShare of the
 // face's length has another wall's body right in front of it (2 cm along its normal) over
@@ -19,4 +19,4 @@ std::vector<bool> buriedFaces(const bim::Storey& storey);
 
 constexpr double kBuriedShare = 0.8;
 
-}  // namespace bimloc::pf::detail
+}  // namespace bimloc::bim
