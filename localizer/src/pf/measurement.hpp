@@ -49,7 +49,7 @@ struct ObservationMatch {
 // With `out_of_rooms_penalised` false, a pose outside every room is matched like any other
 // (against every face, which needs a RoomIndex without the room factor).
 // With opening_margin_m >= 0, a face does not match a plane whose support (centroid -+ half
-// its extents, along and up) lies inside one of the face's openings grown by that margin: a
+// its extents, along and up) lies inside the face's openings grown by that margin (side by side: one hole): a
 // window's pane or a door leaf, parallel to the face and a few decimetres behind it, is not
 // the face. Only for a local search (the converged pose's refinement): in the global search,
 // refusing the pane rewards poses shifted along the wall until it leaves the window and

@@ -149,8 +149,9 @@ void PathEvidence::refine(Candidate& c, const Pose2& odom) const {
       for (const Pose2& delta : {Pose2(step_m, 0, 0), Pose2(-step_m, 0, 0), Pose2(0, step_m, 0), Pose2(0, -step_m, 0),
                                  Pose2(0, 0, step_rad), Pose2(0, 0, -step_rad)}) {
         const Pose2 moved = pose + delta;
-        if (!admitted(compose(moved, inverse(odom)))) continue;
-        const Candidate trial = scored(compose(moved, inverse(odom)), false);
+        const Pose2 T_map_odom = compose(moved, inverse(odom));
+        if (!admitted(T_map_odom)) continue;
+        const Candidate trial = scored(T_map_odom, false);
         if (trial.log_likelihood > best + 1e-9) {
           best = trial.log_likelihood;
           pose = moved;

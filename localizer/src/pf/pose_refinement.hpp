@@ -29,7 +29,7 @@ struct PoseRefinementConfig {
   // path evidence decides, not this.
   double search_m = 0.5;
   double grid_step_m = 0.05;
-  // A face does not match a plane in one of its openings grown by this margin (a window's pane
+  // A face does not match a plane in its openings grown by this margin (a window's pane
   // 0.1-0.35 m behind the face, a door leaf): the S-Graph's rule (sgraph.opening_margin_m), for
   // a search as local as its association. The Duplex's living-room windows: panes 0.35 m behind
   // the south wall's face pulled a converged pose 0.49 m north (Level 1, A103 seed 2).

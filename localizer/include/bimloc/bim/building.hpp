@@ -5,9 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -48,29 +46,24 @@ struct WallFace {
   bool inOpening(double along_min_m, double along_max_m, double z_min_m, double z_max_m, double margin_m) const;
 };
 
-// Whether the rectangle lies inside `openings` grown by margin_m on every side: at every point
-// along it (5 cm apart, both ends included), one grown opening spans the rectangle's heights.
-// Openings side by side count as one hole: a window and the glazed door beside it, 0.1 m of
-// wall between them (the Duplex's living rooms), hold one pane of glass 6 m wide.
+// Whether the rectangle lies inside `openings` grown by margin_m on every side: the grown
+// openings that span its heights cover [along_min, along_max] together. Openings side by side
+// count as one hole: a window and the glazed door beside it, 0.1 m of wall between them (the
+// Duplex's living rooms), hold one pane of glass 6 m wide.
 inline bool insideOpening(const std::vector<FaceOpening>& openings, double along_min_m, double along_max_m,
                           double z_min_m, double z_max_m, double margin_m) {
-  if (openings.empty() || !(along_max_m >= along_min_m)) return false;
-  const auto covered = [&](double u) {
+  if (!(along_max_m >= along_min_m)) return false;
+  // How far from along_min the covered stretch reaches: each pass extends it by an opening
+  // that starts within it and ends beyond it (at most one pass per opening).
+  double reach = along_min_m;
+  for (bool grew = true; grew && reach < along_max_m;) {
+    grew = false;
     for (const auto& o : openings)
-      if (u >= o.along_min_m - margin_m && u <= o.along_max_m + margin_m && z_min_m >= o.z_min_m - margin_m &&
-          z_max_m <= o.z_max_m + margin_m)
-        return true;
-    return false;
-  };
-  constexpr double kStepM = 0.05;
-  const double span = along_max_m - along_min_m;
-  double holes_m = 0;  // no wider than the openings together: also bounds the steps below
-  for (const auto& o : openings) holes_m += std::max(0.0, o.along_max_m - o.along_min_m + 2.0 * margin_m);
-  if (!std::isfinite(span) || span > holes_m) return false;
-  const int steps = static_cast<int>(std::ceil(span / kStepM));
-  for (int k = 0; k <= steps; ++k)
-    if (!covered(k == steps ? along_max_m : along_min_m + k * kStepM)) return false;
-  return true;
+      if (z_min_m >= o.z_min_m - margin_m && z_max_m <= o.z_max_m + margin_m && o.along_min_m - margin_m <= reach &&
+          o.along_max_m + margin_m > reach)
+        reach = o.along_max_m + margin_m, grew = true;
+  }
+  return reach >= along_max_m;
 }
 
 inline bool WallFace::inOpening(double along_min_m, double along_max_m, double z_min_m, double z_max_m,
