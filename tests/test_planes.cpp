@@ -364,6 +364,27 @@ TEST(Planes, CoplanarWallsApartAreTwoPlanes) {
   EXPECT_TRUE(found.horizontals.empty());
 }
 
+TEST(Planes, TheWallSpanIsWhereTheSupportStandsItsMiddleIsNotTheCentroid) {
+  // A wall in the plane x = 3 from y = 0 to y = 6, seen as a lidar near its start sees it:
+  // over the first 1.5 m every height, beyond only two rings. Past its end, the floor's strip
+  // in the plane's band (one height) carries the support on 0.45 m.
+  std::vector<Eigen::Vector3f> points;
+  for (double y = 0; y <= 6.0 + 1e-9; y += 0.05)
+    for (double z = -0.5; z <= 1.5 + 1e-9; z += 0.05)
+      if (y <= 1.5 || std::abs(z) < 1e-9 || std::abs(z - 1.0) < 1e-9) points.emplace_back(3.0f, float(y), float(z));
+  for (double y = 6.05; y <= 6.45 + 1e-9; y += 0.05) points.emplace_back(3.0f, float(y), -0.5f);
+  const planes::PlaneExtraction found = planes::extractPlanes(points);
+  ASSERT_EQ(found.walls.size(), 1u);
+  const auto& wall = found.walls[0];
+  EXPECT_NEAR(wall.extent_m, 6.45, 0.11);   // the whole support, the floor's strip included
+  EXPECT_NEAR(wall.wall_span_m, 6.0, 0.11);  // where it stands
+  EXPECT_LT(wall.centroid.y(), 2.5);  // about 1.5 (300 voxels near, 90 far)
+  ASSERT_TRUE(wall.wall_span_middle.allFinite());
+  EXPECT_NEAR(wall.wall_span_middle.y(), 3.0, 0.06);
+  EXPECT_NEAR(wall.wall_span_middle.x(), 3.0, 0.01);  // in the plane, at the centroid's height
+  EXPECT_NEAR(wall.wall_span_middle.z(), wall.centroid.z(), 1e-9);
+}
+
 TEST(Planes, CovarianceIsPositiveAndTightForAWellSeenWall) {
   const planes::PlaneExtraction found = planes::extractPlanes(scanAt(boxWorld(), 5.0, 4.0, 0.0).points);
   ASSERT_FALSE(found.walls.empty());

@@ -24,6 +24,10 @@ struct Landmark {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
   Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  // unit, start -> end
   double length_m = 0;
+  // The face's wall line along it, from its start (wall_lines.hpp): an observed plane's points
+  // must all lie along it, not only its centroid along the face. Unbounded: not known.
+  double line_lo_m = -std::numeric_limits<double>::infinity();
+  double line_hi_m = std::numeric_limits<double>::infinity();
   // The face's vertical extent in the map (the wall's body, base to top): an observed plane
   // is this face only where its points lie at heights the wall has. A wall hung above the
   // rooms' ceilings (a stair well's enclosure on the storey above, a bulkhead) is in the plan

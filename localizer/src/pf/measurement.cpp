@@ -75,6 +75,14 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       // The observed wall's points must lie along the face, not beside its end.
       const double u = (centroid - l.start).dot(l.direction);
       if (u < -margin_m || u > l.length_m + margin_m) return;
+      // And so must all of them, along its wall line (wall_lines.hpp): a plane that runs on
+      // past the end of the line is another wall, whatever face its centroid falls on.
+      if (o.wall_span_m > 0.0 && o.span_middle_base.allFinite()) {
+        const Eigen::Vector2d& b = o.span_middle_base;
+        const Eigen::Vector2d middle(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y());
+        const double m = (middle - l.start).dot(l.direction), half = 0.5 * o.wall_span_m;
+        if (m - half < l.line_lo_m - margin_m || m + half > l.line_hi_m + margin_m) return;
+      }
       if (opening_margin_m >= 0.0 && l.openings && !l.openings->empty()) {
         const double half = 0.5 * o.extent_m;
         if (bim::insideOpening(*l.openings, u - half, u + half, z_base + o.z_low, z_base + o.z_high, opening_margin_m)) return;

@@ -21,6 +21,10 @@ struct Observation {
   Eigen::Vector2d centroid_base = Eigen::Vector2d::Zero();  // of its points, x y in the yaw-free base frame
   double range_m = 0;  // 3D distance of the centroid from the base's origin (bounds where a match can lie)
   double extent_m = 0;  // the support's span along the plane, horizontally (0: unknown)
+  // Where along the plane its support stands as a wall (ObservedPlane::wall_span_m): length,
+  // and middle x y in the yaw-free base frame (not finite: unknown, no check along the line).
+  double wall_span_m = 0;
+  Eigen::Vector2d span_middle_base = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
   // The heights its points span, above the base's origin (yaw-free base frame): the centroid's
   // height -+ half the support's vertical extent; unbounded when the extraction gave none.
   double z_low = -std::numeric_limits<double>::infinity();

@@ -177,6 +177,9 @@ Observation seenFrom(const Observation& o, const Pose2& rel) {
   m.d_offset = o.d_offset - m.normal_base.head<2>().dot(rel.head<2>());
   m.centroid_base = Eigen::Vector2d(c * o.centroid_base.x() - s * o.centroid_base.y() + rel.x(),
                                     s * o.centroid_base.x() + c * o.centroid_base.y() + rel.y());
+  if (o.span_middle_base.allFinite())
+    m.span_middle_base = Eigen::Vector2d(c * o.span_middle_base.x() - s * o.span_middle_base.y() + rel.x(),
+                                         s * o.span_middle_base.x() + c * o.span_middle_base.y() + rel.y());
   const double height2 = std::max(0.0, o.range_m * o.range_m - o.centroid_base.squaredNorm());
   m.range_m = std::sqrt(m.centroid_base.squaredNorm() + height2);
   return m;

@@ -1,6 +1,7 @@
 #include "room_index.hpp"
 
 #include "bim/buried_faces.hpp"
+#include "wall_lines.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
 
@@ -32,15 +33,25 @@ namespace {
 // into the next, and either room's walls are what it sees. Walls are at most 0.6 m thick.
 constexpr double kDoorwayM = 0.3;
 
+// A face as a landmark, with its wall line.
+Landmark landmarkOf(const bim::Storey& storey, std::size_t w, int f, const std::vector<LineSpan>& lines) {
+  Landmark l = makeLandmark(storey.walls[w].faces[f], static_cast<int>(2 * w) + f, storey.walls[w].height_m);
+  const LineSpan& line = lines[2 * w + static_cast<std::size_t>(f)];
+  l.line_lo_m = line.lo_m, l.line_hi_m = line.hi_m;
+  return l;
+}
+
 // The faces of a room's walls that look into it (both, where the side is unknown).
-std::vector<Landmark> facesOf(const bim::Storey& storey, const bim::Room& room, const std::vector<bool>& buried) {
+std::vector<Landmark> facesOf(const bim::Storey& storey, const bim::Room& room, const std::vector<bool>& buried,
+                              const std::vector<LineSpan>& lines) {
   std::vector<Landmark> faces;
   for (const auto& rw : room.walls) {
     const bim::Wall* wall = storey.findWall(rw.wall_id);
     if (!wall) continue;
     const int w = static_cast<int>(wall - storey.walls.data());
     for (int f = 0; f < 2; ++f)
-      if ((rw.face < 0 || rw.face == f) && !buried[static_cast<std::size_t>(2 * w + f)]) faces.push_back(makeLandmark(wall->faces[f], 2 * w + f, wall->height_m));
+      if ((rw.face < 0 || rw.face == f) && !buried[static_cast<std::size_t>(2 * w + f)])
+        faces.push_back(landmarkOf(storey, static_cast<std::size_t>(w), f, lines));
   }
   return faces;
 }
@@ -58,10 +69,11 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
     : use_rooms_(use_rooms), cell_m_(cell_m) {
   // Faces inside another wall's body are no landmarks (buried_faces.hpp); ids stay 2 w + f.
   const std::vector<bool> buried = bim::buriedFaces(storey);
+  const std::vector<LineSpan> lines = wallLines(storey, buried);
   std::vector<Landmark> every_face;
   for (std::size_t w = 0; w < storey.walls.size(); ++w)
     for (int f = 0; f < 2; ++f)
-      if (!buried[2 * w + static_cast<std::size_t>(f)]) every_face.push_back(makeLandmark(storey.walls[w].faces[f], static_cast<int>(2 * w) + f, storey.walls[w].height_m));
+      if (!buried[2 * w + static_cast<std::size_t>(f)]) every_face.push_back(landmarkOf(storey, w, f, lines));
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   // 2 m cells: a match radius is 3-7 m, and with 1 m cells walking the cells cost more than
   // matching the faces in them.
@@ -76,11 +88,11 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
       for (const auto& p : room.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
       continue;
     }
-    std::vector<Landmark> faces = facesOf(storey, room, buried);
+    std::vector<Landmark> faces = facesOf(storey, room, buried, lines);
     if (use_rooms && neighbours)
       for (const auto& other : storey.rooms)
         if (&other != &room && shareAWall(room, other)) {
-          const auto more = facesOf(storey, other, buried);
+          const auto more = facesOf(storey, other, buried, lines);
           faces.insert(faces.end(), more.begin(), more.end());
         }
     landmarks_.push_back(std::move(faces));

@@ -5,6 +5,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace bimloc::planes::detail {
 namespace {
@@ -43,6 +45,39 @@ Eigen::Matrix3d minimalCovariance(const Cloud& cloud, const Indices& support, co
     variances[k] = lambda > 0 ? std::min(sigma2 / lambda, kUninformativeVariance) : kUninformativeVariance;
   }
   return eig.eigenvectors() * variances.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+// The stretch along a plane where its support stands as a wall: u bins (one voxel wide) whose
+// points span more than kStandingM of height. A 4 cm band around a wall also takes in the
+// strip where it crosses a floor, a ceiling or a slab's edge, one height at each u, and a run
+// bridges gaps of 0.5 m: past the wall's end, the extent can carry on over such a strip. A
+// wall seen by two rings or more has points at several heights in every bin. When no bin does
+// (a plane too far or too low for that), the whole extent [u_min, u_max].
+constexpr double kStandingBinM = 0.1;
+constexpr double kStandingM = 0.15;
+
+std::pair<double, double> standingSpan(const Cloud& cloud, const Indices& support, const Eigen::Vector3d& h, double u_min,
+                                       double u_max) {
+  std::vector<std::pair<long, double>> bins;  // (bin, z)
+  bins.reserve(support.size());
+  for (const int i : support) {
+    const Eigen::Vector3d p = cloud[i].cast<double>();
+    bins.emplace_back(static_cast<long>(std::floor((h.dot(p) - u_min) / kStandingBinM)), p.z());
+  }
+  std::sort(bins.begin(), bins.end());
+  double lo = INFINITY, hi = -INFINITY;
+  for (std::size_t a = 0; a < bins.size();) {
+    std::size_t b = a;
+    double z0 = INFINITY, z1 = -INFINITY;
+    for (; b < bins.size() && bins[b].first == bins[a].first; ++b) z0 = std::min(z0, bins[b].second), z1 = std::max(z1, bins[b].second);
+    if (z1 - z0 > kStandingM) {
+      const double u = u_min + static_cast<double>(bins[a].first) * kStandingBinM;
+      lo = std::min(lo, u), hi = std::max(hi, std::min(u + kStandingBinM, u_max));
+    }
+    a = b;
+  }
+  if (!(hi > lo)) return {u_min, u_max};
+  return {lo, hi};
 }
 
 }  // namespace
@@ -89,6 +124,9 @@ ObservedPlane describePlane(const Cloud& cloud, const Indices& support, const Pl
     sum_r2 += r * r;
   }
   plane.extent_m = u_max - u_min;
+  const auto [wall_lo, wall_hi] = standingSpan(cloud, support, h, u_min, u_max);
+  plane.wall_span_m = wall_hi - wall_lo;
+  plane.wall_span_middle = plane.centroid + h * (0.5 * (wall_lo + wall_hi) - h.dot(plane.centroid));
   plane.height_extent_m = z_max - z_min;
   plane.rms_m = std::sqrt(sum_r2 / double(support.size()));
   plane.covariance = minimalCovariance(cloud, support, plane.normal, plane.d);

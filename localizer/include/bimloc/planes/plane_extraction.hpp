@@ -13,6 +13,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -50,6 +51,13 @@ struct ObservedPlane {
   double extent_m = 0;          // span of the support along the plane's horizontal direction n × z
   double height_extent_m = 0;   // vertical span of the support
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // of the raw returns the plane was fitted to
+  // Where along the plane the support stands as a wall (points at several heights, not the one
+  // height of a floor's or a slab's strip in its band): its length, and its middle at the
+  // centroid's height and depth, so that it reaches wall_span_m / 2 either side of it. The
+  // centroid, a mean of the returns, lies where they are dense, near the sensor: a wall seen from
+  // 0.2 m off one end has it a metre or more from the middle. Not finite: unknown.
+  double wall_span_m = 0;
+  Eigen::Vector3d wall_span_middle = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   double rms_m = 0;             // point-to-plane RMS residual of the support voxels
   bool vertical = false;
 };
