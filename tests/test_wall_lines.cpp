@@ -50,9 +50,11 @@ Observation seen(const Eigen::Vector3d& pose, const Eigen::Vector2d& n, double d
   return o;
 }
 
-pf::detail::ObservationMatch matchAt(const Eigen::Vector3d& pose, const Observation& o, const pf::detail::RoomIndex& faces) {
+pf::detail::ObservationMatch matchAt(const Eigen::Vector3d& pose, const Observation& o, const pf::detail::RoomIndex& faces,
+                                     bool wall_lines = true) {
   pf::ParticleFilterConfig c;
   c.use_rooms = false;
+  c.match_wall_lines = wall_lines;
   pf::Particle p;
   p.x = pose.x(), p.y = pose.y(), p.yaw = pose.z(), p.room = faces.roomAt(p.x, p.y);
   std::vector<pf::detail::ObservationMatch> per;
@@ -126,6 +128,10 @@ TEST(WallLines, APlaneRunningPastTheEndOfAPartitionIsNotThatPartition) {
   const auto at_next_bay = matchAt(next_bay, end_wall, faces);
   EXPECT_EQ(at_next_bay.face, -1);
   EXPECT_NEAR(at_next_bay.m2, pf::ParticleFilterConfig{}.gate_mahalanobis2, 1e-6);
+  // With the rule off (the default, ParticleFilterConfig::match_wall_lines), the centroid
+  // alone decides, and the partition explains it.
+  EXPECT_FALSE(pf::ParticleFilterConfig{}.match_wall_lines);
+  EXPECT_EQ(matchAt(next_bay, end_wall, faces, false).face, 3);
   // Within the margin (0.5 m) of the partition's end, a plane is still the partition.
   const Observation short_run = seen(truth, {1, 0}, -0.1, {0.1, 5.0 - 0.4}, {0.1, 9.0}, {0.1, 6.0});
   EXPECT_EQ(matchAt(next_bay, short_run, faces).face, 3);

@@ -77,7 +77,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       if (u < -margin_m || u > l.length_m + margin_m) return;
       // And so must all of them, along its wall line (wall_lines.hpp): a plane that runs on
       // past the end of the line is another wall, whatever face its centroid falls on.
-      if (o.wall_span_m > 0.0 && o.span_middle_base.allFinite()) {
+      if (c.match_wall_lines && o.wall_span_m > 0.0 && o.span_middle_base.allFinite()) {
         const Eigen::Vector2d& b = o.span_middle_base;
         const Eigen::Vector2d middle(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y());
         const double m = (middle - l.start).dot(l.direction), half = 0.5 * o.wall_span_m;
