@@ -1,5 +1,6 @@
-// Shared by the face index tests: the default world tiled into a larger building, and
-// observations as ParticleFilter::observe makes them for a level base.
+// Shared by the filter's measurement tests (face index, wall lines, pose refinement): the
+// default world tiled into a larger building, and observations as ParticleFilter::observe
+// makes them for a level base.
 #pragma once
 
 #include "pf/measurement.hpp"
@@ -57,5 +58,19 @@ inline std::vector<Observation> observations(const std::vector<planes::ObservedP
   return out;
 }
 
+// A vertical plane n.p + d = 0 (map, n towards the robot) seen from the base at `pose`, its
+// returns' centroid at `centroid` (map): normal, d, azimuth and centroid as
+// ParticleFilter::observe gives them; range from the centroid's horizontal distance.
+inline Observation planeSeenFrom(const Eigen::Vector3d& pose, const Eigen::Vector2d& n, double d, const Eigen::Vector2d& centroid) {
+  const Eigen::Rotation2Dd to_base(-pose.z());
+  Observation o;
+  const Eigen::Vector2d nb = to_base * n;
+  o.normal_base = Eigen::Vector3d(nb.x(), nb.y(), 0.0);
+  o.d_offset = n.dot(pose.head<2>()) + d;
+  o.azimuth_base = std::atan2(nb.y(), nb.x());
+  o.centroid_base = to_base * (centroid - pose.head<2>());
+  o.range_m = o.centroid_base.norm();
+  return o;
+}
 
 }  // namespace bimloc::test

@@ -4,6 +4,7 @@
 // which is what the Duplex's kitchens did (converged 0.3-0.4 m off in y, kept by the S-Graph).
 // Truth here is analytic: a room built in code, the planes a lidar sees from a known pose
 // written down from the walls' geometry; and the Duplex's B101 start against its ground truth.
+#include "face_index_fixtures.hpp"
 #include "pf/pose_refinement.hpp"
 #include "pf/room_index.hpp"
 #include "sgraph_fixtures.hpp"
@@ -38,13 +39,7 @@ bim::Storey room() {
 // The plane n.p + d = 0 (map, n into the room) from the base at `pose`, points at `centre`
 // from height z0 to z1 above the floor: as ParticleFilter::observe would give it.
 Observation seen(const Eigen::Vector3d& pose, const Eigen::Vector2d& n, double d, const Eigen::Vector2d& centre, double z0, double z1) {
-  const Eigen::Rotation2Dd to_base(-pose.z());
-  Observation o;
-  const Eigen::Vector2d nb = to_base * n;
-  o.normal_base = Eigen::Vector3d(nb.x(), nb.y(), 0.0);
-  o.d_offset = n.dot(pose.head<2>()) + d;
-  o.azimuth_base = std::atan2(nb.y(), nb.x());
-  o.centroid_base = to_base * (centre - pose.head<2>());
+  Observation o = test::planeSeenFrom(pose, n, d, centre);
   o.z_low = z0 - kBaseZ, o.z_high = z1 - kBaseZ;
   o.range_m = std::hypot(o.centroid_base.norm(), 0.5 * (o.z_low + o.z_high));
   return o;

@@ -7,6 +7,7 @@
 // the next bay along the row, that plane falls on the partition between two bays, which ends
 // where the bay does. Judged by the centroid alone the partition "explains" it, and the next
 // bay stays a perfect rival until the robot sees some other wall the row does not repeat.
+#include "face_index_fixtures.hpp"
 #include "pf/measurement.hpp"
 #include "pf/room_index.hpp"
 #include "pf/wall_lines.hpp"
@@ -36,17 +37,11 @@ std::pair<double, double> lineRange(const bim::Storey& s, const std::vector<pf::
 // `centroid` (dense near the sensor, so not the middle). As ParticleFilter::observe gives it.
 Observation seen(const Eigen::Vector3d& pose, const Eigen::Vector2d& n, double d, const Eigen::Vector2d& from,
                  const Eigen::Vector2d& to, const Eigen::Vector2d& centroid, bool middle_known = true) {
-  const Eigen::Rotation2Dd to_base(-pose.z());
-  Observation o;
-  const Eigen::Vector2d nb = to_base * n;
-  o.normal_base = Eigen::Vector3d(nb.x(), nb.y(), 0.0);
-  o.d_offset = n.dot(pose.head<2>()) + d;
-  o.azimuth_base = std::atan2(nb.y(), nb.x());
-  o.centroid_base = to_base * (centroid - pose.head<2>());
+  Observation o = test::planeSeenFrom(pose, n, d, centroid);
   o.extent_m = (to - from).norm();
-  if (middle_known) o.span_middle_base = to_base * (0.5 * (from + to) - pose.head<2>()), o.wall_span_m = o.extent_m;
+  if (middle_known)
+    o.span_middle_base = Eigen::Rotation2Dd(-pose.z()) * (0.5 * (from + to) - pose.head<2>()), o.wall_span_m = o.extent_m;
   o.z_low = -kBaseZ, o.z_high = 2.8 - kBaseZ;
-  o.range_m = o.centroid_base.norm();
   return o;
 }
 

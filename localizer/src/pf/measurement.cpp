@@ -40,13 +40,17 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   const double max_angle_rad = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
   const FaceIndex* fine = rooms.fineIndex();
   const auto faceAt = [&](const Landmark& l) { return static_cast<std::uint32_t>(&l - index->faces().data()); };
+  // A point of the yaw-free base frame, in the map at the particle's pose.
+  const auto inMap = [&](const Eigen::Vector2d& b) { return Eigen::Vector2d(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y()); };
   for (const auto& o : observations) {
     // The observed normal in the map (a plane moves with a pose: n' = R n).
     const double nx = cy * o.normal_base.x() - sy * o.normal_base.y(), ny = sy * o.normal_base.x() + cy * o.normal_base.y();
     const double azimuth = o.azimuth_base + p.yaw, elevation = o.elevation;
     const bim::WallAxis axis = std::abs(nx) >= std::abs(ny) ? bim::WallAxis::X : bim::WallAxis::Y;
-    const Eigen::Vector2d centroid(p.x + cy * o.centroid_base.x() - sy * o.centroid_base.y(),
-                                   p.y + sy * o.centroid_base.x() + cy * o.centroid_base.y());
+    const Eigen::Vector2d centroid = inMap(o.centroid_base);
+    // Where the plane stands, for the wall-line rule (when it is on and the span is known).
+    const bool check_line = c.match_wall_lines && o.wall_span_m > 0.0 && o.span_middle_base.allFinite();
+    const Eigen::Vector2d span_middle = check_line ? inMap(o.span_middle_base) : centroid;
     // Without the room factor, only the faces that pass near the plane's points can match it
     // (face_index.hpp): the same best match as over every face, at the cost of what is near.
     const double radius = via_index ? matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, margin_m) : 0.0;
@@ -77,10 +81,8 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       if (u < -margin_m || u > l.length_m + margin_m) return;
       // And so must all of them, along its wall line (wall_lines.hpp): a plane that runs on
       // past the end of the line is another wall, whatever face its centroid falls on.
-      if (c.match_wall_lines && o.wall_span_m > 0.0 && o.span_middle_base.allFinite()) {
-        const Eigen::Vector2d& b = o.span_middle_base;
-        const Eigen::Vector2d middle(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y());
-        const double m = (middle - l.start).dot(l.direction), half = 0.5 * o.wall_span_m;
+      if (check_line) {
+        const double m = (span_middle - l.start).dot(l.direction), half = 0.5 * o.wall_span_m;
         if (m - half < l.line_lo_m - margin_m || m + half > l.line_hi_m + margin_m) return;
       }
       if (opening_margin_m >= 0.0 && l.openings && !l.openings->empty()) {

@@ -175,11 +175,9 @@ Observation seenFrom(const Observation& o, const Pose2& rel) {
   m.azimuth_base = wrapAngle(o.azimuth_base + rel.z());
   // The plane n.p + d = 0 in the old frame is n'.p' + d - n'.t = 0 in the new one.
   m.d_offset = o.d_offset - m.normal_base.head<2>().dot(rel.head<2>());
-  m.centroid_base = Eigen::Vector2d(c * o.centroid_base.x() - s * o.centroid_base.y() + rel.x(),
-                                    s * o.centroid_base.x() + c * o.centroid_base.y() + rel.y());
-  if (o.span_middle_base.allFinite())
-    m.span_middle_base = Eigen::Vector2d(c * o.span_middle_base.x() - s * o.span_middle_base.y() + rel.x(),
-                                         s * o.span_middle_base.x() + c * o.span_middle_base.y() + rel.y());
+  const auto moved = [&](const Eigen::Vector2d& q) { return Eigen::Vector2d(c * q.x() - s * q.y() + rel.x(), s * q.x() + c * q.y() + rel.y()); };
+  m.centroid_base = moved(o.centroid_base);
+  m.span_middle_base = moved(o.span_middle_base);  // not finite stays not finite
   const double height2 = std::max(0.0, o.range_m * o.range_m - o.centroid_base.squaredNorm());
   m.range_m = std::sqrt(m.centroid_base.squaredNorm() + height2);
   return m;

@@ -58,24 +58,20 @@ constexpr double kStandingM = 0.15;
 
 std::pair<double, double> standingSpan(const Cloud& cloud, const Indices& support, const Eigen::Vector3d& h, double u_min,
                                        double u_max) {
-  std::vector<std::pair<long, double>> bins;  // (bin, z)
-  bins.reserve(support.size());
+  // The lowest and highest point of each bin along [u_min, u_max].
+  const std::size_t n = static_cast<std::size_t>(std::floor((u_max - u_min) / kStandingBinM)) + 1;
+  std::vector<std::pair<double, double>> heights(n, {INFINITY, -INFINITY});
   for (const int i : support) {
     const Eigen::Vector3d p = cloud[i].cast<double>();
-    bins.emplace_back(static_cast<long>(std::floor((h.dot(p) - u_min) / kStandingBinM)), p.z());
+    const std::size_t bin = std::min(n - 1, static_cast<std::size_t>(std::max(0.0, std::floor((h.dot(p) - u_min) / kStandingBinM))));
+    heights[bin].first = std::min(heights[bin].first, p.z()), heights[bin].second = std::max(heights[bin].second, p.z());
   }
-  std::sort(bins.begin(), bins.end());
   double lo = INFINITY, hi = -INFINITY;
-  for (std::size_t a = 0; a < bins.size();) {
-    std::size_t b = a;
-    double z0 = INFINITY, z1 = -INFINITY;
-    for (; b < bins.size() && bins[b].first == bins[a].first; ++b) z0 = std::min(z0, bins[b].second), z1 = std::max(z1, bins[b].second);
-    if (z1 - z0 > kStandingM) {
-      const double u = u_min + static_cast<double>(bins[a].first) * kStandingBinM;
+  for (std::size_t bin = 0; bin < n; ++bin)
+    if (heights[bin].second - heights[bin].first > kStandingM) {
+      const double u = u_min + static_cast<double>(bin) * kStandingBinM;
       lo = std::min(lo, u), hi = std::max(hi, std::min(u + kStandingBinM, u_max));
     }
-    a = b;
-  }
   if (!(hi > lo)) return {u_min, u_max};
   return {lo, hi};
 }
