@@ -11,6 +11,35 @@ namespace {
 // cells: brute force over the faces is cheaper then.
 constexpr double kIndexedRadiusM = 12.0;
 
+// Whether the plane `o` (its normal at map azimuth `azimuth`; where it stands along its line:
+// `middle`, map x y, and half its span) lies behind the solid part of face `l`, seen from
+// `sensor` (map x y): parallel to the face, farther behind it than the gate reaches, the face
+// facing the sensor and as high as the plane, and every ray to the plane's support crossing
+// the face where it has no opening (grown by opening_margin_m). A lidar cannot see through a wall; a counter or cabinet stands before one, and a
+// plan has no furniture: a plane before a face is clutter, behind it a contradiction (the
+// beam model's asymmetry, as AMCL's: a short return is an unmapped obstacle, a long one through
+// a mapped wall is not).
+bool behindSolidFace(const Observation& o, const Landmark& l, const Eigen::Vector2d& sensor, double z_base, double azimuth,
+                     const Eigen::Vector2d& middle, double half, double gate_reach_rad, double gate_reach_m, double opening_margin_m) {
+  if (std::abs(wrapAngle(azimuth - l.azimuth)) > gate_reach_rad) return false;  // not parallel: not behind it
+  // Hidden from top to bottom: a plane seen over a parapet or under a bulkhead is not behind it.
+  if (z_base + o.z_low < l.z_bottom - kVerticalMarginM || z_base + o.z_high > l.z_top + kVerticalMarginM) return false;
+  const Eigen::Vector2d n = l.normal.head<2>();
+  const double sensor_front = n.dot(sensor - l.start);  // > 0: the sensor before the face
+  const double plane_behind = -n.dot(middle - l.start);   // > 0: the plane behind the face's plane
+  if (sensor_front <= 0.0 || plane_behind <= gate_reach_m) return false;
+  // Where the rays to the plane's two ends cross the face's line (similar triangles).
+  const double ratio = sensor_front / (sensor_front + plane_behind);
+  const double u_sensor = (sensor - l.start).dot(l.direction), u_middle = (middle - l.start).dot(l.direction);
+  const double a = u_sensor + (u_middle - half - u_sensor) * ratio, b = u_sensor + (u_middle + half - u_sensor) * ratio;
+  const double lo = std::min(a, b), hi = std::max(a, b);
+  if (lo < 0.0 || hi > l.length_m) return false;  // past the face's end: seen round it, perhaps
+  if (l.openings)
+    for (const auto& hole : *l.openings)
+      if (hole.along_max_m + opening_margin_m > lo && hole.along_min_m - opening_margin_m < hi) return false;  // through a door, a window
+  return true;
+}
+
 }  // namespace
 
 MatchResult matchObservations(const Particle& p, double z_base, const std::vector<Observation>& observations,
@@ -49,8 +78,10 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const bim::WallAxis axis = std::abs(nx) >= std::abs(ny) ? bim::WallAxis::X : bim::WallAxis::Y;
     const Eigen::Vector2d centroid = inMap(o.centroid_base);
     // Where the plane stands, for the wall-line rule (when it is on and the span is known).
-    const bool check_line = c.match_wall_lines && o.wall_span_m > 0.0 && o.span_middle_base.allFinite();
-    const Eigen::Vector2d span_middle = check_line ? inMap(o.span_middle_base) : centroid;
+    const bool span_known = o.wall_span_m > 0.0 && o.span_middle_base.allFinite();
+    const bool check_line = c.match_wall_lines && span_known;
+    const Eigen::Vector2d span_middle = span_known ? inMap(o.span_middle_base) : centroid;
+    const double span_half = 0.5 * (span_known ? o.wall_span_m : o.extent_m);
     // Without the room factor, only the faces that pass near the plane's points can match it
     // (face_index.hpp): the same best match as over every face, at the cost of what is near.
     const double radius = via_index ? matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, margin_m) : 0.0;
@@ -86,8 +117,10 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
         if (m - half < l.line_lo_m - margin_m || m + half > l.line_hi_m + margin_m) return;
       }
       if (opening_margin_m >= 0.0 && l.openings && !l.openings->empty()) {
-        const double half = 0.5 * o.extent_m;
-        if (bim::insideOpening(*l.openings, u - half, u + half, z_base + o.z_low, z_base + o.z_high, opening_margin_m)) return;
+        // Where the plane stands, not its centroid -+ half its extent: the centroid sits near
+        // the sensor, and a pane filling its window "overflowed" it by 0.1 m (the Duplex).
+        const double m = (span_middle - l.start).dot(l.direction);
+        if (bim::insideOpening(*l.openings, m - span_half, m + span_half, z_base + o.z_low, z_base + o.z_high, opening_margin_m)) return;
       }
       best = m2;
       best_face = l.id;
@@ -97,6 +130,19 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       index->forEachNear(centroid, radius, consider);
     else
       for (const auto& l : landmarks) consider(l);
+    // The local search (the converged pose's refinement) also knows what no face can explain:
+    // a plane seen through a solid face costs the clutter it is and the face that should have
+    // hidden it.
+    if (opening_margin_m >= 0.0) {
+      const double reach = std::sqrt(gate);
+      for (const auto& l : landmarks)
+        if (behindSolidFace(o, l, Eigen::Vector2d(p.x, p.y), z_base, azimuth, span_middle, span_half, reach / inv_az, reach * c.sigma_d_m,
+                            opening_margin_m)) {
+          best = 2.0 * gate;
+          best_face = -1;
+          break;
+        }
+    }
     // An observation that matches nothing is clutter (the site does not look like the plan
     // yet): it costs what a match at the gate would, so it cannot destroy a good particle.
     if (best < gate) ++result.associated;
