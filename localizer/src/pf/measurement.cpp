@@ -135,13 +135,20 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     // hidden it.
     if (opening_margin_m >= 0.0) {
       const double reach = std::sqrt(gate);
-      for (const auto& l : landmarks)
-        if (behindSolidFace(o, l, Eigen::Vector2d(p.x, p.y), z_base, azimuth, span_middle, span_half, reach / inv_az, reach * c.sigma_d_m,
-                            opening_margin_m)) {
-          best = 2.0 * gate;
-          best_face = -1;
-          break;
-        }
+      const Eigen::Vector2d sensor(p.x, p.y);
+      bool hidden = false;
+      const auto hides = [&](const Landmark& l) {
+        hidden = hidden || behindSolidFace(o, l, sensor, z_base, azimuth, span_middle, span_half, reach / inv_az, reach * c.sigma_d_m,
+                                           opening_margin_m);
+      };
+      // A face that hides the plane crosses the rays from the sensor to its support, all of
+      // which lie within half the distance plus half the span of their middle: what the robot
+      // sees, not the building.
+      if (index)
+        index->forEachNear(0.5 * (sensor + span_middle), 0.5 * (span_middle - sensor).norm() + span_half, hides);
+      else
+        for (const auto& l : landmarks) hides(l);
+      if (hidden) best = 2.0 * gate, best_face = -1;
     }
     // An observation that matches nothing is clutter (the site does not look like the plan
     // yet): it costs what a match at the gate would, so it cannot destroy a good particle.
