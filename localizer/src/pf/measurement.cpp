@@ -15,10 +15,10 @@ constexpr double kIndexedRadiusM = 12.0;
 // `middle`, map x y, and half its span) lies behind the solid part of face `l`, seen from
 // `sensor` (map x y): parallel to the face, farther behind it than the gate reaches, the face
 // facing the sensor and as high as the plane, and every ray to the plane's support crossing
-// the face where it has no opening (grown by opening_margin_m). A lidar cannot see through a wall; a counter or cabinet stands before one, and a
-// plan has no furniture: a plane before a face is clutter, behind it a contradiction (the
-// beam model's asymmetry, as AMCL's: a short return is an unmapped obstacle, a long one through
-// a mapped wall is not).
+// the face where it has no opening (grown by opening_margin_m). A lidar cannot see through a
+// wall; a counter or cabinet stands before one, and a plan has no furniture: a plane before a
+// face is clutter, behind it a contradiction (the beam model's asymmetry, as AMCL's: a short
+// return is an unmapped obstacle, a long one through a mapped wall is not).
 bool behindSolidFace(const Observation& o, const Landmark& l, const Eigen::Vector2d& sensor, double z_base, double azimuth,
                      const Eigen::Vector2d& middle, double half, double gate_reach_rad, double gate_reach_m, double opening_margin_m) {
   if (std::abs(wrapAngle(azimuth - l.azimuth)) > gate_reach_rad) return false;  // not parallel: not behind it
@@ -77,7 +77,8 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const double azimuth = o.azimuth_base + p.yaw, elevation = o.elevation;
     const bim::WallAxis axis = std::abs(nx) >= std::abs(ny) ? bim::WallAxis::X : bim::WallAxis::Y;
     const Eigen::Vector2d centroid = inMap(o.centroid_base);
-    // Where the plane stands, for the wall-line rule (when it is on and the span is known).
+    // Where the plane stands (its standing span, else centroid -+ half its extent): for the
+    // wall-line rule (when on), the openings rule and the through-wall check.
     const bool span_known = o.wall_span_m > 0.0 && o.span_middle_base.allFinite();
     const bool check_line = c.match_wall_lines && span_known;
     const Eigen::Vector2d span_middle = span_known ? inMap(o.span_middle_base) : centroid;

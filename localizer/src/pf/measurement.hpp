@@ -55,7 +55,9 @@ struct ObservationMatch {
 // With opening_margin_m >= 0, a face does not match a plane whose support (centroid -+ half
 // its extents, along and up) lies inside the face's openings grown by that margin (side by side: one hole): a
 // window's pane or a door leaf, parallel to the face and a few decimetres behind it, is not
-// the face. Only for a local search (the converged pose's refinement): in the global search,
+// the face. And a plane seen behind a face's solid part (see behindSolidFace in the .cpp) costs
+// twice the gate: the clutter it is and the face that should have hidden it.
+// Only for a local search (the converged pose's refinement): in the global search,
 // refusing the pane rewards poses shifted along the wall until it leaves the window and
 // matches (FZK-Haus long walks, 6 of 6 localized fell to 4 of 6 when tried).
 // With a finite `floor`, the match stops (below_floor) as soon as the log-likelihood summed so
