@@ -111,17 +111,18 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       // The observed wall's points must lie along the face, not beside its end.
       const double u = (centroid - l.start).dot(l.direction);
       if (u < -margin_m || u > l.length_m + margin_m) return;
-      // And so must all of them, along its wall line (wall_lines.hpp): a plane that runs on
-      // past the end of the line is another wall, whatever face its centroid falls on.
-      if (check_line) {
-        const double m = (span_middle - l.start).dot(l.direction), half = 0.5 * o.wall_span_m;
-        if (m - half < l.line_lo_m - margin_m || m + half > l.line_hi_m + margin_m) return;
-      }
-      if (opening_margin_m >= 0.0 && l.openings && !l.openings->empty()) {
-        // Where the plane stands, not its centroid -+ half its extent: the centroid sits near
-        // the sensor, and a pane filling its window "overflowed" it by 0.1 m (the Duplex).
-        const double m = (span_middle - l.start).dot(l.direction);
-        if (bim::insideOpening(*l.openings, m - span_half, m + span_half, z_base + o.z_low, z_base + o.z_high, opening_margin_m)) return;
+      const bool check_openings = opening_margin_m >= 0.0 && l.openings && !l.openings->empty();
+      if (check_line || check_openings) {
+        const double m = (span_middle - l.start).dot(l.direction);  // where the plane stands along the face
+        // And all of its points must lie along its wall line (wall_lines.hpp): a plane that runs
+        // on past the end of the line is another wall, whatever face its centroid falls on.
+        if (check_line && (m - span_half < l.line_lo_m - margin_m || m + span_half > l.line_hi_m + margin_m)) return;
+        // Not in the face's openings, by where the plane stands, not its centroid -+ half its
+        // extent: the centroid sits near the sensor, and a pane filling its window "overflowed"
+        // it by 0.1 m (the Duplex).
+        if (check_openings &&
+            bim::insideOpening(*l.openings, m - span_half, m + span_half, z_base + o.z_low, z_base + o.z_high, opening_margin_m))
+          return;
       }
       best = m2;
       best_face = l.id;

@@ -38,9 +38,10 @@ struct ParticleFilterConfig {
   double segment_margin_m = 0.5;
   // Experimental, off: all of the plane's standing support must lie along the face's wall line
   // (pf/wall_lines.hpp), not only its centroid along the face. On Jesse.1 it made convergence
-  // faster (median 13.9 -> 10.4 s, 0 false in 131 shared runs), but the Duplex with a prior on
-  // the start flat then converged 0.3-0.6 m off in 5 of 10 runs on Level 1 (flat A): planes
-  // that run on past the plan's walls there are not yet understood.
+  // faster (median 13.9 -> 10.4 s, 0 false in 131 shared runs). On the Duplex with a prior on
+  // the start flat it converges within seconds among the furniture; since the refinement
+  // charges planes seen through walls none of its 40 runs is false, but the S-Graph then
+  // loses and re-finds the track 0.3-0.4 m off (median ATE 0.14 m on Level 1 A; README).
   bool match_wall_lines = false;
   // The planes of one scan, and of consecutive scans, are not independent evidence: the
   // log-likelihood is tempered by this power, and the filter weighs only after the robot
