@@ -1,6 +1,8 @@
 #include "test_support.hpp"
 
 #include <array>
+#include <cstdlib>
+#include <vector>
 #include <chrono>
 #include <csignal>
 #include <thread>
@@ -19,12 +21,28 @@ std::string sharedPlan(const std::string& file_name) {
   return fs::exists(p) ? p.string() : std::string();
 }
 
+namespace {
+// The folders a test process made, removed when it ends (ctest runs each test in a process of
+// its own): a test run leaves nothing behind in the temp folder. BIMLOC_KEEP_TEST_DIRS=1 keeps
+// them, to look at what a failing test wrote.
+struct TempDirs {
+  std::vector<fs::path> made;
+  ~TempDirs() {
+    if (std::getenv("BIMLOC_KEEP_TEST_DIRS")) return;
+    std::error_code ec;
+    for (const auto& p : made) fs::remove_all(p, ec);
+  }
+};
+}  // namespace
+
 std::string tempDir(const std::string& tag) {
+  static TempDirs dirs;
   static int counter = 0;
   const fs::path p = fs::temp_directory_path() /
                      ("bimloc-test-" + tag + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   fs::remove_all(p);
   fs::create_directories(p);
+  dirs.made.push_back(p);
   return p.string();
 }
 
