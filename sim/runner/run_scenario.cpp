@@ -31,6 +31,7 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   shared.start_room = s.start.kind == StartConfig::Kind::Pose ? std::string("(pose)") : s.start.room;
 
   const Simulator sim(s, world);
+  shared.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   const bim::Storey& storey = world.building().storeys[sim.storey()];
   shared.storey = storey.name;
   if (s.start.kind == StartConfig::Kind::OutsideRooms)
