@@ -95,6 +95,11 @@ void PathEvidence::dropOldScans() {
 }
 
 PathEvidence::Candidate PathEvidence::scored(const Pose2& T_map_odom, bool detailed) const {
+  return *scoredAbove(T_map_odom, detailed, -std::numeric_limits<double>::infinity(), false);
+}
+
+std::optional<PathEvidence::Candidate> PathEvidence::scoredAbove(const Pose2& T_map_odom, bool detailed, double floor,
+                                                                 bool or_equal) const {
   Candidate c;
   c.T_map_odom = T_map_odom;
   for (const auto& scan : scans_) {
@@ -102,6 +107,8 @@ PathEvidence::Candidate PathEvidence::scored(const Pose2& T_map_odom, bool detai
     c.matched_sum += s.matched;
     c.out_of_rooms += s.out_of_rooms ? 1 : 0;
     if (detailed) c.per_scan.push_back(std::move(s));
+    const double so_far = total(c.matched_sum, c.out_of_rooms);
+    if (so_far < floor || (or_equal && so_far == floor)) return std::nullopt;
   }
   c.log_likelihood = total(c.matched_sum, c.out_of_rooms);
   return c;
@@ -111,21 +118,23 @@ void PathEvidence::propose(const Pose2& map_pose, const Pose2& odom) {
   if (!map_pose.allFinite()) return;
   const Pose2 T_map_odom = compose(map_pose, inverse(odom));
   if (!admitted(T_map_odom)) return;
-  Candidate fresh = scored(T_map_odom);
+  // Near a candidate, the proposal replaces it only when it fits the path better.
   for (auto& c : candidates_)
     if (near(compose(c.T_map_odom, odom), map_pose, kSamePlaceM, kSamePlaceRad)) {
-      if (fresh.log_likelihood > c.log_likelihood) c = std::move(fresh);
+      if (auto fresh = scoredAbove(T_map_odom, true, c.log_likelihood, /*or_equal=*/true)) c = std::move(*fresh);
       return;
     }
-  candidates_.push_back(std::move(fresh));
+  // Elsewhere it joins the pool; a full pool then drops the candidate the path fits worst,
+  // the first of equals: the proposal itself only when it is worse than all of them.
   const auto max = static_cast<std::size_t>(std::max(2, config_.evidence_max_candidates));
-  if (candidates_.size() > max) {
-    // The pool keeps the best: drop the one the path fits worst.
-    const auto worst = std::min_element(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
-      return a.log_likelihood < b.log_likelihood;
-    });
-    candidates_.erase(worst);
-  }
+  double floor = -std::numeric_limits<double>::infinity();
+  const auto by_fit = [](const Candidate& a, const Candidate& b) { return a.log_likelihood < b.log_likelihood; };
+  if (candidates_.size() >= max && !candidates_.empty())
+    floor = std::min_element(candidates_.begin(), candidates_.end(), by_fit)->log_likelihood;
+  auto fresh = scoredAbove(T_map_odom, true, floor, /*or_equal=*/false);
+  if (!fresh) return;
+  candidates_.push_back(std::move(*fresh));
+  if (candidates_.size() > max) candidates_.erase(std::min_element(candidates_.begin(), candidates_.end(), by_fit));
 }
 
 bool PathEvidence::admitted(const Pose2& T_map_odom) const {
@@ -151,9 +160,9 @@ void PathEvidence::refine(Candidate& c, const Pose2& odom) const {
         const Pose2 moved = pose + delta;
         const Pose2 T_map_odom = compose(moved, inverse(odom));
         if (!admitted(T_map_odom)) continue;
-        const Candidate trial = scored(T_map_odom, false);
-        if (trial.log_likelihood > best + 1e-9) {
-          best = trial.log_likelihood;
+        const auto trial = scoredAbove(T_map_odom, false, best + 1e-9, /*or_equal=*/true);
+        if (trial && trial->log_likelihood > best + 1e-9) {
+          best = trial->log_likelihood;
           pose = moved;
           improved = moved_at_all = true;
         }
