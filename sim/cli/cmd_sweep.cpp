@@ -130,19 +130,25 @@ void run(const SweepArgs& args) {
     bimloc::cli::Table table({"plan", "storey", "runs", "localized", "false", "median [s]", "p90 [s]", "max [s]",
                               "median ATE [m]", "max ATE [m]", "RPE [m/m]", "map RMSE [m]", "lost", "path [m]", "min margin"});
     rows.push_back(total);
+    // A start that could not be run (no spot outside the rooms where the body fits, a plan that
+    // fails to load) is no run: it is listed below the table, not counted as not localized.
     for (const auto& g : rows)
-      table.add({g["plan"], g["storey"], std::to_string(g["runs"].get<int>()), std::to_string(g["localized"].get<int>()),
+      table.add({g["plan"], g["storey"], std::to_string(g["runs"].get<int>() - g["errors"].get<int>()),
+                 std::to_string(g["localized"].get<int>()),
                  g["false_convergences"].get<int>() ? "FALSE " + std::to_string(g["false_convergences"].get<int>()) : "0",
                  cell(g["median_convergence_s"], 1), cell(g["p90_convergence_s"], 1), cell(g["max_convergence_s"], 1),
                  cell(g["median_ate_m"], 3), cell(g["max_ate_m"], 3), cell(g["median_rpe_m_per_m"], 3),
                  cell(g["median_map_rmse_m"], 3), std::to_string(g["losses"].get<int>()), cell(g["median_path_length_m"], 0),
                  cell(g["min_accepted_margin"], 1)});
     table.print(std::cout);
-    std::cout << "\n" << total["localized"].get<int>() << " of " << all.size() << " localized, "
-              << total["false_convergences"].get<int>() << " false convergences; " << fixed(wall, 0) << " s\n";
+    const int not_run = total["errors"].get<int>();
+    std::cout << "\n" << total["localized"].get<int>() << " of " << all.size() - static_cast<std::size_t>(not_run) << " localized, "
+              << total["false_convergences"].get<int>() << " false convergences; " << fixed(wall, 0) << " s";
+    if (not_run > 0) std::cout << "; " << not_run << (not_run == 1 ? " start" : " starts") << " could not be run (below)";
+    std::cout << "\n";
   }
   for (const auto& r : runs)
-    if (!r.error.empty()) std::cerr << "bimloc sweep: error: " << r.result.name << ": " << r.error << "\n";
+    if (!r.error.empty()) std::cerr << "bimloc sweep: not run: " << r.result.name << ": " << r.error << "\n";
   if (total["false_convergences"].get<int>() > 0) throw bimloc::cli::ExitCode{1};
 }
 
