@@ -156,11 +156,12 @@ class PathEvidence {
   };
   ScanScore scoreOn(const Pose2& T_map_odom, const Scan& scan, bool detailed) const;
   Candidate scored(const Pose2& T_map_odom, bool detailed = true) const;
-  // The same, unless the score is certainly not above `floor` (`or_equal`: not at or above
-  // it): then nothing, as soon as the scans scored so far prove it. Each scan adds a term
-  // <= 0 and the room prior only grows, so in floating point the total is at most any
-  // partial one: what it returns, and what it refuses, is what scored() would decide, bit for
-  // bit. Most proposals are of places the pool already holds, fitted: they lose in a few scans.
+  // The same, or nothing as soon as the scans scored so far prove the total below `floor`
+  // (with `or_equal`: at or below it). Each scan adds a term <= 0 and the room prior only
+  // grows, so in floating point the total is at most any partial one: a candidate returned is
+  // scored() to the bit, and one refused is one scored() would have shown on the wrong side of
+  // the floor. Most proposals are of places the pool already holds, fitted: they lose in a few
+  // scans.
   std::optional<Candidate> scoredAbove(const Pose2& T_map_odom, bool detailed, double floor, bool or_equal) const;
   double total(double matched_sum, int out_of_rooms) const;
   void refine(Candidate& c, const Pose2& odom) const;
