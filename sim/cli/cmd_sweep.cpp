@@ -22,6 +22,7 @@ namespace {
 using namespace bimloc::sim;
 using bimloc::cli::cell;
 using bimloc::cli::fixed;
+using bimloc::cli::runsThatRan;
 
 struct SweepArgs {
   std::vector<std::string> plans;
@@ -130,10 +131,9 @@ void run(const SweepArgs& args) {
     bimloc::cli::Table table({"plan", "storey", "runs", "localized", "false", "median [s]", "p90 [s]", "max [s]",
                               "median ATE [m]", "max ATE [m]", "RPE [m/m]", "map RMSE [m]", "lost", "path [m]", "min margin"});
     rows.push_back(total);
-    // A start that could not be run (no spot outside the rooms where the body fits, a plan that
-    // fails to load) is no run: it is listed below the table, not counted as not localized.
+    // A start that could not be run is listed below the table, not counted as not localized.
     for (const auto& g : rows)
-      table.add({g["plan"], g["storey"], std::to_string(g["runs"].get<int>() - g["errors"].get<int>()),
+      table.add({g["plan"], g["storey"], std::to_string(runsThatRan(g)),
                  std::to_string(g["localized"].get<int>()),
                  g["false_convergences"].get<int>() ? "FALSE " + std::to_string(g["false_convergences"].get<int>()) : "0",
                  cell(g["median_convergence_s"], 1), cell(g["p90_convergence_s"], 1), cell(g["max_convergence_s"], 1),
@@ -142,7 +142,7 @@ void run(const SweepArgs& args) {
                  cell(g["min_accepted_margin"], 1)});
     table.print(std::cout);
     const int not_run = total["errors"].get<int>();
-    std::cout << "\n" << total["localized"].get<int>() << " of " << all.size() - static_cast<std::size_t>(not_run) << " localized, "
+    std::cout << "\n" << total["localized"].get<int>() << " of " << runsThatRan(total) << " localized, "
               << total["false_convergences"].get<int>() << " false convergences; " << fixed(wall, 0) << " s";
     if (not_run > 0) std::cout << "; " << not_run << (not_run == 1 ? " start" : " starts") << " could not be run (below)";
     std::cout << "\n";

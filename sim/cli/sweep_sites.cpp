@@ -49,7 +49,7 @@ int runRobustness(const std::vector<sim::Scenario>& base, WorldCache& worlds, co
       for (std::size_t k = 0; k < base.size(); ++k) group.push_back(&runs[at++].result);
       nlohmann::json row{{"site", site}, {"deviation_m", deviationM(site)}, {"method", o.methods[m]}};
       row.update(summariseRuns(group));
-      const double n = row["runs"].get<double>();
+      const double n = runsThatRan(row);  // a start that could not be run is no run
       row["rate"] = n > 0 ? row["localized"].get<double>() / n : 0.0;
       false_total += row["false_convergences"].get<int>();
       plot.series[m].rate.push_back(n > 0 ? row["rate"].get<double>() : std::nan(""));
@@ -69,17 +69,20 @@ int runRobustness(const std::vector<sim::Scenario>& base, WorldCache& worlds, co
     Table table({"site", "deviation [m]", "method", "runs", "localized", "rate", "false", "median [s]", "p90 [s]",
                  "median ATE [m]", "lost"});
     for (const auto& r : rows)
-      table.add({r["site"], fixed(r["deviation_m"].get<double>(), 2), r["method"], std::to_string(r["runs"].get<int>()),
+      table.add({r["site"], fixed(r["deviation_m"].get<double>(), 2), r["method"], std::to_string(runsThatRan(r)),
                  std::to_string(r["localized"].get<int>()), fixed(r["rate"].get<double>(), 2),
                  r["false_convergences"].get<int>() ? "FALSE " + std::to_string(r["false_convergences"].get<int>()) : "0",
                  cell(r["median_convergence_s"], 1), cell(r["p90_convergence_s"], 1), cell(r["median_ate_m"], 3),
                  std::to_string(r["losses"].get<int>())});
     table.print(std::cout);
-    std::cout << "\n" << scenarios.size() << " runs, " << false_total << " false convergences; " << fixed(wall, 0) << " s"
+    std::size_t not_run = 0;
+    for (const auto& r : runs) not_run += !r.error.empty();
+    std::cout << "\n" << scenarios.size() - not_run << " runs, " << false_total << " false convergences; " << fixed(wall, 0) << " s"
+              << (not_run > 0 ? "; " + std::to_string(not_run) + (not_run == 1 ? " start" : " starts") + " could not be run (below)" : "")
               << (o.plot.empty() ? "" : "; plot: " + o.plot) << "\n";
   }
   for (const auto& r : runs)
-    if (!r.error.empty()) std::cerr << "bimloc sweep: error: " << r.result.name << ": " << r.error << "\n";
+    if (!r.error.empty()) std::cerr << "bimloc sweep: not run: " << r.result.name << ": " << r.error << "\n";
   return false_total;
 }
 

@@ -16,6 +16,10 @@ double quantile(std::vector<double> v, double q);
 
 nlohmann::json summariseRuns(const std::vector<const sim::ScenarioResult*>& runs);
 
+// Of a summary's runs, those that ran: a start that could not be run (no spot outside the
+// rooms where the body fits, a plan that fails to load) counts in "errors", and is no run.
+inline int runsThatRan(const nlohmann::json& summary) { return summary["runs"].get<int>() - summary["errors"].get<int>(); }
+
 // A JSON number or "-" for null, with `decimals`.
 std::string cell(const nlohmann::json& v, int decimals);
 
