@@ -123,9 +123,9 @@ TEST(WallLines, APlaneRunningPastTheEndOfAPartitionIsNotThatPartition) {
   const auto at_next_bay = matchAt(next_bay, end_wall, faces);
   EXPECT_EQ(at_next_bay.face, -1);
   EXPECT_NEAR(at_next_bay.m2, pf::ParticleFilterConfig{}.gate_mahalanobis2, 1e-6);
-  // With the rule off (the default, ParticleFilterConfig::match_wall_lines), the centroid
-  // alone decides, and the partition explains it.
-  EXPECT_FALSE(pf::ParticleFilterConfig{}.match_wall_lines);
+  // With the rule off (ParticleFilterConfig::match_wall_lines; on by default, and off in the
+  // search after a loss of track), the centroid alone decides, and the partition explains it.
+  EXPECT_TRUE(pf::ParticleFilterConfig{}.match_wall_lines);
   EXPECT_EQ(matchAt(next_bay, end_wall, faces, false).face, 3);
   // Within the margin (0.5 m) of the partition's end, a plane is still the partition.
   const Observation short_run = seen(truth, {1, 0}, -0.1, {0.1, 5.0 - 0.4}, {0.1, 9.0}, {0.1, 6.0});

@@ -101,6 +101,9 @@ struct ParticleFilter::Impl {
   void followThePath(const detail::PathVerdict& path, UpdateReport& report);
   void checkConvergence(const std::vector<detail::Observation>& observations, double z, detail::PathVerdict& path,
                         bool decisive, const std::vector<double>& w, const Eigen::Vector3d& mean, UpdateReport& report);
+  // The best particle's pose refined within its place, or nothing while that pose is not
+  // settled (config.settle_pose).
+  std::optional<detail::Pose2> settledPose(const Particle& top, UpdateReport& report) const;
   void resampleAfter(const std::vector<double>& w, UpdateReport& report);
   double yawTolerance() const { return config.converged_yaw_deg * M_PI / 180.0; }
   // Whether a pose is at the path evidence's best place (twice the convergence radius: the

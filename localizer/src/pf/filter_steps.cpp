@@ -1,5 +1,6 @@
 // The steps of ParticleFilter::update (particle_filter.cpp), each one concept, in its order.
 #include "filter_impl.hpp"
+#include "pose_settled.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -117,9 +118,10 @@ void ParticleFilter::Impl::checkConvergence(const std::vector<detail::Observatio
                          std::sqrt(var_xy) < config.converged_position_m && std::sqrt(var_yaw) < yaw_tol;
   bool agrees = clustered && (tracking || (decisive && near(mean, path.best, config.converged_position_m, yaw_tol)));
   bool searched = true;
+  std::optional<detail::Pose2> fine;  // the pose within the place, refined (and settled)
   if (agrees && !tracking) {
     // About to count towards convergence: first make sure no look-alike is missing from the
-    // candidates, then ask again.
+    // candidates, then ask again; and then whether the pose within the place is settled.
     const detail::Pose2 now = planarPose(odom);
     searched = evidence.proposeEveryFit(observations, z, now, path.best);
     path = evidence.verdict(now);
@@ -127,6 +129,10 @@ void ParticleFilter::Impl::checkConvergence(const std::vector<detail::Observatio
     report.path_rivals = path.rivals;
     agrees = searched && path.pose_fixed && path.margin >= config.evidenceMargin() &&
              near(mean, path.best, config.converged_position_m, yaw_tol);
+    if (agrees) {
+      fine = settledPose(top, report);
+      agrees = fine.has_value();
+    }
   }
   // A scan whose search could not vouch for the rivals checked the verdict against nothing: it
   // neither counts towards convergence nor breaks the run of agreeing ones.
@@ -139,15 +145,31 @@ void ParticleFilter::Impl::checkConvergence(const std::vector<detail::Observatio
     if (T_map_odom) {
       at.x = mean.x(), at.y = mean.y(), at.yaw = mean.z();
     } else {
-      // The place is decided; the pose within it is fitted again with the sensor's own noise
-      // (pose_refinement.hpp): the wide sigmas let furniture before a wall pull it.
-      const detail::Pose2 fine = detail::refinePose({top.x, top.y, top.yaw}, planarPose(odom), evidence.latestScans(refinement.window_m),
-                                                    evidence.everyFace(), detail::refinementModel(config, refinement), refinement);
-      at.x = fine.x(), at.y = fine.y(), at.yaw = fine.z();
+      // The place is decided, and the pose within it fitted again with the sensor's own noise
+      // (settledPose, this update: the run of agreeing updates ends with this one).
+      at.x = fine->x(), at.y = fine->y(), at.yaw = fine->z();
     }
     T_map_odom = poseOf(at) * odom.inverse();
   }
   report.converged = T_map_odom.has_value();
+}
+
+std::optional<detail::Pose2> ParticleFilter::Impl::settledPose(const Particle& top, UpdateReport& report) const {
+  // The pose within the decided place, fitted again with the sensor's own noise on the latest
+  // scans (pose_refinement.hpp): the wide sigmas let furniture before a wall pull it.
+  const detail::Pose2 now = planarPose(odom);
+  const auto scans = evidence.latestScans(refinement.window_m);
+  const auto model = detail::refinementModel(config, refinement);
+  const detail::Pose2 fine = detail::refinePose({top.x, top.y, top.yaw}, now, scans, evidence.everyFace(), model, refinement);
+  if (!config.settle_pose) return fine;
+  // Settled when the scans explain it better than every pose beyond the convergence radius,
+  // by the bar the places must pass, counted per face (pose_settled.hpp): furniture can fake
+  // one wall, as between places.
+  const detail::LocalMargin local =
+      detail::localMargin(fine, now, scans, evidence.everyFace(), model, refinement, config.converged_position_m, config.evidenceMargin());
+  report.pose_margin = local.margin;
+  if (local.margin < config.evidenceMargin()) return std::nullopt;
+  return fine;
 }
 
 void ParticleFilter::Impl::resampleAfter(const std::vector<double>& w, UpdateReport& report) {

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -36,13 +37,11 @@ struct ParticleFilterConfig {
   // An observed plane matches a wall face only if the centroid of its points lies along the
   // face, to within this (beyond the paper, which matches infinite planes).
   double segment_margin_m = 0.5;
-  // Experimental, off: all of the plane's standing support must lie along the face's wall line
-  // (pf/wall_lines.hpp), not only its centroid along the face. On Jesse.1 it made convergence
-  // faster (median 13.9 -> 10.4 s, 0 false in 131 shared runs). On the Duplex with a prior on
-  // the start flat it converges within seconds among the furniture; since the refinement
-  // charges planes seen through walls none of its 40 runs is false, but the S-Graph then
-  // loses and re-finds the track 0.3-0.4 m off (median ATE 0.14 m on Level 1 A; README).
-  bool match_wall_lines = false;
+  // All of the plane's standing support must lie along the face's wall line (pf/wall_lines.hpp),
+  // not only its centroid along the face: in a row of identical bays, a wall seen along the
+  // row is not the partition that ends where the next bay does (Jesse.1 Level -1). It decides
+  // places sooner, also where the pose within the place is not yet settled: settle_pose.
+  bool match_wall_lines = true;
   // The planes of one scan, and of consecutive scans, are not independent evidence: the
   // log-likelihood is tempered by this power, and the filter weighs only after the robot
   // moved (as AMCL's update_min_d / update_min_a), or every max_static_scans scans.
@@ -93,10 +92,20 @@ struct ParticleFilterConfig {
   double roughening_xy_m = 0.02;       // jitter after resampling, against depletion
   double roughening_yaw_deg = 0.5;
   // Convergence: the best particle within these of the weighted mean, and the particles'
-  // spread (weighted standard deviation) within them too, for this many updates.
+  // spread (weighted standard deviation) within them too, for this many updates (the paper:
+  // several). The path evidence and the settled pose are what decide; the run only guards
+  // against a cloud that agrees by chance (4 updates cost 1.7-2 s on Jesse.1: the base
+  // stands and turns in a doorway, a weighing a second).
   double converged_position_m = 0.3;
   double converged_yaw_deg = 5.0;
-  int converged_updates = 4;
+  int converged_updates = 2;
+  // And the pose within the place settled (pf/pose_settled.hpp): refined on the latest scans
+  // with the sensor's own noise, it must fit them better than every pose farther than
+  // converged_position_m from it, by the evidence bar, counted once per wall face, as the
+  // places are (one face can be furniture). The path evidence decides between places; this,
+  // within one: a kitchen whose walls hide behind cabinets and a counter, each 0.3 m deep,
+  // fits a pose 0.3 m off as well as the truth until a wall is seen past them.
+  bool settle_pose = true;
   // A particle outside every room (a corridor the plan has no space for, a doorway, outside)
   // matches the faces near it and pays this (log-likelihood, per weighing): penalised, not
   // ruled out.
@@ -135,6 +144,10 @@ struct UpdateReport {
   // The other places the path fits nearly as well (map x, y, yaw now, and the margin of the
   // best over each), best first: the ambiguity left, when the plan cannot decide (yet).
   std::vector<std::pair<Eigen::Vector3d, double>> path_rivals;
+  // When convergence was about to be counted: how much better the latest scans fit the
+  // refined pose than any pose farther than converged_position_m from it within the place
+  // (per face, as path_margin; ParticleFilterConfig::settle_pose). NaN when not asked.
+  double pose_margin = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::string> warnings;
 };
 
