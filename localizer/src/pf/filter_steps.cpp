@@ -146,8 +146,10 @@ void ParticleFilter::Impl::checkConvergence(const std::vector<detail::Observatio
       at.x = mean.x(), at.y = mean.y(), at.yaw = mean.z();
     } else {
       // The place is decided, and the pose within it fitted again with the sensor's own noise
-      // (settledPose, this update: the run of agreeing updates ends with this one).
-      at.x = fine->x(), at.y = fine->y(), at.yaw = fine->z();
+      // (settledPose, this update: the run of agreeing updates ends with this one, so `fine`
+      // is set; the top particle's own pose would stand otherwise).
+      const detail::Pose2 pose = fine.value_or(detail::Pose2(top.x, top.y, top.yaw));
+      at.x = pose.x(), at.y = pose.y(), at.yaw = pose.z();
     }
     T_map_odom = poseOf(at) * odom.inverse();
   }
