@@ -17,21 +17,37 @@ ParticleFilterConfig refinementModel(const ParticleFilterConfig& filter, const P
   return c;
 }
 
+MatchResult matchScanAt(const Eigen::Vector3d& T_map_odom, const RefinementScan& scan, const RoomIndex& every_face,
+                        const ParticleFilterConfig& model, double opening_margin_m, std::vector<ObservationMatch>* per_observation) {
+  const Eigen::Vector3d p = compose(T_map_odom, scan.odom);
+  Particle particle;
+  particle.x = p.x(), particle.y = p.y(), particle.yaw = p.z(), particle.room = every_face.roomAt(p.x(), p.y());
+  return matchObservations(particle, scan.z_base, *scan.observations, every_face, model, per_observation,
+                           /*out_of_rooms_penalised=*/false, -std::numeric_limits<double>::infinity(), opening_margin_m);
+}
+
+std::vector<Eigen::Vector2d> gridOffsets(const PoseRefinementConfig& r, double min_m) {
+  std::vector<Eigen::Vector2d> offsets;
+  if (r.grid_step_m <= 0.0) return offsets;
+  const int n = static_cast<int>(std::floor(r.search_m / r.grid_step_m));
+  for (int i = -n; i <= n; ++i)
+    for (int j = -n; j <= n; ++j) {
+      const Eigen::Vector2d o(i * r.grid_step_m, j * r.grid_step_m);
+      if (o.norm() >= min_m - 1e-9 && o.norm() <= r.search_m + 1e-9) offsets.push_back(o);
+    }
+  std::stable_sort(offsets.begin(), offsets.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.squaredNorm() < b.squaredNorm();
+  });
+  return offsets;
+}
+
 namespace {
 
 double windowScore(const Eigen::Vector3d& pose_now, const Eigen::Vector3d& odom_now, const std::vector<RefinementScan>& scans,
                    const RoomIndex& faces, const ParticleFilterConfig& model, double opening_margin_m) {
   const Eigen::Vector3d T_map_odom = compose(pose_now, inverse(odom_now));
   double sum = 0;
-  for (const auto& s : scans) {
-    const Eigen::Vector3d p = compose(T_map_odom, s.odom);
-    Particle particle;
-    particle.x = p.x(), particle.y = p.y(), particle.yaw = p.z(), particle.room = faces.roomAt(p.x(), p.y());
-    // Out of rooms or not, as the path evidence scores (a doorway is no worse a place).
-    sum += matchObservations(particle, s.z_base, *s.observations, faces, model, nullptr, /*out_of_rooms_penalised=*/false,
-                             -std::numeric_limits<double>::infinity(), opening_margin_m)
-               .log_likelihood;
-  }
+  for (const auto& s : scans) sum += matchScanAt(T_map_odom, s, faces, model, opening_margin_m).log_likelihood;
   return sum;
 }
 
@@ -44,16 +60,7 @@ Eigen::Vector3d refinePose(const Eigen::Vector3d& converged, const Eigen::Vector
     return windowScore(pose, odom_now, scans, every_face, model, r.opening_margin_m);
   };
   // The grid's cells from the centre out: of poses that fit alike, the nearest stays.
-  const int n = static_cast<int>(std::floor(r.search_m / r.grid_step_m));
-  std::vector<Eigen::Vector2d> offsets;
-  for (int i = -n; i <= n; ++i)
-    for (int j = -n; j <= n; ++j) {
-      const Eigen::Vector2d o(i * r.grid_step_m, j * r.grid_step_m);
-      if (o.norm() <= r.search_m + 1e-9) offsets.push_back(o);
-    }
-  std::stable_sort(offsets.begin(), offsets.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.squaredNorm() < b.squaredNorm();
-  });
+  const std::vector<Eigen::Vector2d> offsets = gridOffsets(r);
   Eigen::Vector3d best = converged;
   double best_score = score(converged);
   for (const auto& o : offsets) {

@@ -43,6 +43,18 @@ struct RefinementScan {
   const std::vector<Observation>* observations = nullptr;
 };
 
+// One scan of the window matched with the base at map <- odom `T_map_odom`, as the local
+// search scores it: every face a candidate, out of rooms not penalised (a doorway is no worse
+// a place), a plane in a face's openings grown by `opening_margin_m` not the face, one seen
+// through a solid face a contradiction (measurement.hpp). With `per_observation`, each match.
+MatchResult matchScanAt(const Eigen::Vector3d& T_map_odom, const RefinementScan& scan, const RoomIndex& every_face,
+                        const ParticleFilterConfig& model, double opening_margin_m,
+                        std::vector<ObservationMatch>* per_observation = nullptr);
+
+// The offsets of the local search's grid (step r.grid_step_m) from `min_m` out to r.search_m,
+// nearest first (of poses that fit alike, the nearest is met first).
+std::vector<Eigen::Vector2d> gridOffsets(const PoseRefinementConfig& r, double min_m = 0.0);
+
 // The tight error model: `filter`'s angular sigmas and gate, sigma_d from the lidar, the plan
 // tolerance and the odometry drift over the window (config.evidence_*).
 ParticleFilterConfig refinementModel(const ParticleFilterConfig& filter, const PoseRefinementConfig& r = {});

@@ -4,28 +4,18 @@
 
 #include <bimloc/geometry/planar_pose.hpp>
 
-#include <algorithm>
-#include <cmath>
 #include <limits>
 
 namespace bimloc::pf::detail {
 namespace {
 
-// Each scan's matches at `pose_now`, as the refinement scores them (a plane in a face's
-// openings is not the face, one seen through a solid face contradicts the pose; out of rooms
-// is not penalised).
+// Each scan's matches with the base at `pose_now`, as the refinement scores them.
 std::vector<std::vector<ObservationMatch>> windowMatches(const Eigen::Vector3d& pose_now, const Eigen::Vector3d& odom_now,
                                                          const std::vector<RefinementScan>& scans, const RoomIndex& faces,
                                                          const ParticleFilterConfig& model, double opening_margin_m) {
   const Eigen::Vector3d T_map_odom = compose(pose_now, inverse(odom_now));
   std::vector<std::vector<ObservationMatch>> out(scans.size());
-  for (std::size_t k = 0; k < scans.size(); ++k) {
-    const Eigen::Vector3d p = compose(T_map_odom, scans[k].odom);
-    Particle particle;
-    particle.x = p.x(), particle.y = p.y(), particle.yaw = p.z(), particle.room = faces.roomAt(p.x(), p.y());
-    matchObservations(particle, scans[k].z_base, *scans[k].observations, faces, model, &out[k], false,
-                      -std::numeric_limits<double>::infinity(), opening_margin_m);
-  }
+  for (std::size_t k = 0; k < scans.size(); ++k) matchScanAt(T_map_odom, scans[k], faces, model, opening_margin_m, &out[k]);
   return out;
 }
 
@@ -39,16 +29,7 @@ LocalMargin localMargin(const Eigen::Vector3d& refined, const Eigen::Vector3d& o
   if (scans.empty() || r.grid_step_m <= 0.0 || !refined.allFinite()) return result;
   // The rivals: the refinement's grid, from min_m out to search_m, nearest first (the closest
   // poses are the likeliest to explain the window alike).
-  const int n = static_cast<int>(std::floor(r.search_m / r.grid_step_m));
-  std::vector<Eigen::Vector2d> offsets;
-  for (int i = -n; i <= n; ++i)
-    for (int j = -n; j <= n; ++j) {
-      const Eigen::Vector2d o(i * r.grid_step_m, j * r.grid_step_m);
-      if (o.norm() >= min_m - 1e-9 && o.norm() <= r.search_m + 1e-9) offsets.push_back(o);
-    }
-  std::stable_sort(offsets.begin(), offsets.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.squaredNorm() < b.squaredNorm();
-  });
+  const std::vector<Eigen::Vector2d> offsets = gridOffsets(r, min_m);
   const auto at_p = windowMatches(refined, odom_now, scans, every_face, model, r.opening_margin_m);
   const int rival_keys = static_cast<int>(every_face.landmarks(0).size()) + 1;
   for (const auto& o : offsets) {

@@ -146,7 +146,8 @@ struct UpdateReport {
   std::vector<std::pair<Eigen::Vector3d, double>> path_rivals;
   // When convergence was about to be counted: how much better the latest scans fit the
   // refined pose than any pose farther than converged_position_m from it within the place
-  // (per face, as path_margin; ParticleFilterConfig::settle_pose). NaN when not asked.
+  // (per face, as path_margin; ParticleFilterConfig::settle_pose); below the bar, that of the
+  // first such pose found under it, nearest first. NaN when not asked.
   double pose_margin = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::string> warnings;
 };
