@@ -5,7 +5,7 @@
 #include "test_support.hpp"
 
 #include "sim/dataset/dataset_reader.hpp"
-#include "sim/world/json_errors.hpp"
+#include "sim/common/json_errors.hpp"
 #include "sim/world/world.hpp"
 
 #include <gtest/gtest.h>

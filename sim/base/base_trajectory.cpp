@@ -4,7 +4,7 @@
 #include "sim/base/gait.hpp"
 #include "sim/base/motion_profile.hpp"
 #include "sim/base/room_lookup.hpp"
-#include "sim/base/seeded_random.hpp"
+#include "sim/common/seeded_random.hpp"
 #include "sim/world/world.hpp"
 
 #include <algorithm>

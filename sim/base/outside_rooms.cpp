@@ -2,7 +2,7 @@
 
 #include "sim/base/free_space.hpp"
 #include "sim/base/room_lookup.hpp"
-#include "sim/base/seeded_random.hpp"
+#include "sim/common/seeded_random.hpp"
 #include "sim/world/world.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>

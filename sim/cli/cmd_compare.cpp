@@ -8,7 +8,7 @@
 #include "sim/cli/compare_report.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/runner/room_scenarios.hpp"
-#include "sim/world/atomic_file.hpp"
+#include "sim/common/atomic_file.hpp"
 
 #include <algorithm>
 #include <chrono>

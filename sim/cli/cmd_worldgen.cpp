@@ -1,7 +1,7 @@
 // bimloc worldgen NAME [--out PATH] | --all [--out DIR] | --list
 //                 | --random SEED [--style S] [--rooms N] [--random-count K] [--out PATH]
 #include "sim/cli/commands.hpp"
-#include "sim/world/atomic_file.hpp"
+#include "sim/common/atomic_file.hpp"
 #include "sim/worldgen/ifc4_writer.hpp"
 #include "sim/worldgen/random_world.hpp"
 #include "sim/worldgen/worlds.hpp"

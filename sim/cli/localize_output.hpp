@@ -6,7 +6,7 @@
 #pragma once
 
 #include "sim/runner/localize_recording.hpp"
-#include "sim/world/atomic_file.hpp"
+#include "sim/common/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>
 

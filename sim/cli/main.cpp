@@ -1,6 +1,6 @@
 // bimloc: one binary, git-style subcommands.
 #include "sim/cli/commands.hpp"
-#include "sim/world/interrupt_cleanup.hpp"
+#include "sim/common/interrupt_cleanup.hpp"
 
 #include <bimloc/verbosity.hpp>
 

@@ -2,7 +2,7 @@
 
 #include "sim/cli/snapshots.hpp"
 #include "sim/dataset/tum_writer.hpp"
-#include "sim/world/atomic_file.hpp"
+#include "sim/common/atomic_file.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -2,7 +2,7 @@
 
 #include "sim/dataset/dataset_metadata.hpp"
 #include "sim/dataset/pcd_header.hpp"
-#include "sim/world/json_errors.hpp"
+#include "sim/common/json_errors.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -6,7 +6,7 @@
 #include "sim/dataset/pcd_writer.hpp"
 #include "sim/dataset/tum_writer.hpp"
 #include "sim/dataset/velodyne_points.hpp"
-#include "sim/world/atomic_file.hpp"
+#include "sim/common/atomic_file.hpp"
 
 #include <cstdio>
 #include <filesystem>

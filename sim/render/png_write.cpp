@@ -1,6 +1,6 @@
 #include "sim/render/png_write.hpp"
 
-#include "sim/world/atomic_file.hpp"
+#include "sim/common/atomic_file.hpp"
 
 #include <png.h>
 

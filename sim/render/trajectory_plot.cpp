@@ -7,7 +7,7 @@
 #include "sim/render/gl_context.hpp"
 #include "sim/render/legend.hpp"
 #include "sim/render/png_write.hpp"
-#include "sim/world/atomic_file.hpp"
+#include "sim/common/atomic_file.hpp"
 
 #include <algorithm>
 #include <cmath>

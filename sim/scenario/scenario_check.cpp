@@ -4,7 +4,7 @@
 #include "sim/base/free_space.hpp"
 #include "sim/base/outside_rooms.hpp"
 #include "sim/base/room_lookup.hpp"
-#include "sim/base/seeded_random.hpp"
+#include "sim/common/seeded_random.hpp"
 #include "sim/scenario/scenario_sections.hpp"
 #include "sim/scenario/yaml_mapping.hpp"
 #include "sim/world/world.hpp"

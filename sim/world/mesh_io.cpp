@@ -1,6 +1,6 @@
 #include "sim/world/mesh_io.hpp"
 
-#include "sim/world/atomic_file.hpp"
+#include "sim/common/atomic_file.hpp"
 #include "sim/world/ply_check.hpp"
 
 #include <assimp/Exporter.hpp>

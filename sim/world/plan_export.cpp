@@ -1,6 +1,6 @@
 #include "sim/world/plan_export.hpp"
 
-#include "sim/world/atomic_file.hpp"
+#include "sim/common/atomic_file.hpp"
 #include "sim/world/mesh_io.hpp"
 
 #include <bimloc/bim/building_json.hpp>

@@ -1,6 +1,6 @@
 #include "sim/world/site_draws.hpp"
 
-#include "sim/base/seeded_random.hpp"
+#include "sim/common/seeded_random.hpp"
 #include "sim/world/site_mesh.hpp"
 
 #include <cmath>

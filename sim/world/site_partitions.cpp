@@ -1,6 +1,6 @@
 #include "sim/world/site_partitions.hpp"
 
-#include "sim/base/seeded_random.hpp"
+#include "sim/common/seeded_random.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
 

@@ -8,7 +8,7 @@
 #include "sim/world/site_people.hpp"
 #include "sim/world/world_impl.hpp"
 
-#include "sim/base/seeded_random.hpp"
+#include "sim/common/seeded_random.hpp"
 
 #include <cmath>
 #include <limits>

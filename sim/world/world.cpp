@@ -1,7 +1,7 @@
 #include "sim/world/world.hpp"
 
 #include "sim/world/embree_mesh.hpp"
-#include "sim/world/json_errors.hpp"
+#include "sim/common/json_errors.hpp"
 #include "sim/world/mesh_io.hpp"
 #include "sim/world/site_mesh.hpp"
 #include "sim/world/world_impl.hpp"

@@ -1,7 +1,7 @@
-#include "sim/world/atomic_file.hpp"
+#include "sim/common/atomic_file.hpp"
 
-#include "sim/world/fault_injection.hpp"
-#include "sim/world/interrupt_cleanup.hpp"
+#include "sim/common/fault_injection.hpp"
+#include "sim/common/interrupt_cleanup.hpp"
 
 #include <nlohmann/json.hpp>
 

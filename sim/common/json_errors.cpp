@@ -1,4 +1,4 @@
-#include "sim/world/json_errors.hpp"
+#include "sim/common/json_errors.hpp"
 
 #include <nlohmann/json.hpp>
 

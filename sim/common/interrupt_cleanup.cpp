@@ -1,4 +1,4 @@
-#include "sim/world/interrupt_cleanup.hpp"
+#include "sim/common/interrupt_cleanup.hpp"
 
 #include <algorithm>
 #include <csignal>

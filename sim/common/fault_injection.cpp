@@ -1,4 +1,4 @@
-#include "sim/world/fault_injection.hpp"
+#include "sim/common/fault_injection.hpp"
 
 #include <atomic>
 #include <csignal>
