@@ -1,4 +1,4 @@
-// bimloc simulate SCENARIO --out DIR [--threads N]
+// bimloc simulate SCENARIO --out DIR [--threads N] [--format ros1|mcap|sqlite3]
 #include "sim/cli/commands.hpp"
 #include "sim/cli/progress.hpp"
 #include "sim/dataset/dataset_metadata.hpp"
@@ -17,6 +17,7 @@ struct SimulateArgs {
   std::string out;
   int threads = 0;
   bool quiet = false;
+  std::string format = "ros1";
 };
 
 nlohmann::json metadata(const Simulator& sim, const std::string& scenario_path) {
@@ -46,6 +47,7 @@ void run(const SimulateArgs& args) {
   DatasetInfo info;
   info.metadata = metadata(sim, args.scenario);
   info.T_base_lidar = scenario.sensor.T_base_lidar;
+  info.bag_format = args.format;
   DatasetWriter writer(args.out, info);
   for (const auto& o : sim.odometry()) writer.addOdometry(o);
   for (const auto& g : sim.groundTruth()) writer.addGroundTruth(g);
@@ -68,12 +70,17 @@ void addSimulateCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "simulate",
       "Simulate a scenario (a Spot-like base with a VLP-16 walking through the plan's building) and write a\n"
-      "synthetic dataset to DIR: dataset.bag (ROS1: /velodyne_points, /odom, /tf, /ground_truth), one PCD per\n"
+      "synthetic dataset to DIR: dataset.bag (ROS1: /velodyne_points, /odom, /tf, /ground_truth; with --format\n"
+      "mcap or sqlite3 a ROS 2 bag instead, the folder rosbag2/ as `ros2 bag record` writes it), one PCD per\n"
       "turn in clouds/, odometry.tum and ground_truth.tum, metadata.json. Same scenario and seed give\n"
       "bit-identical output whatever --threads. The folder appears only when everything is written.");
   cmd->add_option("scenario", args->scenario, "scenario file (YAML, see scenarios/README.md)")->required();
   cmd->add_option("--out", args->out, "output folder")->required();
   cmd->add_option("--threads", args->threads, "threads casting lidar turns (default: all cores)")->check(CLI::Range(1, 256));
   cmd->add_flag("--quiet", args->quiet, "print nothing on success");
+  cmd->add_option("--format", args->format,
+                  "the bag: ros1 (dataset.bag), mcap (rosbag2/rosbag2_0.mcap, zstd chunks) or sqlite3 (rosbag2/rosbag2_0.db3)")
+      ->check(CLI::IsMember({"ros1", "mcap", "sqlite3"}))
+      ->capture_default_str();
   cmd->callback([args] { run(*args); });
 }
