@@ -50,12 +50,7 @@ const std::string& simulated() {
 }
 
 std::string python(const std::string& code, const std::string& arg) {
-  const std::string cmd = "/usr/bin/python3 -c \"" + code + "\" '" + arg + "'";
-  std::unique_ptr<FILE, decltype(&pclose)> p(popen(cmd.c_str(), "r"), pclose);
-  std::string out;
-  char buf[512];
-  while (p && fgets(buf, sizeof buf, p.get())) out += buf;
-  return out;
+  return test::commandOutput("/usr/bin/python3 -c \"" + code + "\" '" + arg + "'");
 }
 
 }  // namespace

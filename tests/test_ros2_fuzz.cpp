@@ -149,12 +149,7 @@ void expectNamed(const Outcome& o, const std::string& path, const std::string& t
 }
 
 std::string python(const std::string& code, const std::string& db) {
-  const std::string cmd = "/usr/bin/python3 -c \"" + code + "\" '" + db + "' 2>&1";
-  std::unique_ptr<FILE, decltype(&pclose)> p(popen(cmd.c_str(), "r"), pclose);
-  std::string out;
-  char buf[512];
-  while (p && fgets(buf, sizeof buf, p.get())) out += buf;
-  return out;
+  return test::commandOutput("/usr/bin/python3 -c \"" + code + "\" '" + db + "' 2>&1");
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // ROS 2 bags in (issue 29 §1): the CDR decoding and the rosbag2 reader. The truths: the real
 // nebula bags, written by a real rosbag2 recorder, with their counts and timestamps as
 // python3's own sqlite3 module reads them; CDR bytes laid out by hand from the XCDR1 rules.
+#include "test_support.hpp"
+
 #include "sim/ros2/cdr.hpp"
 #include "sim/ros2/messages.hpp"
 #include "sim/ros2/rosbag2_reader.hpp"
@@ -29,12 +31,9 @@ std::string nebulaBag(const std::string& sensor) {
 
 // python3's sqlite3 module, an independent reader of the same file: "count min max" of a topic.
 std::string pythonSqlite(const std::string& db3) {
-  const std::string cmd = "/usr/bin/python3 -c \"import sqlite3,sys; c=sqlite3.connect('file:'+sys.argv[1]+'?immutable=1',uri=True); "
-                          "print(*c.execute('select count(*),min(timestamp),max(timestamp) from messages').fetchone())\" '" + db3 + "'";
-  std::unique_ptr<FILE, decltype(&pclose)> p(popen(cmd.c_str(), "r"), pclose);
-  std::string out;
-  char buf[256];
-  while (p && fgets(buf, sizeof buf, p.get())) out += buf;
+  std::string out = bimloc::test::commandOutput(
+      "/usr/bin/python3 -c \"import sqlite3,sys; c=sqlite3.connect('file:'+sys.argv[1]+'?immutable=1',uri=True); "
+      "print(*c.execute('select count(*),min(timestamp),max(timestamp) from messages').fetchone())\" '" + db3 + "'");
   while (!out.empty() && out.back() == '\n') out.pop_back();
   return out;
 }

@@ -35,6 +35,16 @@ struct TempDirs {
 };
 }  // namespace
 
+std::string commandOutput(const std::string& command) {
+  std::string out;
+  if (FILE* p = popen(command.c_str(), "r")) {
+    std::array<char, 4096> buf;
+    for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) out.append(buf.data(), n);
+    pclose(p);
+  }
+  return out;
+}
+
 std::string tempDir(const std::string& tag) {
   static TempDirs dirs;
   static int counter = 0;

@@ -18,6 +18,9 @@ struct CommandResult {
   std::string out;
   std::string err;
 };
+// The standard output of a shell command (an independent tool: python3, sqlite3...).
+std::string commandOutput(const std::string& command);
+
 // Runs the bimloc binary with the given argument string (shell-quoted by the caller).
 CommandResult runBimloc(const std::string& args);
 // The same, killed with SIGKILL after `timeout_s` seconds (then timed_out is set).

@@ -158,7 +158,7 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     }
     sortByStamp(odometry_);
     if (odometry_.empty())
-      fail("no odometry: no topic " + options.odom_topic + " (nav_msgs/Odometry; choose it with --odom-topic) and no " +
+      fail("no odometry: no topic " + options.odom_topic + " (" + bag.typeName(BagMessageKind::kOdometry) + "; choose it with --odom-topic) and no " +
            options.tf_topic + " transform " + options.odom_frame + " -> " + options.base_frame +
            " (choose the frames with --odom-frame, --base-frame). The bag has:" + topicList());
 

@@ -3,6 +3,7 @@
 #include <lz4frame.h>
 #include <zstd.h>
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 
@@ -17,6 +18,10 @@ std::uint64_t largestExpansion(const std::string& compression, std::size_t size)
   return s * 256 + (1u << 20);
 }
 
+// No chunk of a recording comes near this (rosbag2 writes chunks of 768 KiB, a message larger
+// than that makes a chunk of its own size: tens of MB for the densest clouds).
+constexpr std::uint64_t kLargestChunkBytes = std::uint64_t{1} << 30;
+
 }  // namespace
 
 std::vector<std::uint8_t> decompress(const std::string& compression, const std::uint8_t* data, std::size_t size,
@@ -30,34 +35,55 @@ std::vector<std::uint8_t> decompress(const std::string& compression, const std::
     return std::vector<std::uint8_t>(data, data + size);
   }
   if (compression != "zstd" && compression != "lz4") throw fail("unknown compression (bimloc reads zstd, lz4 or none)");
-  if (uncompressed_size > largestExpansion(compression, size))
+  if (uncompressed_size > largestExpansion(compression, size) || uncompressed_size > kLargestChunkBytes)
     throw fail("uncompressed_size " + std::to_string(uncompressed_size) + " is more than " + std::to_string(size) +
-               " compressed bytes can hold");
-  std::vector<std::uint8_t> out(static_cast<std::size_t>(uncompressed_size));
-  if (compression == "zstd") {
-    const std::size_t got = ZSTD_decompress(out.data(), out.size(), data, size);
-    if (ZSTD_isError(got)) throw fail(std::string("does not decompress: ") + ZSTD_getErrorName(got));
-    if (got != out.size())
-      throw fail("decompresses to " + std::to_string(got) + " bytes, not the " + std::to_string(out.size()) + " it declares");
-    return out;
-  }
-  LZ4F_dctx* raw = nullptr;
-  if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) throw fail("no LZ4 context");
-  std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> ctx(raw, LZ4F_freeDecompressionContext);
+               " compressed bytes can hold (or than a chunk of 1 GiB)");
+  // Decompressed as a stream into a buffer that grows with what actually comes out: a damaged
+  // size never allocates more than the data really holds.
+  std::vector<std::uint8_t> out(static_cast<std::size_t>(std::min<std::uint64_t>(uncompressed_size, 16u << 20)));
   std::size_t in_pos = 0, out_pos = 0;
-  while (true) {
-    std::size_t in_n = size - in_pos, out_n = out.size() - out_pos;
-    const std::size_t hint = LZ4F_decompress(ctx.get(), out.data() + out_pos, &out_n, data + in_pos, &in_n, nullptr);
-    if (LZ4F_isError(hint)) throw fail(std::string("does not decompress: ") + LZ4F_getErrorName(hint));
-    in_pos += in_n, out_pos += out_n;
-    if (hint == 0) break;  // the frame is complete
-    if (in_n == 0 && out_n == 0) {
-      if (out_pos == out.size()) throw fail("decompresses to more than the " + std::to_string(out.size()) + " bytes it declares");
-      throw fail("the LZ4 frame ends early (" + std::to_string(in_pos) + " of " + std::to_string(size) + " bytes read)");
+  auto room = [&] {
+    if (out_pos < out.size()) return true;
+    if (out.size() == uncompressed_size) return false;
+    out.resize(static_cast<std::size_t>(std::min<std::uint64_t>(uncompressed_size, 2 * static_cast<std::uint64_t>(out.size()))));
+    return true;
+  };
+  if (compression == "zstd") {
+    std::unique_ptr<ZSTD_DStream, decltype(&ZSTD_freeDStream)> z(ZSTD_createDStream(), ZSTD_freeDStream);
+    if (!z) throw fail("no zstd context");
+    while (true) {
+      const bool more_room = room();
+      ZSTD_inBuffer in{data, size, in_pos};
+      ZSTD_outBuffer o{out.data(), more_room ? out.size() : out_pos, out_pos};
+      const std::size_t hint = ZSTD_decompressStream(z.get(), &o, &in);
+      if (ZSTD_isError(hint)) throw fail(std::string("does not decompress: ") + ZSTD_getErrorName(hint));
+      const bool progressed = in.pos != in_pos || o.pos != out_pos;
+      in_pos = in.pos, out_pos = o.pos;
+      if (hint == 0 && in_pos == size) break;  // the frame is complete
+      if (!more_room && out_pos == out.size() && hint != 0)
+        throw fail("decompresses to more than the " + std::to_string(uncompressed_size) + " bytes it declares");
+      if (!progressed) throw fail("the zstd data ends early (" + std::to_string(in_pos) + " of " + std::to_string(size) + " bytes read)");
+    }
+  } else {
+    LZ4F_dctx* raw = nullptr;
+    if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) throw fail("no LZ4 context");
+    std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> ctx(raw, LZ4F_freeDecompressionContext);
+    while (true) {
+      const bool more_room = room();
+      std::size_t in_n = size - in_pos, out_n = more_room ? out.size() - out_pos : 0;
+      const std::size_t hint = LZ4F_decompress(ctx.get(), out.data() + out_pos, &out_n, data + in_pos, &in_n, nullptr);
+      if (LZ4F_isError(hint)) throw fail(std::string("does not decompress: ") + LZ4F_getErrorName(hint));
+      in_pos += in_n, out_pos += out_n;
+      if (hint == 0) break;  // the frame is complete
+      if (in_n == 0 && out_n == 0) {
+        if (!more_room) throw fail("decompresses to more than the " + std::to_string(uncompressed_size) + " bytes it declares");
+        throw fail("the LZ4 frame ends early (" + std::to_string(in_pos) + " of " + std::to_string(size) + " bytes read)");
+      }
     }
   }
-  if (out_pos != out.size())
-    throw fail("decompresses to " + std::to_string(out_pos) + " bytes, not the " + std::to_string(out.size()) + " it declares");
+  if (out_pos != uncompressed_size)
+    throw fail("decompresses to " + std::to_string(out_pos) + " bytes, not the " + std::to_string(uncompressed_size) + " it declares");
+  out.resize(out_pos);
   return out;
 }
 
