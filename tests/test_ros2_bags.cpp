@@ -26,12 +26,7 @@ namespace {
 
 const std::string kPlan = std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc";
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string slurp(const std::string& path) { return test::readFile(path); }
 
 // The scenario of test_bag_input (the corridor, converging within 2 s), in three formats.
 const std::string& simulated() {

@@ -35,6 +35,13 @@ struct TempDirs {
 };
 }  // namespace
 
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
 std::string commandOutput(const std::string& command) {
   std::string out;
   if (FILE* p = popen(command.c_str(), "r")) {

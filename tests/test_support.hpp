@@ -18,6 +18,9 @@ struct CommandResult {
   std::string out;
   std::string err;
 };
+// The whole content of a file ("" when it cannot be read).
+std::string readFile(const std::string& path);
+
 // The standard output of a shell command (an independent tool: python3, sqlite3...).
 std::string commandOutput(const std::string& command);
 
