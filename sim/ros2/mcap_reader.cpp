@@ -1,7 +1,7 @@
 #include "sim/ros2/mcap_reader.hpp"
 
 #include "sim/ros2/byte_cursor.hpp"
-#include "sim/ros2/compression.hpp"
+#include "sim/ros2/mcap_records.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -10,101 +10,9 @@
 #include <stdexcept>
 
 namespace bimloc::sim::ros2 {
-namespace {
 
-using RecordVisitor = std::function<bool(std::uint8_t opcode, ByteCursor& content, std::uint64_t at)>;
-
-// Walks the records of data[0, size) (`base`: the offset of data[0] in the file, or in the
-// chunk). Returns where a record is cut short (the data ends inside it), or nothing when every
-// record is whole. `visit` returns false to stop.
-std::optional<std::uint64_t> walkRecords(const std::uint8_t* data, std::size_t size, std::uint64_t base,
-                                         const std::string& where, const RecordVisitor& visit) {
-  std::size_t pos = 0;
-  while (pos < size) {
-    if (size - pos < mcap::kRecordHeaderBytes) return base + pos;
-    const std::uint8_t opcode = data[pos];
-    std::uint64_t length;
-    std::memcpy(&length, data + pos + 1, 8);
-    if (length > size - pos - mcap::kRecordHeaderBytes) return base + pos;
-    ByteCursor content(data + pos + mcap::kRecordHeaderBytes, static_cast<std::size_t>(length), where,
-                       base + pos + mcap::kRecordHeaderBytes);
-    if (!visit(opcode, content, base + pos)) return std::nullopt;
-    pos += mcap::kRecordHeaderBytes + static_cast<std::size_t>(length);
-  }
-  return std::nullopt;
-}
-
-mcap::Schema parseSchema(ByteCursor& c) {
-  mcap::Schema s;
-  s.id = c.u16("Schema id");
-  s.name = c.string("Schema name");
-  s.encoding = c.string("Schema encoding");
-  const std::uint32_t n = c.u32("Schema data");
-  s.data.assign(reinterpret_cast<const char*>(c.bytes(n, "Schema data")), n);
-  return s;
-}
-
-mcap::Channel parseChannel(ByteCursor& c) {
-  mcap::Channel ch;
-  ch.id = c.u16("Channel id");
-  ch.schema_id = c.u16("Channel schema_id");
-  ch.topic = c.string("Channel topic");
-  ch.message_encoding = c.string("Channel message_encoding");
-  ch.metadata = c.stringMap("Channel metadata");
-  return ch;
-}
-
-struct ChunkHeader {
-  std::uint64_t start = 0, end = 0, uncompressed_size = 0;
-  std::uint32_t crc = 0;
-  std::string compression;
-  const std::uint8_t* records = nullptr;
-  std::uint64_t records_size = 0, records_at = 0;
-};
-
-ChunkHeader parseChunk(ByteCursor& c) {
-  ChunkHeader h;
-  h.start = c.u64("Chunk message_start_time");
-  h.end = c.u64("Chunk message_end_time");
-  h.uncompressed_size = c.u64("Chunk uncompressed_size");
-  h.crc = c.u32("Chunk uncompressed_crc");
-  h.compression = c.string("Chunk compression");
-  h.records_size = c.u64("Chunk records length");
-  h.records_at = c.fileOffset();
-  h.records = c.bytes(h.records_size, "Chunk records");
-  return h;
-}
-
-// The chunk's records, decompressed and checked against their CRC (when it is not 0).
-void inflate(const ChunkHeader& h, const std::string& where, std::vector<std::uint8_t>& out) {
-  out = decompress(h.compression, h.records, static_cast<std::size_t>(h.records_size), h.uncompressed_size,
-                   where + ": at byte " + std::to_string(h.records_at));
-  if (h.crc != 0 && crc32Update(0, out.data(), out.size()) != h.crc)
-    throw std::runtime_error(where + ": at byte " + std::to_string(h.records_at) +
-                             ": the chunk's records do not match their CRC (damaged data)");
-}
-
-mcap::ChunkIndex parseChunkIndex(ByteCursor& c) {
-  mcap::ChunkIndex i;
-  i.message_start_time = c.u64("ChunkIndex message_start_time");
-  i.message_end_time = c.u64("ChunkIndex message_end_time");
-  i.chunk_start_offset = c.u64("ChunkIndex chunk_start_offset");
-  i.chunk_length = c.u64("ChunkIndex chunk_length");
-  const std::uint32_t n = c.u32("ChunkIndex message_index_offsets");
-  const std::uint64_t at = c.fileOffset();
-  ByteCursor offsets(c.bytes(n, "ChunkIndex message_index_offsets"), n, "", at);
-  while (!offsets.done()) {
-    const std::uint16_t channel = offsets.u16("ChunkIndex message_index_offsets");
-    i.message_index_offsets[channel] = offsets.u64("ChunkIndex message_index_offsets");
-  }
-  i.message_index_length = c.u64("ChunkIndex message_index_length");
-  i.compression = c.string("ChunkIndex compression");
-  i.compressed_size = c.u64("ChunkIndex compressed_size");
-  i.uncompressed_size = c.u64("ChunkIndex uncompressed_size");
-  return i;
-}
-
-}  // namespace
+using mcap::ChunkHeader, mcap::inflate, mcap::parseChannel, mcap::parseChunk, mcap::parseChunkIndex, mcap::parseSchema,
+    mcap::walkRecords;
 
 bool isMcapFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -10,8 +10,9 @@
 //   compare EXPECTED.json OURS.json  what our reader decoded of their file equals what they wrote
 import fs from "node:fs";
 import { createRequire } from "node:module";
+import path from "node:path";
 
-const require = createRequire((process.env.ORACLE_DIR ?? ".") + "/");
+const require = createRequire(path.resolve(process.env.ORACLE_DIR ?? ".") + "/");
 const { McapIndexedReader, McapStreamReader, McapWriter } = require("@mcap/core");
 const { loadDecompressHandlers } = require("@mcap/support");
 const { parse } = require("@foxglove/rosmsg");

@@ -14,6 +14,7 @@ set -u
 BIMLOC=$1 DUMP=$2 WORK=$3 PLAN=$4
 HERE=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$WORK"
+WORK=$(cd "$WORK" && pwd)
 export ORACLE_DIR="$WORK"
 PACKAGES="@mcap/core@2.2.2 @mcap/support@1.1.0 @foxglove/rosmsg2-serialization@3.1.0 @foxglove/rosmsg@5.0.5 @foxglove/wasm-zstd lz4js@0.2.0"
 if [ ! -f "$WORK/node_modules/lz4js/package.json" ] || [ ! -d "$WORK/node_modules/@mcap/support" ]; then
