@@ -183,6 +183,13 @@ void run(const LocalizeArgs& args) {
   } else {
     bimloc::cli::printRunTable({r}, report, std::cout);
     for (const auto& note : rec.notes) std::cout << note << "\n";
+    // Not localized: the places the recording still fits (a symmetric room has more than one).
+    if (!r.hypotheses.empty()) {
+      std::cout << "places still possible (best first):\n";
+      for (const auto& p : r.hypotheses)
+        std::cout << "  x " << p.x << " y " << p.y << " yaw " << p.yaw_deg << " deg, room " << p.room << ", relative weight "
+                  << p.relative_weight << "\n";
+    }
     if (last && last->T_map_odom) {
       const Eigen::Isometry3d& T = *last->T_map_odom;
       const Eigen::Quaterniond q(T.linear());

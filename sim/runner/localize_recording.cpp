@@ -3,6 +3,7 @@
 #include "sim/dataset/deskew.hpp"
 #include "sim/metrics/map_error.hpp"
 #include "sim/runner/evaluation.hpp"
+#include "sim/runner/path_places.hpp"
 
 #include <chrono>
 #include <memory>
@@ -20,6 +21,10 @@ RecordingRun localizeRecording(const bim::Building& building, std::size_t truth_
   RunScore score(building, truth_storey);
   MapErrorSampler map_error(building);  // the scans placed with the estimate against the plan's mesh
   std::optional<double> first_stamp, last_stamp, period;
+  // The last update the path evidence spoke at, and its storey: the places left when the run
+  // ends unconverged (as `bimloc run` reports them).
+  std::optional<pf::UpdateReport> last_verdict;
+  std::size_t verdict_storey = truth_storey;
   turns([&](const RecordedTurn& turn) {
     // The localizer and the map error may both want the points: read (decode, de-skew) once.
     auto cache = std::make_shared<std::optional<std::vector<Eigen::Vector3f>>>();
@@ -31,6 +36,7 @@ RecordingRun localizeRecording(const bim::Building& building, std::size_t truth_
     last = localizer.step(turn.stamp_s, turn.T_odom_base, points);
     if (last->filter && last->filter->decided && !r.storey_margin && r.storey_auto) r.storey_margin = last->filter->storey_margin;
     for (const auto& w : last->warnings) r.warnings.push_back(turn.name + ": " + w);
+    if (last->filter && last->filter->filter.path_best) last_verdict = last->filter->filter, verdict_storey = last->filter->leader;
     map_error.step(*last, T_base_lidar, points);
     if (!first_stamp) first_stamp = turn.stamp_s;
     if (last_stamp && !period) period = turn.stamp_s - *last_stamp;
@@ -54,6 +60,7 @@ RecordingRun localizeRecording(const bim::Building& building, std::size_t truth_
   } else {
     score.finish(r);
   }
+  if (!r.converged && last_verdict) r.hypotheses = pathPlaces(*last_verdict, building.storeys[verdict_storey]);
   if (const auto* tracker = localizer.tracker())
     for (const auto& w : tracker->wallDeviations()) r.wall_deviations.push_back({w, std::nullopt, std::nullopt});
   r.map_rmse_m = map_error.rmse_m();

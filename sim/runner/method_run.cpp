@@ -1,6 +1,6 @@
 #include "sim/runner/method_run.hpp"
 
-#include "sim/base/room_lookup.hpp"
+#include "sim/runner/path_places.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
 #include <bimloc/geometry/planar_pose.hpp>
@@ -13,22 +13,6 @@ namespace bimloc::sim {
 namespace {
 
 constexpr int kClusteringUpdate = 5;  // the snapshot of the clustering particles
-
-// The path evidence's distinct places, with their rooms and relative weights.
-std::vector<ScenarioResult::Place> placesOf(const pf::UpdateReport& report, const bim::Storey& storey) {
-  // Places of one storey: the path evidence weighs places of other storeys apart (StoreyBank).
-  std::vector<std::pair<Eigen::Vector3d, double>> all{{*report.path_best, 0.0}};
-  all.insert(all.end(), report.path_rivals.begin(), report.path_rivals.end());
-  double sum = 0;
-  for (const auto& [pose, margin] : all) sum += std::exp(-std::min(margin, 700.0));
-  std::vector<ScenarioResult::Place> places;
-  for (const auto& [pose, margin] : all) {
-    const bim::Room* room = roomAt(storey, pose.head<2>());
-    places.push_back({pose.x(), pose.y(), pose.z() * 180.0 / M_PI, std::exp(-std::min(margin, 700.0)) / sum,
-                      room ? room->name : std::string("(outside)"), storey.name});
-  }
-  return places;
-}
 
 void judge(const Scenario& s, ScenarioResult& r) {
   const Expectations& e = s.expect;
@@ -121,7 +105,7 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
 ScenarioResult MethodRun::finish(double t_end, const Eigen::Isometry3d& truth_end, const SnapshotHook& snapshot) {
   const bim::Building& building = building_;
   const bool converged = score_.converged();
-  if (!converged && last_verdict_) r_.hypotheses = placesOf(*last_verdict_, building.storeys[verdict_storey_]);
+  if (!converged && last_verdict_) r_.hypotheses = pathPlaces(*last_verdict_, building.storeys[verdict_storey_]);
   if (localizer_->filter() && !localizer_->filter()->storey() && r_.storey_auto && last_bank_)
     for (const auto& c : last_bank_->candidates)
       r_.storey_candidates.push_back({building.storeys[c.storey].name, c.converged, c.path_log_likelihood});

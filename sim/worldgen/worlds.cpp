@@ -206,14 +206,36 @@ WorldSpec twoStorey() {
   return world;
 }
 
+// Room A of the nebula driver's real recordings (../shared/realdata/nebula/): measured from the
+// wall planes the project's extractor finds in the five real frames, not designed
+// (docs/realdata_room.md has the planes, the sensors and the numbers). The clear interior is
+// the rectangle the lidars see between 0.2 and 1.8 m above them: the east end is the far wall
+// (a pilaster or door frame 0.15 m in front of it is not modelled), and the north side is the
+// front of the shelving along that wall (the wall itself, 0.59 m behind, shows only above the
+// shelves). No door: none was measured.
+WorldSpec nebulaRoom() {
+  const double w = 14.17, h = 6.56, t = 0.20, clear = 3.50, slab = 0.2;
+  WorldSpec world;
+  world.name = "nebula_room";
+  world.description = "Room A of the nebula lidar recordings: one 14.17 m x 6.56 m room, measured from real scans";
+  world.roof_thickness_m = slab;
+  world.space_boundaries = true;
+  StoreyBuilder b("Room A", 0.0, clear + slab, slab, clear);
+  rectangularShell(b, "", w, h, t);
+  b.room("A", "Lab", 0.0, 0.0, w, h, {"EXT-S", "EXT-E", "EXT-N", "EXT-W"});
+  world.storeys.push_back(b.storey());
+  return world;
+}
+
 }  // namespace
 
-std::vector<std::string> worldNames() { return {"site_office", "apartment", "two_storey"}; }
+std::vector<std::string> worldNames() { return {"site_office", "apartment", "two_storey", "nebula_room"}; }
 
 WorldSpec makeWorld(const std::string& name) {
   if (name == "site_office") return siteOffice();
   if (name == "apartment") return apartment();
   if (name == "two_storey") return twoStorey();
+  if (name == "nebula_room") return nebulaRoom();
   std::string valid;
   for (const std::string& n : worldNames()) valid += (valid.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown world '" + name + "' (valid: " + valid + ")");

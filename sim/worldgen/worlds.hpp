@@ -12,7 +12,7 @@ namespace bimloc::worldgen {
 // The project's default world: the repetitive site office, hardest for the localizer.
 inline const char* const kDefaultWorld = "site_office";
 
-// "site_office", "apartment", "two_storey".
+// "site_office", "apartment", "two_storey", "nebula_room".
 std::vector<std::string> worldNames();
 
 // Throws std::invalid_argument listing the valid names for an unknown one.
