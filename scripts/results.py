@@ -18,6 +18,7 @@ import datetime
 import glob
 import json
 import os
+import re
 import shlex
 import statistics
 import subprocess
@@ -26,6 +27,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
+INDEX_BEGIN, INDEX_END = "<!-- pages:begin -->", "<!-- pages:end -->"
 SHARED_SHOWN = "../shared/ifc"  # how the shared plans' folder is written in the commands shown
 METHODS = ["sgraph", "pf-no-rooms", "amcl", "ndt"]
 
@@ -330,6 +332,15 @@ def main():
     os.makedirs(args.results_dir, exist_ok=True)
     page_path = os.path.join(args.results_dir, meta["date"] + ".md")
     write_atomic(page_path, page)
+    index = os.path.join(args.results_dir, "README.md")  # the list of make results' pages, if there is one
+    if os.path.exists(index):
+        with open(index) as f:
+            text = f.read()
+        if INDEX_BEGIN in text and INDEX_END in text:
+            pages = sorted((p for p in os.listdir(args.results_dir) if re.fullmatch(r"\d{4}-\d{2}-\d{2}\.md", p)), reverse=True)
+            head, rest = text.split(INDEX_BEGIN, 1)
+            listing = "\n".join(f"- [{p[:-3]}]({p})" for p in pages)
+            write_atomic(index, head + INDEX_BEGIN + "\n" + listing + "\n" + INDEX_END + rest.split(INDEX_END, 1)[1])
     print(f"results: wrote {os.path.relpath(args.readme)} (the table) and {os.path.relpath(page_path)}", file=sys.stderr)
     return 0
 
