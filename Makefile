@@ -7,7 +7,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 BIMLOC := $(BUILD_DIR)/sim/bimloc
 DEFAULT_WORLD := site_office
 
-# Every library comes from Debian (see README: Dependencies).
+# Every library comes from Debian (see docs/library.md: Dependencies).
 DEB_PACKAGES := build-essential cmake pkg-config libifcplusplus-dev libboost-dev libeigen3-dev libassimp-dev \
                 nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libembree-dev libbullet-dev \
                 libyaml-cpp-dev libboost-filesystem-dev librosbag-storage-dev libsensor-msgs-dev \
@@ -15,7 +15,7 @@ DEB_PACKAGES := build-essential cmake pkg-config libifcplusplus-dev libboost-dev
                 python3-rosbag python3-numpy libpcl-dev libosmesa6-dev libpng-dev libceres-dev \
                 libsqlite3-dev libzstd-dev liblz4-dev zlib1g-dev
 
-.PHONY: all deps build test demo bench worlds meshes clean
+.PHONY: all deps build test demo bench results worlds meshes clean
 
 all: build
 
@@ -49,6 +49,15 @@ bench: build
 	$(BIMLOC) bench simulate scenarios/site_office_R101.yaml
 	$(BIMLOC) bench odometry
 	$(BIMLOC) bench loop
+
+# Rerun the fixed list of sweeps, compares and benchmarks (about 15 min on 2 cores) and regenerate
+# the README's results table and docs/results/DATE.md (scripts/results.py). The shared plans are
+# read from SHARED_IFC (rows needing them are skipped, with a note, when it is absent).
+# RESULTS_ARGS: e.g. --quick (tiny cases), --only compare, --from-json build/results/json.
+SHARED_IFC ?= ../shared/ifc
+RESULTS_ARGS ?=
+results: build
+	python3 scripts/results.py --bimloc $(BIMLOC) --shared $(SHARED_IFC) $(RESULTS_ARGS)
 
 # Regenerate the committed plans and meshes (tests check that they are up to date).
 worlds: build
