@@ -2,6 +2,7 @@
 
 #include "sim/dataset/cloud_fields.hpp"
 #include "sim/dataset/deskew.hpp"
+#include "sim/dataset/recording_checks.hpp"
 
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -28,24 +29,31 @@ std::string frameName(std::string frame) {  // tf2 drops a leading '/' (tf1's st
   return frame;
 }
 
-Eigen::Isometry3d pose(double x, double y, double z, double qx, double qy, double qz, double qw, const std::string& where) {
-  const Eigen::Quaterniond q(qw, qx, qy, qz);
-  if (!std::isfinite(q.norm()) || std::abs(q.norm() - 1.0) > 1e-3 || !std::isfinite(x + y + z))
-    throw std::runtime_error(where + ": a pose that is not finite or whose quaternion does not have unit norm");
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = q.normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(x, y, z);
-  return T;
+// A sample of a stream (odometry, ground truth): dropped and counted when it is no pose.
+std::optional<Eigen::Isometry3d> sample(const geometry_msgs::Pose& p, PoseSampleDrops& drops) {
+  return checkedPose(p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y, p.orientation.z,
+                     p.orientation.w, drops);
 }
 
-Eigen::Isometry3d pose(const geometry_msgs::Pose& p, const std::string& where) {
-  return pose(p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y, p.orientation.z,
-              p.orientation.w, where);
+std::optional<Eigen::Isometry3d> sample(const geometry_msgs::Transform& t, PoseSampleDrops& drops) {
+  return checkedPose(t.translation.x, t.translation.y, t.translation.z, t.rotation.x, t.rotation.y, t.rotation.z,
+                     t.rotation.w, drops);
 }
 
-Eigen::Isometry3d pose(const geometry_msgs::Transform& t, const std::string& where) {
-  return pose(t.translation.x, t.translation.y, t.translation.z, t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w,
-              where);
+// A fixed transform (the mount's chain): one sample, no stream to fall back on, so refused.
+Eigen::Isometry3d fixedPose(const geometry_msgs::Transform& t, const std::string& where) {
+  PoseSampleDrops drops;
+  const auto T = sample(t, drops);
+  if (!T) throw std::runtime_error(where + ": a pose that is not finite or whose quaternion does not have unit norm");
+  return *T;
+}
+
+CloudLayout layoutOf(const sensor_msgs::PointCloud2& cloud) {
+  CloudLayout layout;
+  for (const auto& f : cloud.fields) layout.fields.push_back({f.name, f.offset, f.datatype, f.count});
+  layout.width = cloud.width, layout.height = cloud.height, layout.point_step = cloud.point_step;
+  layout.row_step = cloud.row_step, layout.is_bigendian = cloud.is_bigendian;
+  return layout;
 }
 
 // Sorted by stamp, one sample per stamp (a bag may hold a message twice or out of order).
@@ -119,6 +127,7 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     std::set<std::pair<std::string, std::string>> seen;
     std::set<std::string> frames;
     std::map<std::string, std::vector<StampedPose>> from_odom;  // odom -> child, over time
+    std::map<std::string, PoseSampleDrops> from_odom_drops;
     std::vector<std::string> tf_topics;
     for (const auto& t : {options.tf_static_topic, options.tf_topic})
       if (impl_->topics.count(t) && impl_->topics[t].first == "tf2_msgs/TFMessage") tf_topics.push_back(t);
@@ -132,11 +141,11 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
           frames.insert(parent), frames.insert(child);
           const std::string where = path + ": " + topic + " " + parent + " -> " + child;
           if (parent == options.odom_frame) {  // the odometry: never a fixed edge
-            from_odom[child].push_back({t.header.stamp.toSec(), pose(t.transform, where)});
+            if (const auto T = sample(t.transform, from_odom_drops[child])) from_odom[child].push_back({t.header.stamp.toSec(), *T});
             continue;
           }
           if (!seen.insert({parent, child}).second) continue;
-          const Eigen::Isometry3d T = pose(t.transform, where);
+          const Eigen::Isometry3d T = fixedPose(t.transform, where);
           edges[parent].push_back({child, T});
           edges[child].push_back({parent, T.inverse()});
         }
@@ -161,7 +170,8 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     if (odom_topic) {
       for (const rosbag::MessageInstance& m : rosbag::View(impl_->bag, rosbag::TopicQuery(options.odom_topic))) {
         const auto odom = m.instantiate<nav_msgs::Odometry>();
-        if (odom) odometry_.push_back({odom->header.stamp.toSec(), pose(odom->pose.pose, path + ": " + options.odom_topic)});
+        if (!odom) continue;
+        if (const auto T = sample(odom->pose.pose, odometry_drops_)) odometry_.push_back({odom->header.stamp.toSec(), *T});
       }
       odometry_source_ = options.odom_topic + " (nav_msgs/Odometry)";
     } else {
@@ -172,12 +182,23 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
         if (!T_child_base) continue;
         for (auto& sample : samples) sample.pose = sample.pose * *T_child_base;
         odometry_ = std::move(samples);
+        odometry_drops_ = from_odom_drops[child];
         odometry_source_ = options.tf_topic + " " + options.odom_frame + " -> " + options.base_frame +
                            (child == options.base_frame ? "" : " (via " + child + ")");
         break;
       }
     }
+    // Any sample that came through from /tf of an unusable stream: counted all the same.
+    if (odometry_.empty())
+      for (const auto& [child, drops] : from_odom_drops)
+        if (child == options.base_frame || fixed(child, options.base_frame)) odometry_drops_ = drops;
     sortByStamp(odometry_);
+    if (odometry_.empty() && odometry_drops_.read > 0)
+      fail("no odometry: all " + std::to_string(odometry_drops_.read) + " samples of " +
+           (odom_topic ? options.odom_topic : options.tf_topic + " " + options.odom_frame + " -> " + options.base_frame) +
+           " are no pose (" + std::to_string(odometry_drops_.non_finite) + " not finite, " +
+           std::to_string(odometry_drops_.zero_quaternion) + " with a zero quaternion, " +
+           std::to_string(odometry_drops_.not_unit_quaternion) + " with a quaternion not of unit norm)");
     if (odometry_.empty())
       fail("no odometry: no topic " + options.odom_topic + " (nav_msgs/Odometry; choose it with --odom-topic) and no " +
            options.tf_topic + " transform " + options.odom_frame + " -> " + options.base_frame +
@@ -186,7 +207,8 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     if (impl_->topics.count(options.truth_topic) && impl_->topics[options.truth_topic].first == "nav_msgs/Odometry") {
       for (const rosbag::MessageInstance& m : rosbag::View(impl_->bag, rosbag::TopicQuery(options.truth_topic))) {
         const auto truth = m.instantiate<nav_msgs::Odometry>();
-        if (truth) ground_truth_.push_back({truth->header.stamp.toSec(), pose(truth->pose.pose, path + ": " + options.truth_topic)});
+        if (!truth) continue;
+        if (const auto T = sample(truth->pose.pose, truth_drops_)) ground_truth_.push_back({truth->header.stamp.toSec(), *T});
       }
       sortByStamp(ground_truth_);
     }
@@ -214,11 +236,8 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     // The driver stamps a turn at its first firing (times >= 0) or, configured so, at its last
     // (times <= 0): the turn's middle is half a period after, or before, the stamp.
     if (has_time) {
-      CloudLayout layout;
-      for (const auto& f : first->fields) layout.fields.push_back({f.name, f.offset, f.datatype, f.count});
-      layout.width = first->width, layout.height = first->height, layout.point_step = first->point_step;
-      layout.row_step = first->row_step, layout.is_bigendian = first->is_bigendian;
-      const CloudPoints p = decodeCloud(layout, first->data.data(), first->data.size(), path + ": " + options.cloud_topic + " message 0");
+      const CloudPoints p = decodeCloud(layoutOf(*first), first->data.data(), first->data.size(),
+                                        path + ": " + options.cloud_topic + " message 0");
       double sum = 0;
       for (double t : p.time_s) sum += t;
       first_offset_s_ = !p.time_s.empty() && sum < 0 ? -0.5 * turn_period_s_ : 0.5 * turn_period_s_;
@@ -276,19 +295,22 @@ void BagInput::forEachTurn(const std::function<void(const BagTurn&)>& visit) con
       if (!(turn.stamp_s > previous))
         throw std::runtime_error(where + ": stamp " + std::to_string(header_s) + " does not follow the previous cloud's");
       previous = turn.stamp_s;
-      turn.points = [this, cloud, where, header_s, ref = turn.stamp_s] {
-        CloudLayout layout;
-        for (const auto& f : cloud->fields) layout.fields.push_back({f.name, f.offset, f.datatype, f.count});
-        layout.width = cloud->width, layout.height = cloud->height, layout.point_step = cloud->point_step;
-        layout.row_step = cloud->row_step, layout.is_bigendian = cloud->is_bigendian;
-        CloudPoints p = decodeCloud(layout, cloud->data.data(), cloud->data.size(), where);
-        if (options_.deskew && !p.time_s.empty()) {
+      // Decoded and checked now (the bytes are in memory already): a scan with no usable point
+      // is skipped before the localizer sees it. De-skewed only when the localizer asks.
+      auto p = std::make_shared<CloudPoints>(decodeCloud(layoutOf(*cloud), cloud->data.data(), cloud->data.size(), where));
+      turn.drops = keepUsablePoints(p->xyz, &p->time_s, options_.range, p->non_finite);
+      turn.warnings = std::move(p->warnings);
+      turn.points = [this, p, header_s, ref = turn.stamp_s] {
+        if (options_.deskew && !p->time_s.empty()) {
+          std::vector<Eigen::Vector3f> xyz = p->xyz;
+          std::vector<double> time_s = p->time_s;
           // Some drivers give absolute times (seconds since the epoch): make them relative.
-          if (std::abs(p.time_s.front()) > 1e6)
-            for (double& t : p.time_s) t -= header_s;
-          deskew(p.xyz, p.time_s, header_s, ref, odometry_, T_base_lidar_);
+          if (std::abs(time_s.front()) > 1e6)
+            for (double& t : time_s) t -= header_s;
+          deskew(xyz, time_s, header_s, ref, odometry_, T_base_lidar_);
+          return xyz;
         }
-        return std::move(p.xyz);
+        return p->xyz;
       };
       visit(turn);
     }
