@@ -80,13 +80,13 @@ struct CleanCounts {
 
 const CleanCounts& clean() {
   static const CleanCounts c = [] {
-    CleanCounts c;
+    CleanCounts counts;
     const auto r = localize(cleanBag(), "--json");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     const auto s = scenario(r);
-    c.clouds = s["recording"]["scans"]["read"];
-    c.points = s["recording"]["points"]["read"];
-    c.odometry = s["recording"]["odometry"]["read"];
+    counts.clouds = s["recording"]["scans"]["read"];
+    counts.points = s["recording"]["points"]["read"];
+    counts.odometry = s["recording"]["odometry"]["read"];
     EXPECT_EQ(s["recording"]["points"]["dropped"], 0) << s["recording"];
     EXPECT_EQ(s["recording"]["odometry"]["dropped"], 0) << s["recording"];
     EXPECT_EQ(s["recording"]["odometry_jumps"]["count"], 0) << s["recording"];
@@ -95,10 +95,10 @@ const CleanCounts& clean() {
                             "').read_messages(topics=['/velodyne_points']): print(m.width * m.height)\"";
     FILE* pipe = ::popen(cmd.c_str(), "r");
     char line[64];
-    while (pipe && std::fgets(line, sizeof line, pipe)) c.per_cloud.push_back(std::stoul(line));
+    while (pipe && std::fgets(line, sizeof line, pipe)) counts.per_cloud.push_back(std::stoul(line));
     if (pipe) ::pclose(pipe);
-    EXPECT_EQ(c.per_cloud.size(), c.clouds);
-    return c;
+    EXPECT_EQ(counts.per_cloud.size(), counts.clouds);
+    return counts;
   }();
   return c;
 }
