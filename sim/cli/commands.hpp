@@ -16,8 +16,6 @@ struct ExitCode {
 inline constexpr int kExitLocalized = 0;      // every run localized (and passed its expectations)
 inline constexpr int kExitNotLocalized = 1;   // it ran, and a run did not localize, or localized falsely
 inline constexpr int kExitUnusableInput = 2;  // the input cannot be used: an error names it, nothing is written
-inline constexpr const char* kExitCodesHelp =
-    "Exit status: 0 localized; 1 ran and did not localize; 2 the input cannot be used (docs/exit_codes.md).";
 // Whether the command ("bimloc localize", "bimloc report merge") exits with these: its errors
 // and bad options exit kExitUnusableInput. The other commands exit 1 on any error.
 bool usesLocalizeExitCodes(const std::string& command);
