@@ -5,8 +5,9 @@
 # runs `bimloc run ARGS --shard K/N --json` and writes OUT_DIR/shard-K-of-N.json atomically
 # (a temporary name in OUT_DIR, then a rename: a shared folder never shows half a shard).
 # A scenario that fails its expectations is a result, not a failed task: bimloc run exits 1
-# then, with its JSON written, and this script exits 0. Any other failure (bad arguments, a
-# missing plan) fails the task with bimloc's message and leaves no file.
+# then, with its JSON written, and this script exits 0. Any other failure (exit 2: bad
+# arguments, a missing plan; docs/exit_codes.md) fails the task with bimloc's message and
+# leaves no file.
 # BIMLOC: the binary (default: bimloc on the PATH).
 set -u
 if [ $# -lt 3 ]; then

@@ -3,6 +3,7 @@
 // rewritten by ROS's own python rosbag (tests/rewrite_bag.py: renamed topics and frames,
 // the clouds' fields in another order and width, no odometry), analytic clouds and motions
 // for the field decoding and the de-skew, and python rosbag again reading localized.bag.
+#include "recording_fixtures.hpp"
 #include "test_support.hpp"
 
 #include "sim/dataset/cloud_fields.hpp"
@@ -23,19 +24,11 @@ using test::runBimloc;
 
 namespace {
 
-const std::string kPlan = std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc";
+const std::string kPlan = test::recordingPlan();
 
 // One short simulation for the whole file: from the corridor, which converges within 2 s.
 const std::string& simulated() {
-  static const std::string dir = [] {
-    const std::string d = test::tempDir("bag-input");
-    std::ofstream(d + "/s.yaml") << "name: bag input\nworld: " << kPlan
-                                 << "\nstart: {room: C100, yaw_deg: 0}\nmotion: {type: tour, rooms: [R101]}\n"
-                                    "duration_s: 8\nodometry: {preset: legged}\nseed: 3\n";
-    const auto r = runBimloc("simulate '" + d + "/s.yaml' --out '" + d + "/data' --quiet");
-    if (r.exit_code != 0) ADD_FAILURE() << r.err;
-    return d;
-  }();
+  static const std::string dir = test::simulatedRecording("bag-input");
   return dir;
 }
 
@@ -179,7 +172,7 @@ TEST(BagInput, ASimulatedBagLocalizesLikeItsFolder) {
 TEST(BagInput, RenamedTopicsAndFramesLocalizeWithTheOptions) {
   const std::string bag = rewritten("rename");
   const auto refused = runBimloc("localize '" + bag + "' --plan '" + kPlan + "'");
-  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_EQ(refused.exit_code, 2);  // the input cannot be used (docs/exit_codes.md)
   // The missing topic, then every topic of the bag with its type.
   EXPECT_NE(refused.err.find(bag + ": no topic /velodyne_points (sensor_msgs/PointCloud2; choose another with --cloud-topic)"),
             std::string::npos) << refused.err;
@@ -225,7 +218,7 @@ TEST(BagInput, CloudsWithTheFieldsInAnotherOrderGiveTheSamePoints) {
 TEST(BagInput, ABagWithNoOdometryFailsClearly) {
   const std::string bag = rewritten("noodom");
   const auto r = runBimloc("localize '" + bag + "' --plan '" + kPlan + "'");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find(bag + ": no odometry: no topic /odom (nav_msgs/Odometry; choose it with --odom-topic) and no "
                              "/tf transform odom -> base_link"),
             std::string::npos) << r.err;
@@ -233,7 +226,7 @@ TEST(BagInput, ABagWithNoOdometryFailsClearly) {
   // Odometry on another clock: as good as none.
   const std::string late = rewritten("otherclock");
   const auto r2 = runBimloc("localize '" + late + "' --plan '" + kPlan + "'");
-  EXPECT_EQ(r2.exit_code, 1);
+  EXPECT_EQ(r2.exit_code, 2);
   EXPECT_NE(r2.err.find(late + ": the clouds (1000.000 to 1008.000 s) and the odometry (101000.000 to 101008.000 s) never "
                                "overlap in time"),
             std::string::npos) << r2.err;
@@ -286,7 +279,7 @@ TEST(BagInput, OutputsAreWrittenWholeAndReadBack) {
   std::ofstream(simulated() + "/precious.txt") << "keep";
   const auto refused = runBimloc("localize '" + simulated() + "/data/dataset.bag' --plan '" + kPlan + "' --out '" +
                                  simulated() + "/precious.txt'");
-  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_EQ(refused.exit_code, 2);
   EXPECT_EQ(slurp(simulated() + "/precious.txt"), "keep");
 }
 
@@ -310,14 +303,14 @@ TEST(BagInput, DamagedBagsAreRefusedByNameNeverACrash) {
     const auto r = runBimloc("localize '" + path + "' --plan '" + kPlan + "' --json", 60.0);
     EXPECT_EQ(r.signal, 0) << i << ": " << r.err;
     EXPECT_FALSE(r.timed_out) << i;
-    if (r.exit_code != 0) {
+    if (r.exit_code == 2) {  // the input cannot be used; 1 would be a run that did not localize
       ++refused;
       EXPECT_NE(r.err.find(path + ": "), std::string::npos) << i << ": " << r.err;
     } else {
       ++accepted;
     }
     if (i < 6) {
-      EXPECT_NE(r.exit_code, 0) << i << ": a truncated bag was accepted";
+      EXPECT_EQ(r.exit_code, 2) << i << ": a truncated bag was accepted";
     }
   }
   std::cout << "damaged bags: " << refused << " refused, " << accepted << " accepted" << std::endl;

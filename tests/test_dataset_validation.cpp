@@ -151,11 +151,11 @@ TEST(DatasetValidation, MetadataMustBeOfASupportedVersionAndSaySoInOurWords) {
                 "not valid JSON: parse error at line 1");
 }
 
-// Through the binary: one line naming the file, exit 1.
-TEST(DatasetValidation, LocalizeRefusesADamagedDatasetWithExitOne) {
+// Through the binary: one line naming the file, exit 2 (the input cannot be used).
+TEST(DatasetValidation, LocalizeRefusesADamagedDatasetWithExitTwo) {
   const std::string dir = damaged("clouds/000007.pcd", [](auto) { return std::string(); });
   const auto r = runBimloc("localize '" + dir + "' --plan '" + BIMLOC_WORLDS_DIR + "/site_office.ifc'");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find(dir + "/clouds/index.csv:9: " + dir + "/clouds/000007.pcd is missing"), std::string::npos) << r.err;
 }
 

@@ -118,14 +118,14 @@ TEST(Shards, ArrayTasksMergeIntoTheUnshardedRun) {
 
   // Missing, overlapping, foreign shards and bad files are named.
   const auto missing = runBimloc("report merge " + file(1, 3, dir) + " " + file(3, 3, dir));
-  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(missing.exit_code, 2);  // the shards cannot be used (docs/exit_codes.md)
   EXPECT_NE(missing.err.find("missing shards: 2/3"), std::string::npos) << missing.err;
   const auto twice = runBimloc("report merge " + files + " " + file(1, 3, dir));
   EXPECT_NE(twice.err.find("overlapping shards"), std::string::npos) << twice.err;
   const std::string other = dir + "/other";
   ASSERT_EQ(shardTask(1, 3, (std::filesystem::create_directories(other), other), sweep("5")).exit_code, 0);
   const auto mixed = runBimloc("report merge " + file(1, 3, other) + " " + file(2, 3, dir) + " " + file(3, 3, dir));
-  EXPECT_EQ(mixed.exit_code, 1);
+  EXPECT_EQ(mixed.exit_code, 2);
   EXPECT_NE(mixed.err.find("mixed sweeps"), std::string::npos) << mixed.err;
   EXPECT_NE(mixed.err.find(other + "/shard-1-of-3.json"), std::string::npos) << mixed.err;
   std::ofstream(dir + "/bad.json") << "{\"scenarios\": [";
@@ -139,7 +139,7 @@ TEST(Shards, ArrayTasksMergeIntoTheUnshardedRun) {
 TEST(Shards, BadShardSyntaxIsAClearError) {
   for (const char* bad : {"0/3", "4/3", "3", "a/b", "1/0", "1/2/3", "2/x"}) {
     const auto r = runBimloc(std::string("run --plan '") + BIMLOC_WORLDS_DIR + "/site_office.ifc' --all-rooms --shard '" + bad + "'");
-    EXPECT_EQ(r.exit_code, 1) << bad;
+    EXPECT_EQ(r.exit_code, 2) << bad;
     EXPECT_NE(r.err.find("--shard '" + std::string(bad) + "': expected K/N with 1 <= K <= N"), std::string::npos) << r.err;
   }
 }

@@ -37,6 +37,10 @@ struct LocalizeArgs {
   BagInputOptions bag;
   std::string mount;
   bool no_deskew = false;
+  // The VLP-16's 100 m, and 0.3 m: its ROS driver drops ranges below 0.4 m, but a range is
+  // measured from each laser's own origin, a few cm off the sensor's centre (sim/lidar/vlp16.cpp
+  // places them so too), so real points lie down to ~0.36 m from the centre; none nearer than 0.3 m.
+  SensorRange range{0.3, 100.0};
 };
 
 // "x,y,z,roll,pitch,yaw" (metres, radians; R = Rz(yaw) Ry(pitch) Rx(roll), as ROS's RPY).
@@ -73,12 +77,13 @@ struct Recording {
   TurnSource turns;
   std::string input_bag;  // the bag, for localized.bag
   std::vector<std::string> notes;  // where the odometry and mount came from
+  RecordingChecks checks;          // the odometry's and the truth's (the scans' are counted by the loop)
   // Keeps what `turns` reads from alive.
   std::shared_ptr<RecordedDataset> dataset;
   std::shared_ptr<BagInput> bag;
 };
 
-Recording openDataset(const std::string& dir) {
+Recording openDataset(const std::string& dir, const SensorRange& range) {
   Recording rec;
   rec.dataset = std::make_shared<RecordedDataset>(readDataset(dir));
   const RecordedDataset& data = *rec.dataset;
@@ -86,13 +91,18 @@ Recording openDataset(const std::string& dir) {
   rec.storey = data.storey;
   rec.ground_truth = data.ground_truth;
   rec.start_s = data.scans.front().stamp_s;
-  rec.turns = [d = rec.dataset](const std::function<void(const RecordedTurn&)>& visit) {
+  // The TUM reader refuses a sample that is no pose; jumps are the checks' to count.
+  rec.checks.odometry.read = data.odometry.size();
+  rec.checks.odometry_jumps = findJumps(data.odometry);
+  rec.turns = [d = rec.dataset, range](const std::function<void(const RecordedTurn&)>& visit) {
     for (const auto& scan : d->scans) {
       RecordedTurn turn;
       turn.stamp_s = scan.stamp_s + 0.5 * d->turn_period_s;  // mid-turn, as the runner
       turn.T_odom_base = interpolatePose(d->odometry, turn.stamp_s);  // as the bag path: samples straddle the middle
-      // The scan's file is read only when the localizer looks at it, as the runner extracts planes.
-      turn.points = [file = scan.file] { return readPcdPoints(file); };
+      // Read and checked now, as the bag's scans: one with no usable point is skipped.
+      auto points = std::make_shared<std::vector<Eigen::Vector3f>>(readPcdPoints(scan.file));
+      turn.drops = keepUsablePoints(*points, nullptr, range);
+      turn.points = [points] { return *points; };
       turn.name = scan.file;
       visit(turn);
     }
@@ -106,6 +116,9 @@ Recording openBag(const std::string& path, const BagInputOptions& options) {
   const BagInput& bag = *rec.bag;
   rec.T_base_lidar = bag.T_base_lidar();
   rec.ground_truth = bag.groundTruth();
+  rec.checks.odometry = bag.odometryDrops();
+  rec.checks.odometry_jumps = findJumps(bag.odometry());
+  rec.checks.ground_truth = bag.groundTruthDrops();
   rec.input_bag = path;
   for (const auto& w : bag.warnings()) std::cerr << "warning: " << w << "\n";
   rec.notes = {"odometry: " + bag.odometrySource(), "mount: " + bag.mountSource(),
@@ -118,6 +131,8 @@ Recording openBag(const std::string& path, const BagInputOptions& options) {
       turn.T_odom_base = interpolatePose(b->odometry(), t.stamp_s);
       turn.points = t.points;
       turn.name = b->path() + ": message " + std::to_string(t.index);
+      turn.drops = t.drops;
+      turn.warnings = t.warnings;
       visit(turn);
     });
   };
@@ -137,7 +152,11 @@ void run(const LocalizeArgs& args) {
   BagInputOptions bag_options = args.bag;
   if (!args.mount.empty()) bag_options.mount = parseMount(args.mount);
   bag_options.deskew = !args.no_deskew;
-  Recording rec = is_bag ? openBag(args.input, bag_options) : openDataset(args.input);
+  bag_options.range = args.range;
+  if (!(args.range.min_m >= 0 && args.range.max_m > args.range.min_m))
+    throw std::runtime_error("--min-range and --max-range: expected 0 <= min < max, got " + std::to_string(args.range.min_m) +
+                             " and " + std::to_string(args.range.max_m));
+  Recording rec = is_bag ? openBag(args.input, bag_options) : openDataset(args.input, args.range);
   const bimloc::bim::Building building = bimloc::bim::readIfc(args.plan, {});
   const bool storey_auto = args.storey == "auto";
   // The true storey, for scoring: as recorded (with auto, the localizer is not told it).
@@ -174,6 +193,13 @@ void run(const LocalizeArgs& args) {
   RecordingRun recording =
       localizeRecording(building, truth_storey, localizer, rec.T_base_lidar, rec.turns, rec.start_s, rec.ground_truth, r, observe);
   r = std::move(recording.result);
+  // The loop counted the scans; the odometry's and the truth's counts are the reader's.
+  r.recording->odometry = rec.checks.odometry;
+  r.recording->odometry_jumps = rec.checks.odometry_jumps;
+  r.recording->ground_truth = rec.checks.ground_truth;
+  const std::vector<std::string> dropped = r.recording->warnings();
+  r.warnings.insert(r.warnings.begin(), dropped.begin(), dropped.end());
+  for (const auto& w : dropped) std::cerr << "bimloc localize: warning: " << args.input << ": " << w << "\n";
   const auto& last = recording.last;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto report = bimloc::cli::runReport({r}, r.wall_seconds);
@@ -203,8 +229,8 @@ void run(const LocalizeArgs& args) {
       std::cout << "wrote " << args.out << "/ (trajectory.tum" << (is_ros2 ? ", localized.mcap" : is_bag ? ", localized.bag" : "")
                 << ", report.json, snapshots/)\n";
   }
-  // As `run`: a run that did not localize, or localized falsely, fails.
-  if (!r.passed) throw bimloc::cli::ExitCode{1};
+  // As `run`: a run that did not localize, or localized falsely, fails (docs/exit_codes.md).
+  if (!r.passed) throw bimloc::cli::ExitCode{bimloc::cli::kExitNotLocalized};
 }
 
 }  // namespace
@@ -218,7 +244,11 @@ void addLocalizeCommand(CLI::App& app) {
       "odometry.tum, metadata.json with the mount; ground_truth.tum if known) or a ROS 1 or ROS 2 bag (a rosbag2\n"
       "folder, an .mcap or a .db3 file; sensor_msgs/PointCloud2 of a Velodyne driver; nav_msgs/Odometry or /tf\n"
       "odom -> base_link; the mount on /tf_static or --mount).\n"
-      "Scored like `bimloc run` when ground truth is present.");
+      "Scored like `bimloc run` when ground truth is present. Points no lidar can have measured (not finite, at the\n"
+      "origin, outside --min-range..--max-range), scans with none left, odometry samples that are no pose and\n"
+      "odometry jumps are dropped or flagged, and counted in warnings and the summary (docs/recording_checks.md).\n"
+      "Exit status (docs/exit_codes.md): 0 localized; 1 ran and did not localize (or localized falsely);\n"
+      "2 the input cannot be used (a damaged or unusable recording, bad options): an error names it, nothing is written.");
   cmd->add_option("input", args->input, "dataset folder, ROS 1 .bag, or ROS 2 bag (rosbag2 folder, .mcap, .db3)")->required();
   cmd->add_option("--plan", args->plan, "IFC plan")->required();
   cmd->add_option("--storey", args->storey,
@@ -250,5 +280,9 @@ void addLocalizeCommand(CLI::App& app) {
   bag->add_option("--truth-topic", args->bag.truth_topic, "nav_msgs/Odometry or geometry_msgs/PoseStamped ground truth in map, scored when present")
       ->capture_default_str();
   bag->add_flag("--no-deskew", args->no_deskew, "use the clouds as they are, even with a per-point time field");
+  cmd->add_option("--min-range", args->range.min_m, "metres from the sensor's centre: nearer points are no measurement (dropped, counted); a VLP-16's")
+      ->capture_default_str();
+  cmd->add_option("--max-range", args->range.max_m, "metres from the sensor's centre: farther points are no measurement (dropped, counted); a VLP-16's")
+      ->capture_default_str();
   cmd->callback([args] { run(*args); });
 }

@@ -38,7 +38,7 @@ void merge(const MergeArgs& args) {
   else
     bimloc::cli::printRunTable(report, std::cout);
   for (const auto& s : report["scenarios"])  // as `bimloc run`: status 1 when a scenario failed
-    if (!s["passed"].get<bool>()) throw bimloc::cli::ExitCode{1};
+    if (!s["passed"].get<bool>()) throw bimloc::cli::ExitCode{bimloc::cli::kExitNotLocalized};
 }
 
 }  // namespace
@@ -52,7 +52,7 @@ void addReportCommand(CLI::App& app) {
       "Merge the shards of a sweep (`bimloc run ... --shard K/N --json`, K = 1..N) into exactly the report of the\n"
       "unsharded run: its scenarios in the unsharded order, its summary, table or --json (wall_seconds: the shards'\n"
       "sum). Errors on a file that is no shard report, shards of different sweeps, a shard given twice or missing.\n"
-      "Exit status 1 when a scenario failed, as `bimloc run`.");
+      "Exit status as `bimloc run`: 0 every scenario passed, 1 one failed, 2 the shards cannot be used.");
   cmd->add_option("files", args->files, "the shards' JSON files")->required();
   cmd->add_flag("--json", args->json, "print one JSON object instead of the table");
   cmd->callback([args] { merge(*args); });

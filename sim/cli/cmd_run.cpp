@@ -99,7 +99,8 @@ void run(const RunArgs& args) {
     if (!errors[i].empty()) std::cerr << "bimloc run: error: " << errors[i] << "\n";
   bool all_passed = true;
   for (const auto& r : results) all_passed = all_passed && r.passed;
-  if (!all_passed) throw bimloc::cli::ExitCode{1};
+  // A scenario that could not run (named above) did not localize either: its JSON entry says why.
+  if (!all_passed) throw bimloc::cli::ExitCode{bimloc::cli::kExitNotLocalized};
 }
 
 }  // namespace
@@ -122,8 +123,10 @@ void addRunCommand(CLI::App& app) {
       "run",
       "Run scenarios in the loop: the simulator feeds scans and odometry at the sensor's rate into the localizer\n"
       "(the room-aware particle filter, then the S-Graph tracker), and each run is scored against the ground truth and the scenario's\n"
-      "expectations: converged, convergence time, room found, errors, ATE, false convergence. Exit status 1\n"
-      "when any scenario fails. With --plan PLAN --all-rooms: one scenario per room of the storey; --starts outside:\n"
+      "expectations: converged, convergence time, room found, errors, ATE, false convergence. Exit status\n"
+      "(docs/exit_codes.md): 0 every scenario passed; 1 a scenario did not localize, localized falsely, missed an\n"
+      "expectation or could not run (the others' results are printed); 2 nothing ran: bad options, a scenario file\n"
+      "or plan that cannot be used. With --plan PLAN --all-rooms: one scenario per room of the storey; --starts outside:\n"
       "starts in no room (halls without a space, doorways, just outside); --storey auto: the localizer is not told\n"
       "the storey (every storey with walls and rooms is a candidate, the scans decide).");
   cmd->add_option("scenarios", args->scenarios, "scenario files (YAML)");

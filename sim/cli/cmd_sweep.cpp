@@ -149,7 +149,8 @@ void run(const SweepArgs& args) {
   }
   for (const auto& r : runs)
     if (!r.error.empty()) std::cerr << "bimloc sweep: not run: " << r.result.name << ": " << r.error << "\n";
-  if (total["false_convergences"].get<int>() > 0) throw bimloc::cli::ExitCode{1};
+  // As `run`: every run localized, or not (a false convergence, none, or a start that could not run).
+  if (total["localized"].get<int>() < static_cast<int>(runs.size())) throw bimloc::cli::ExitCode{bimloc::cli::kExitNotLocalized};
 }
 
 }  // namespace
@@ -160,7 +161,10 @@ void addSweepCommand(CLI::App& app) {
       "sweep",
       "Global localization from every room of every storey (with rooms) of each plan, several seeds each: a row per\n"
       "plan and storey with the localization rate, false convergences, convergence-time distribution, ATE and the\n"
-      "smallest path-evidence margin a convergence was accepted at. Exit status 1 on any false convergence.\n"
+      "smallest path-evidence margin a convergence was accepted at. Exit status (docs/exit_codes.md): 0 every run\n"
+      "localized; 1 a run did not localize, localized falsely or could not run; 2 nothing ran (bad options, a plan\n"
+      "that cannot be used). The robustness sweep (--sites, --methods, --plot) measures how the rate degrades: 0\n"
+      "once it ran, 2 when it could not.\n"
       "Make hard plans with `bimloc worldgen --random SEED --random-count K --out DIR`, then sweep DIR/*.ifc.");
   cmd->add_option("plans", args->plans, "IFC plans (or extract folders)")->required();
   cmd->add_option("--seeds", args->seeds, "seeds per room")->check(CLI::Range(1, 1000))->capture_default_str();

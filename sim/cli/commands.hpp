@@ -11,6 +11,15 @@ struct ExitCode {
   int code;
 };
 
+// The exit statuses of the commands that localize: localize, run, sweep, and report merge
+// (which gives run's result back). docs/exit_codes.md.
+inline constexpr int kExitLocalized = 0;      // every run localized (and passed its expectations)
+inline constexpr int kExitNotLocalized = 1;   // it ran, and a run did not localize, or localized falsely
+inline constexpr int kExitUnusableInput = 2;  // the input cannot be used: an error names it, nothing is written
+// Whether the command ("bimloc localize", "bimloc report merge") exits with these: its errors
+// and bad options exit kExitUnusableInput. The other commands exit 1 on any error.
+bool usesLocalizeExitCodes(const std::string& command);
+
 // `--method`, the same on every command that runs the localizer.
 inline constexpr const char* kMethodHelp =
     "sgraph (the paper: the filter, then the S-Graph tracks), pf (the filter tracks), pf-no-rooms (the ablation), "

@@ -27,20 +27,31 @@ int main(int argc, char** argv) {
   addEvalCommand(app);
   addCompareCommand(app);
   addBenchCommand(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const bimloc::cli::ExitCode& e) {
-    return e.code;
-  } catch (const std::exception& e) {
+  // "bimloc localize": the subcommand parsed so far (for messages and exit statuses).
+  const auto command = [&app] {
     std::string name = "bimloc";
     for (const CLI::App* sub = &app; !sub->get_subcommands().empty();) {
       sub = sub->get_subcommands().front();
       name += " " + sub->get_name();
     }
-    std::cerr << name << ": error: " << e.what() << "\n";
-    return 1;
+    return name;
+  };
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints the message (or the help)
+    return code != 0 && bimloc::cli::usesLocalizeExitCodes(command()) ? bimloc::cli::kExitUnusableInput : code;
+  } catch (const bimloc::cli::ExitCode& e) {
+    return e.code;
+  } catch (const std::exception& e) {
+    std::cerr << command() << ": error: " << e.what() << "\n";
+    return bimloc::cli::usesLocalizeExitCodes(command()) ? bimloc::cli::kExitUnusableInput : 1;
   }
   return 0;
+}
+
+bool bimloc::cli::usesLocalizeExitCodes(const std::string& command) {
+  for (const char* c : {"bimloc localize", "bimloc run", "bimloc sweep", "bimloc report merge"})
+    if (command == c) return true;
+  return false;
 }

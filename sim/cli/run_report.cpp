@@ -37,6 +37,39 @@ nlohmann::json wallsJson(const std::vector<sim::ScenarioResult::WallEstimate>& w
   return out;
 }
 
+// What a recording's readers dropped (sim/dataset/recording_checks.hpp), by reason.
+nlohmann::json recordingJson(const sim::RecordingChecks& c) {
+  const auto poses = [](const sim::PoseSampleDrops& d) {
+    return nlohmann::json{{"read", d.read}, {"dropped", d.dropped()}, {"non_finite", d.non_finite},
+                          {"zero_quaternion", d.zero_quaternion}, {"not_unit_quaternion", d.not_unit_quaternion}};
+  };
+  const auto& p = c.points;
+  return {{"scans", {{"read", c.scans}, {"skipped_no_usable_point", c.scans_skipped}}},
+          {"points", {{"read", p.read}, {"dropped", p.dropped()}, {"non_finite", p.non_finite}, {"at_origin", p.at_origin},
+                      {"below_min_range", p.below_min_range}, {"beyond_max_range", p.beyond_max_range}}},
+          {"odometry", poses(c.odometry)},
+          {"odometry_jumps", {{"count", c.odometry_jumps.count}, {"worst_m", c.odometry_jumps.worst_m},
+                              {"worst_deg", c.odometry_jumps.worst_deg}, {"worst_stamp_s", c.odometry_jumps.worst_stamp_s}}},
+          {"ground_truth", poses(c.ground_truth)}};
+}
+
+// The sum of the scenarios' "recording" blocks (the same keys), or null when none has one.
+nlohmann::json recordingTotal(const nlohmann::json& scenarios) {
+  nlohmann::json total;
+  for (const auto& s : scenarios) {
+    if (!s.contains("recording")) continue;
+    if (total.is_null()) {
+      total = s["recording"];
+      total["odometry_jumps"] = s["recording"]["odometry_jumps"]["count"];  // the total: a count
+      continue;
+    }
+    for (const char* part : {"scans", "points", "odometry", "ground_truth"})
+      for (auto& [key, value] : total[part].items()) value = value.get<std::size_t>() + s["recording"][part][key].get<std::size_t>();
+    total["odometry_jumps"] = total["odometry_jumps"].get<std::size_t>() + s["recording"]["odometry_jumps"]["count"].get<std::size_t>();
+  }
+  return total;
+}
+
 }  // namespace
 
 double median(std::vector<double> v) {
@@ -46,7 +79,7 @@ double median(std::vector<double> v) {
 }
 
 nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
-  return {{"name", r.name}, {"plan", r.plan}, {"storey", r.storey}, {"start_room", r.start_room},
+  nlohmann::json j = {{"name", r.name}, {"plan", r.plan}, {"storey", r.storey}, {"start_room", r.start_room},
           {"method", r.method}, {"seed", r.seed}, {"converged", r.converged},
           {"convergence_time_s", orNull(r.convergence_time_s)}, {"found_room", orNull(r.found_room)},
           {"true_room", r.true_room}, {"position_error_m", r.position_error_m},
@@ -59,6 +92,8 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
           {"found_storey", orNull(r.found_storey)}, {"storey_margin", orNull(r.storey_margin)},
           {"storey_candidates", storeysJson(r.storey_candidates)}, {"passed", r.passed}, {"failures", r.failures},
           {"warnings", r.warnings}, {"sim_seconds", r.sim_seconds}};
+  if (r.recording) j["recording"] = recordingJson(*r.recording);  // `localize` only: the schema of `run` is unchanged
+  return j;
 }
 
 nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) {
@@ -76,9 +111,11 @@ nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) 
   }
   const nlohmann::json median_time = times.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(times));
   const nlohmann::json median_ate = ates.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(ates));
-  return {{"runs", scenarios.size()}, {"localized", localized}, {"false_convergences", false_convergences},
-          {"median_convergence_s", median_time}, {"median_ate_m", median_ate}, {"losses", losses},
-          {"sim_seconds", sim_seconds}, {"wall_seconds", wall_seconds}};
+  nlohmann::json summary = {{"runs", scenarios.size()}, {"localized", localized}, {"false_convergences", false_convergences},
+                            {"median_convergence_s", median_time}, {"median_ate_m", median_ate}, {"losses", losses},
+                            {"sim_seconds", sim_seconds}, {"wall_seconds", wall_seconds}};
+  if (nlohmann::json dropped = recordingTotal(scenarios); !dropped.is_null()) summary["recording"] = std::move(dropped);
+  return summary;
 }
 
 nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double wall_seconds) {
@@ -145,6 +182,20 @@ void printRunTable(const nlohmann::json& report, std::ostream& out) {
       << " s\n";
   for (const auto& r : results)
     for (const auto& f : r.at("failures")) out << "  " << r.at("name").get<std::string>() << ": " << f.get<std::string>() << "\n";
+  // A recording's drops, whenever there were any (the details are in the warnings).
+  for (const auto& r : results) {
+    if (!r.contains("recording")) continue;
+    const auto& c = r["recording"];
+    const std::size_t scans = c["scans"]["skipped_no_usable_point"], points = c["points"]["dropped"],
+                      odometry = c["odometry"]["dropped"], jumps = c["odometry_jumps"]["count"];
+    if (scans + points + odometry + jumps == 0) continue;
+    out << "  " << r.at("name").get<std::string>() << ": dropped " << scans << " of " << c["scans"]["read"].get<std::size_t>()
+        << " scans (no usable point), " << points << " of " << c["points"]["read"].get<std::size_t>() << " points ("
+        << c["points"]["non_finite"].get<std::size_t>() << " not finite, " << c["points"]["at_origin"].get<std::size_t>()
+        << " at the origin, " << c["points"]["below_min_range"].get<std::size_t>() << " below min range, "
+        << c["points"]["beyond_max_range"].get<std::size_t>() << " beyond max range), " << odometry << " of "
+        << c["odometry"]["read"].get<std::size_t>() << " odometry samples; " << jumps << " odometry jumps\n";
+  }
 }
 
 }  // namespace bimloc::cli

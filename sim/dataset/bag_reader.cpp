@@ -3,6 +3,7 @@
 #include "sim/dataset/bag_messages.hpp"
 #include "sim/dataset/cloud_fields.hpp"
 #include "sim/dataset/deskew.hpp"
+#include "sim/dataset/recording_checks.hpp"
 #include "sim/ros2/rosbag2_reader.hpp"
 
 #include <algorithm>
@@ -23,18 +24,17 @@ std::string frameName(std::string frame) {  // tf2 drops a leading '/' (tf1's st
   return frame;
 }
 
-Eigen::Isometry3d pose(double x, double y, double z, double qx, double qy, double qz, double qw, const std::string& where) {
-  const Eigen::Quaterniond q(qw, qx, qy, qz);
-  if (!std::isfinite(q.norm()) || std::abs(q.norm() - 1.0) > 1e-3 || !std::isfinite(x + y + z))
-    throw std::runtime_error(where + ": a pose that is not finite or whose quaternion does not have unit norm");
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = q.normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(x, y, z);
-  return T;
+// A sample of a stream (odometry, ground truth): dropped and counted when it is no pose.
+std::optional<Eigen::Isometry3d> sample(const BagPose& p, PoseSampleDrops& drops) {
+  return checkedPose(p.x, p.y, p.z, p.qx, p.qy, p.qz, p.qw, drops);
 }
 
-Eigen::Isometry3d pose(const BagPose& p, const std::string& where) {
-  return pose(p.x, p.y, p.z, p.qx, p.qy, p.qz, p.qw, where);
+// A fixed transform (the mount's chain): one sample, no stream to fall back on, so refused.
+Eigen::Isometry3d fixedPose(const BagPose& p, const std::string& where) {
+  PoseSampleDrops drops;
+  const auto T = sample(p, drops);
+  if (!T) throw std::runtime_error(where + ": a pose that is not finite or whose quaternion does not have unit norm");
+  return *T;
 }
 
 // Sorted by stamp, one sample per stamp (a bag may hold a message twice or out of order).
@@ -103,6 +103,7 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     std::set<std::pair<std::string, std::string>> seen;
     std::set<std::string> frames;
     std::map<std::string, std::vector<StampedPose>> from_odom;  // odom -> child, over time
+    std::map<std::string, PoseSampleDrops> from_odom_drops;
     std::vector<std::string> tf_topics;
     for (const auto& t : {options.tf_static_topic, options.tf_topic})
       if (bag.hasTopic(t, BagMessageKind::kTFMessage)) tf_topics.push_back(t);
@@ -113,11 +114,11 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
         frames.insert(parent), frames.insert(child);
         const std::string where = path + ": " + topic + " " + parent + " -> " + child;
         if (parent == options.odom_frame) {  // the odometry: never a fixed edge
-          from_odom[child].push_back({t.stamp_s, pose(t.pose, where)});
+          if (const auto T = sample(t.pose, from_odom_drops[child])) from_odom[child].push_back({t.stamp_s, *T});
           return;
         }
         if (!seen.insert({parent, child}).second) return;
-        const Eigen::Isometry3d T = pose(t.pose, where);
+        const Eigen::Isometry3d T = fixedPose(t.pose, where);
         edges[parent].push_back({child, T});
         edges[child].push_back({parent, T.inverse()});
       });
@@ -140,7 +141,7 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
 
     if (odom_topic) {
       bag.forEachPose(options.odom_topic, [&](const BagStampedPose& p) {
-        odometry_.push_back({p.stamp_s, pose(p.pose, path + ": " + options.odom_topic)});
+        if (const auto T = sample(p.pose, odometry_drops_)) odometry_.push_back({p.stamp_s, *T});
       });
       odometry_source_ = options.odom_topic + " (" + bag.typeName(BagMessageKind::kOdometry) + ")";
     } else {
@@ -151,12 +152,23 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
         if (!T_child_base) continue;
         for (auto& sample : samples) sample.pose = sample.pose * *T_child_base;
         odometry_ = std::move(samples);
+        odometry_drops_ = from_odom_drops[child];
         odometry_source_ = options.tf_topic + " " + options.odom_frame + " -> " + options.base_frame +
                            (child == options.base_frame ? "" : " (via " + child + ")");
         break;
       }
     }
+    // Any sample that came through from /tf of an unusable stream: counted all the same.
+    if (odometry_.empty())
+      for (const auto& [child, drops] : from_odom_drops)
+        if (child == options.base_frame || fixed(child, options.base_frame)) odometry_drops_ = drops;
     sortByStamp(odometry_);
+    if (odometry_.empty() && odometry_drops_.read > 0)
+      fail("no odometry: all " + std::to_string(odometry_drops_.read) + " samples of " +
+           (odom_topic ? options.odom_topic : options.tf_topic + " " + options.odom_frame + " -> " + options.base_frame) +
+           " are no pose (" + std::to_string(odometry_drops_.non_finite) + " not finite, " +
+           std::to_string(odometry_drops_.zero_quaternion) + " with a zero quaternion, " +
+           std::to_string(odometry_drops_.not_unit_quaternion) + " with a quaternion not of unit norm)");
     if (odometry_.empty())
       fail("no odometry: no topic " + options.odom_topic + " (" + bag.typeName(BagMessageKind::kOdometry) + "; choose it with --odom-topic) and no " +
            options.tf_topic + " transform " + options.odom_frame + " -> " + options.base_frame +
@@ -164,7 +176,7 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
 
     if (bag.hasTopic(options.truth_topic, BagMessageKind::kOdometry) || bag.hasTopic(options.truth_topic, BagMessageKind::kPoseStamped)) {
       bag.forEachPose(options.truth_topic, [&](const BagStampedPose& p) {
-        ground_truth_.push_back({p.stamp_s, pose(p.pose, path + ": " + options.truth_topic)});
+        if (const auto T = sample(p.pose, truth_drops_)) ground_truth_.push_back({p.stamp_s, *T});
       });
       sortByStamp(ground_truth_);
     }
@@ -244,15 +256,22 @@ void BagInput::forEachTurn(const std::function<void(const BagTurn&)>& visit) con
     if (!(turn.stamp_s > previous))
       throw std::runtime_error(where + ": stamp " + std::to_string(header_s) + " does not follow the previous cloud's");
     previous = turn.stamp_s;
-    turn.points = [this, cloud, where, header_s, ref = turn.stamp_s] {
-      CloudPoints p = decodeCloud(cloud->layout, cloud->data.data(), cloud->data.size(), where);
-      if (options_.deskew && !p.time_s.empty()) {
+    // Decoded and checked now (the bytes are in memory already): a scan with no usable point
+    // is skipped before the localizer sees it. De-skewed only when the localizer asks.
+    auto p = std::make_shared<CloudPoints>(decodeCloud(cloud->layout, cloud->data.data(), cloud->data.size(), where));
+    turn.drops = keepUsablePoints(p->xyz, &p->time_s, options_.range, p->non_finite);
+    turn.warnings = std::move(p->warnings);
+    turn.points = [this, p, header_s, ref = turn.stamp_s] {
+      if (options_.deskew && !p->time_s.empty()) {
+        std::vector<Eigen::Vector3f> xyz = p->xyz;
+        std::vector<double> time_s = p->time_s;
         // Some drivers give absolute times (seconds since the epoch): make them relative.
-        if (std::abs(p.time_s.front()) > 1e6)
-          for (double& t : p.time_s) t -= header_s;
-        deskew(p.xyz, p.time_s, header_s, ref, odometry_, T_base_lidar_);
+        if (std::abs(time_s.front()) > 1e6)
+          for (double& t : time_s) t -= header_s;
+        deskew(xyz, time_s, header_s, ref, odometry_, T_base_lidar_);
+        return xyz;
       }
-      return std::move(p.xyz);
+      return p->xyz;
     };
     visit(turn);
     return true;

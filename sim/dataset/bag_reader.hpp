@@ -6,6 +6,7 @@
 #pragma once
 
 #include "sim/dataset/dataset_reader.hpp"
+#include "sim/dataset/recording_checks.hpp"
 
 #include <Eigen/Geometry>
 #include <functional>
@@ -28,20 +29,24 @@ struct BagInputOptions {
   std::string tf_topic = "/tf", tf_static_topic = "/tf_static";
   std::optional<Eigen::Isometry3d> mount;  // base_link -> lidar; else from the bag's tf
   bool deskew = true;                      // with the clouds' per-point `time` field
+  SensorRange range;                       // points outside it are dropped, and counted
 };
 
 // A lidar turn of the bag, its points decoded (and de-skewed) only when asked.
 struct BagTurn {
   double stamp_s = 0;      // the turn's middle: the reference of the de-skew
   std::size_t index = 0;   // among the cloud topic's messages
-  std::function<std::vector<Eigen::Vector3f>()> points;  // in the lidar frame at stamp_s
+  std::function<std::vector<Eigen::Vector3f>()> points;  // in the lidar frame at stamp_s; the usable ones
+  PointDrops drops;                   // what the decoding and the range check dropped
+  std::vector<std::string> warnings;  // the cloud's layout's (checkCloudLayout)
 };
 
 class BagInput {
  public:
   // Reads and checks everything but the clouds' points. Throws std::runtime_error
   // "BAG: problem": not a bag, damaged, a topic missing (listing the bag's topics and types),
-  // no odometry, no mount.
+  // no odometry (or no sample of it a pose), no mount. Odometry and truth samples that are no
+  // pose are dropped and counted (odometryDrops, groundTruthDrops).
   BagInput(const std::string& path, const BagInputOptions& options);
   ~BagInput();
   BagInput(const BagInput&) = delete;
@@ -58,12 +63,17 @@ class BagInput {
   bool timed() const { return timed_; }  // the clouds carry a `time` field
   const std::vector<StampedPose>& odometry() const { return odometry_; }        // odom <- base_link
   const std::vector<StampedPose>& groundTruth() const { return ground_truth_; }  // map <- base_link; may be empty
+  // Samples that were no pose (not finite, a zero or non-unit quaternion): dropped, counted.
+  const PoseSampleDrops& odometryDrops() const { return odometry_drops_; }
+  const PoseSampleDrops& groundTruthDrops() const { return truth_drops_; }
   // "topic (type, N messages)" for each topic of the bag, one a line.
   std::string topicList() const;
   // Things read anyway, said once: a ROS 2 recording cut short, a folder without metadata.yaml.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
-  // Calls `visit` for each turn in order. Throws as the constructor for a damaged cloud.
+  // Calls `visit` for each turn in order, its points decoded and checked (a turn with no usable
+  // point is still visited: the caller skips it). Throws as the constructor for a damaged
+  // cloud or a layout that contradicts itself (checkCloudLayout).
   void forEachTurn(const std::function<void(const BagTurn&)>& visit) const;
 
  private:
@@ -78,6 +88,7 @@ class BagInput {
   bool timed_ = false;
   std::vector<StampedPose> odometry_, ground_truth_;
   std::vector<std::string> warnings_;
+  PoseSampleDrops odometry_drops_, truth_drops_;
 };
 
 // True when the file starts with the ROS1 bag magic "#ROSBAG V2.0".

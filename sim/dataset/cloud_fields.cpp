@@ -2,6 +2,7 @@
 
 #include "sim/dataset/velodyne_points.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -12,20 +13,15 @@ namespace {
 
 [[noreturn]] void fail(const std::string& where, const std::string& what) { throw std::runtime_error(where + ": " + what); }
 
-std::size_t datatypeBytes(std::uint8_t datatype) {
-  switch (datatype) {  // sensor_msgs/PointField constants
-    case 1: case 2: return 1;  // INT8, UINT8
-    case 3: case 4: return 2;  // INT16, UINT16
-    case 5: case 6: case 7: return 4;  // INT32, UINT32, FLOAT32
-    case 8: return 8;  // FLOAT64
-    default: return 0;
-  }
+const char* datatypeName(std::uint8_t datatype) {
+  static const char* const names[] = {"INT8", "UINT8", "INT16", "UINT16", "INT32", "UINT32", "FLOAT32", "FLOAT64"};
+  return datatype >= 1 && datatype <= 8 ? names[datatype - 1] : "unknown";
 }
 
 // One value of any datatype as a double, byte-swapped when the cloud's order is not the host's.
 double readValue(const std::uint8_t* p, std::uint8_t datatype, bool swap) {
   std::uint8_t bytes[8];
-  const std::size_t n = datatypeBytes(datatype);
+  const std::size_t n = cloudDatatypeBytes(datatype);
   for (std::size_t i = 0; i < n; ++i) bytes[i] = swap ? p[n - 1 - i] : p[i];
   auto as = [&bytes](auto value) {
     std::memcpy(&value, bytes, sizeof value);
@@ -43,46 +39,156 @@ double readValue(const std::uint8_t* p, std::uint8_t datatype, bool swap) {
   }
 }
 
+bool isRead(const std::string& name) { return name == "x" || name == "y" || name == "z" || name == "time"; }
+
+// Where the rows of a checked layout start: row_step apart (a row may carry padding).
+struct Geometry {
+  std::uint64_t width, height, row_step;
+};
+
+struct Axes {
+  const CloudField* xyz[3];
+  const CloudField* time;
+};
+
+Axes axesOf(const CloudLayout& layout) {
+  Axes a{{nullptr, nullptr, nullptr}, nullptr};
+  for (const CloudField& f : layout.fields) {
+    if (f.name == "time") a.time = &f;
+    else if (f.name == "x" || f.name == "y" || f.name == "z") a.xyz[f.name[0] - 'x'] = &f;
+  }
+  return a;
+}
+
+Eigen::Vector3d pointAt(const std::uint8_t* p, const Axes& a, bool swap) {
+  return {readValue(p + a.xyz[0]->offset, a.xyz[0]->datatype, swap), readValue(p + a.xyz[1]->offset, a.xyz[1]->datatype, swap),
+          readValue(p + a.xyz[2]->offset, a.xyz[2]->datatype, swap)};
+}
+
+// A point any lidar could have measured: finite, between 1 mm and 10 km. Independent of the
+// sensor: it only has to tell numbers from byte-swapped numbers, whose exponents come from
+// the low bytes of the mantissa and scatter over 1e-38..1e38.
+bool plausible(const Eigen::Vector3d& p) {
+  const double r = p.norm();
+  return std::isfinite(r) && r > 1e-3 && r < 1e4;
+}
+
+// A writer that declares one byte order and writes the other (is_bigendian set on a
+// little-endian machine's data) makes every point garbage, yet each is a number. Read a sample
+// both ways: refused when the other order is plainly the data's: a quarter of the sample or
+// more plausible (an organised cloud may be half NaN padding), and 4x as many as read as
+// declared. Garbage in either order (every point at 1e30 m, whose swapped bytes land a few
+// percent of the points in range by chance) is left to the range checks.
+void checkByteOrder(const CloudLayout& layout, const Axes& a, const Geometry& g, const std::uint8_t* data,
+                    const std::string& where) {
+  const std::uint64_t n = g.width * g.height;
+  if (n == 0) return;
+  const bool swap = layout.is_bigendian == hostIsLittleEndian();
+  const std::uint64_t samples = std::min<std::uint64_t>(n, 512);
+  std::uint64_t as_declared = 0, other = 0;
+  for (std::uint64_t s = 0; s < samples; ++s) {
+    const std::uint64_t i = s * n / samples;
+    const std::uint8_t* p = data + (i / g.width) * g.row_step + (i % g.width) * layout.point_step;
+    as_declared += plausible(pointAt(p, a, swap));
+    other += plausible(pointAt(p, a, !swap));
+  }
+  if (other >= 16 && 4 * other >= samples && other > 4 * as_declared)
+    fail(where, std::string("is_bigendian = ") + (layout.is_bigendian ? "1" : "0") + ", but read so " +
+                    std::to_string(as_declared) + " of " + std::to_string(samples) +
+                    " sampled points are plausible (finite, 1 mm to 10 km), read in the other byte order " +
+                    std::to_string(other) + ": the writer set is_bigendian wrongly (refused rather than read as garbage)");
+}
+
 }  // namespace
 
-CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std::size_t size, const std::string& where) {
-  std::optional<CloudField> axis[3], time;
-  for (const CloudField& f : layout.fields) {
-    const std::size_t bytes = datatypeBytes(f.datatype);
-    const bool wanted = f.name == "x" || f.name == "y" || f.name == "z" || f.name == "time";
-    if (!wanted) continue;  // intensity, ring...: not used, any datatype
-    if (bytes == 0) fail(where, "field '" + f.name + "' has unknown datatype " + std::to_string(f.datatype));
-    if (f.count < 1) fail(where, "field '" + f.name + "' has count 0");
-    if (std::uint64_t{f.offset} + bytes > layout.point_step)
-      fail(where, "field '" + f.name + "' at offset " + std::to_string(f.offset) + " lies outside point_step " +
-                      std::to_string(layout.point_step));
-    if (f.name == "time") time = f;
-    else axis[f.name[0] - 'x'] = f;
+std::size_t cloudDatatypeBytes(std::uint8_t datatype) {
+  switch (datatype) {  // sensor_msgs/PointField constants
+    case 1: case 2: return 1;  // INT8, UINT8
+    case 3: case 4: return 2;  // INT16, UINT16
+    case 5: case 6: case 7: return 4;  // INT32, UINT32, FLOAT32
+    case 8: return 8;  // FLOAT64
+    default: return 0;
   }
-  for (int i = 0; i < 3; ++i)
-    if (!axis[i]) fail(where, std::string("the cloud has no '") + char('x' + i) + "' field");
-  const std::uint64_t width = layout.width, height = layout.height;
-  const std::uint64_t row_step = height > 1 ? layout.row_step : width * layout.point_step;
-  if (height > 1 && row_step < width * layout.point_step)
-    fail(where, "row_step " + std::to_string(layout.row_step) + " is shorter than width * point_step");
-  const std::uint64_t needed = height == 0 || width == 0 ? 0 : (height - 1) * row_step + width * layout.point_step;
-  if (needed > size)
-    fail(where, "data holds " + std::to_string(size) + " bytes, the layout (" + std::to_string(width) + " x " +
-                    std::to_string(height) + " points of " + std::to_string(layout.point_step) + ") needs " +
-                    std::to_string(needed));
-  const bool swap = layout.is_bigendian == hostIsLittleEndian();
+}
+
+CloudLayoutCheck checkCloudLayout(const CloudLayout& layout, std::size_t data_size, const std::string& where) {
+  CloudLayoutCheck out;
+  const std::string step = std::to_string(layout.point_step);
+  // Each field's bytes, [begin, end) within a point; fields of unknown size are not placed.
+  struct Span {
+    const CloudField* field;
+    std::uint64_t begin, end;
+  };
+  std::vector<Span> spans;
+  for (const CloudField& f : layout.fields) {
+    const std::size_t bytes = cloudDatatypeBytes(f.datatype);
+    const std::string name = "field '" + f.name + "'";
+    if (bytes == 0) {
+      if (isRead(f.name)) fail(where, name + " has unknown datatype " + std::to_string(f.datatype));
+      out.warnings.push_back(name + " has unknown datatype " + std::to_string(f.datatype) + " (not read)");
+      continue;
+    }
+    if (f.count < 1) {
+      if (isRead(f.name)) fail(where, name + " has count 0");
+      continue;
+    }
+    const std::uint64_t end = std::uint64_t{f.offset} + std::uint64_t{bytes} * f.count;
+    if (end > layout.point_step)
+      fail(where, name + " (" + datatypeName(f.datatype) + (f.count > 1 ? " x " + std::to_string(f.count) : "") +
+                      " at offset " + std::to_string(f.offset) + ") lies outside point_step " + step);
+    spans.push_back({&f, f.offset, end});
+  }
+  std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.begin < b.begin; });
+  for (std::size_t i = 1; i < spans.size(); ++i) {
+    const Span &a = spans[i - 1], &b = spans[i];
+    if (b.begin < a.end)
+      fail(where, "fields '" + a.field->name + "' (" + datatypeName(a.field->datatype) + ", bytes " + std::to_string(a.begin) +
+                      " to " + std::to_string(a.end - 1) + ") and '" + b.field->name + "' (" + datatypeName(b.field->datatype) +
+                      ", bytes " + std::to_string(b.begin) + " to " + std::to_string(b.end - 1) +
+                      ") overlap in a point of " + step + " bytes");
+  }
+  for (const char* axis : {"x", "y", "z"}) {
+    const auto n = std::count_if(layout.fields.begin(), layout.fields.end(), [&](const CloudField& f) { return f.name == axis; });
+    if (n == 0) fail(where, std::string("the cloud has no '") + axis + "' field");
+    if (n > 1) fail(where, std::string("the cloud has ") + std::to_string(n) + " fields named '" + axis + "'");
+    const auto& f = *std::find_if(layout.fields.begin(), layout.fields.end(), [&](const CloudField& g) { return g.name == axis; });
+    if (f.datatype != 7 && f.datatype != 8)
+      fail(where, std::string("field '") + axis + "' is " + datatypeName(f.datatype) + ": coordinates must be FLOAT32 or FLOAT64");
+  }
+  const std::uint64_t width = layout.width, height = layout.height, row_step = layout.row_step;
+  const std::string shape = std::to_string(width) + " x " + std::to_string(height) + " points of " + step + " bytes, row_step " +
+                            std::to_string(row_step);
+  if (width * height > 0 && layout.point_step == 0) fail(where, "point_step is 0 (" + shape + ")");
+  if (height > 0 && row_step < width * layout.point_step)
+    fail(where, "row_step " + std::to_string(row_step) + " is shorter than width * point_step = " +
+                    std::to_string(width * layout.point_step) + " (" + shape + ")");
+  const std::uint64_t needed = height * row_step;
+  if (needed != data_size)
+    fail(where, "data holds " + std::to_string(data_size) + " bytes, the layout (" + shape + ") describes " +
+                    std::to_string(needed) + (needed > data_size ? ": points are missing" : ": the layout does not describe the data"));
+  return out;
+}
+
+CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std::size_t size, const std::string& where) {
   CloudPoints out;
-  out.xyz.reserve(width * height);
-  if (time) out.time_s.reserve(width * height);
-  for (std::uint64_t r = 0; r < height; ++r) {
-    for (std::uint64_t c = 0; c < width; ++c) {
-      const std::uint8_t* p = data + r * row_step + c * layout.point_step;
-      const Eigen::Vector3d v(readValue(p + axis[0]->offset, axis[0]->datatype, swap),
-                              readValue(p + axis[1]->offset, axis[1]->datatype, swap),
-                              readValue(p + axis[2]->offset, axis[2]->datatype, swap));
-      if (!v.allFinite()) continue;  // no return: organised clouds pad with NaN
+  out.warnings = checkCloudLayout(layout, size, where).warnings;
+  const Axes a = axesOf(layout);
+  const Geometry g{layout.width, layout.height, layout.row_step};
+  checkByteOrder(layout, a, g, data, where);
+  const bool swap = layout.is_bigendian == hostIsLittleEndian();
+  out.declared = g.width * g.height;
+  out.xyz.reserve(out.declared);
+  if (a.time) out.time_s.reserve(out.declared);
+  for (std::uint64_t r = 0; r < g.height; ++r) {
+    for (std::uint64_t c = 0; c < g.width; ++c) {
+      const std::uint8_t* p = data + r * g.row_step + c * layout.point_step;
+      const Eigen::Vector3d v = pointAt(p, a, swap);
+      if (!v.allFinite()) {  // no return: organised clouds pad with NaN
+        ++out.non_finite;
+        continue;
+      }
       out.xyz.push_back(v.cast<float>());
-      if (time) out.time_s.push_back(readValue(p + time->offset, time->datatype, swap));
+      if (a.time) out.time_s.push_back(readValue(p + a.time->offset, a.time->datatype, swap));
     }
   }
   return out;

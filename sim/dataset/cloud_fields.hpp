@@ -2,7 +2,7 @@
 // message describes them, never by an assumed struct: the Velodyne driver's x, y, z,
 // intensity, ring, time come in whatever order and float widths the driver (or a
 // converter: LIO-SAM's, a bag filter) chose. Plain bytes in, no ROS type, so the decoding is
-// tested and fuzzed without a bag.
+// tested and fuzzed without a bag, and ROS 1 and ROS 2 messages share it.
 #pragma once
 
 #include <Eigen/Core>
@@ -29,15 +29,38 @@ struct CloudLayout {
   bool is_bigendian = false;
 };
 
+// Bytes of one value of a sensor_msgs/PointField datatype; 0 for an unknown code.
+std::size_t cloudDatatypeBytes(std::uint8_t datatype);
+
+// What a layout says of itself, before any point is read. `warnings`: what is odd but does
+// not stop the decoding (a field of unknown datatype that is not read).
+struct CloudLayoutCheck {
+  std::vector<std::string> warnings;
+};
+
+// The one check of a cloud's layout against itself and its data, for ROS 1 and ROS 2 alike.
+// Throws std::runtime_error "WHERE: problem" when: x, y or z is missing, given twice, or not
+// FLOAT32/FLOAT64; a field read (x, y, z, time) has an unknown datatype or count 0; a field
+// lies outside point_step or overlaps another; point_step is 0 with points declared;
+// row_step is shorter than width * point_step; or the data is not height * row_step bytes
+// (shorter: points missing; longer: e.g. height 0 over a full data block, a layout that does
+// not describe its data).
+CloudLayoutCheck checkCloudLayout(const CloudLayout& layout, std::size_t data_size, const std::string& where);
+
 struct CloudPoints {
   std::vector<Eigen::Vector3f> xyz;  // finite points only (an organised cloud pads with NaN)
   // Seconds of each point relative to the header stamp (the driver's `time` field, FLOAT32 or
   // FLOAT64), one per kept point; empty when the cloud has no `time` field.
   std::vector<double> time_s;
+  std::size_t declared = 0;    // width * height
+  std::size_t non_finite = 0;  // dropped: NaN or infinite x, y or z
+  std::vector<std::string> warnings;  // checkCloudLayout's
 };
 
-// Throws std::runtime_error "WHERE: problem" when x, y or z is missing, a field lies outside
-// point_step, a datatype is unknown, or the data is shorter than the layout says.
+// checkCloudLayout, then the points. The byte order is as declared (is_bigendian: swapped on
+// this little-endian host). A cloud whose points are implausible in the declared order but
+// plausible in the other (a writer that set is_bigendian wrongly) is refused by name rather
+// than read as garbage.
 CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std::size_t size, const std::string& where);
 
 }  // namespace bimloc::sim

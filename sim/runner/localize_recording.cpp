@@ -25,7 +25,15 @@ RecordingRun localizeRecording(const bim::Building& building, std::size_t truth_
   // ends unconverged (as `bimloc run` reports them).
   std::optional<pf::UpdateReport> last_verdict;
   std::size_t verdict_storey = truth_storey;
+  RecordingChecks checks;
   turns([&](const RecordedTurn& turn) {
+    ++checks.scans;
+    checks.points += turn.drops;
+    for (const auto& w : turn.warnings) ++checks.layout_warnings[w];
+    if (turn.drops.read == turn.drops.dropped()) {
+      if (++checks.scans_skipped <= 3) checks.skipped_names.push_back(turn.name);
+      return;
+    }
     // The localizer and the map error may both want the points: read (decode, de-skew) once.
     auto cache = std::make_shared<std::optional<std::vector<Eigen::Vector3f>>>();
     const Localizer::PointSource points = [&turn, cache]() -> std::vector<Eigen::Vector3f> {
@@ -52,6 +60,11 @@ RecordingRun localizeRecording(const bim::Building& building, std::size_t truth_
     }
     if (observe) observe(turn, *last);
   });
+  if (checks.scans > 0 && checks.scans_skipped == checks.scans) {
+    std::vector<std::string> why = checks.warnings();
+    throw std::runtime_error(r.name + ": no scan has a usable point: " + why.front() + (why.size() > 1 ? "; " + why[1] : ""));
+  }
+  r.recording = checks;
   const auto& last = run.last;
   if (truth.empty()) {
     r.converged = last && last->convergence_stamp_s;

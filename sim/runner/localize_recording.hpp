@@ -19,6 +19,10 @@ struct RecordedTurn {
   Eigen::Isometry3d T_odom_base = Eigen::Isometry3d::Identity();
   Localizer::PointSource points;  // in the lidar frame; called at most once per turn
   std::string name;               // for warnings: the PCD's path, the bag message
+  // What the reader dropped of this scan (`points` gives the rest); no usable point: the turn
+  // is skipped, never given to the localizer.
+  PointDrops drops;
+  std::vector<std::string> warnings;  // the reader's, about this scan (its layout)
 };
 
 // Calls its argument for each turn, in order.
@@ -31,6 +35,9 @@ struct RecordingRun {
   std::optional<LocalizationResult> last;
 };
 
+// Turns with no usable point are skipped; result.recording counts the scans and points
+// dropped (its odometry part is the caller's). Throws std::runtime_error when no turn at all
+// has a usable point: the recording cannot be used.
 // `start_s`: the recording's start (errors are timed from it, as `run` times them from the
 // simulation's start). `result` carries the run's names (name, plan, storey, method, seed, storey_auto) and is
 // completed. `truth` (map <- base_link) may be empty: then nothing is scored but convergence.

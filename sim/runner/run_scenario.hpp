@@ -3,6 +3,7 @@
 // against the ground truth and the scenario's expectations.
 #pragma once
 
+#include "sim/dataset/recording_checks.hpp"
 #include "sim/scenario/localizer_config.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/world/world.hpp"
@@ -80,6 +81,9 @@ struct ScenarioResult {
   bool passed = false;
   std::vector<std::string> failures;      // why it did not pass
   std::vector<std::string> warnings;
+  // A recording's run (`bimloc localize`): what its readers dropped and why; unset for
+  // simulated runs, whose input is the simulator's own.
+  std::optional<RecordingChecks> recording;
   double sim_seconds = 0, wall_seconds = 0;
   // Of wall_seconds, the simulator's setup before the first turn: the base's tour planned
   // through the storey (A* on a 5 cm grid of body sweeps) and the odometry drawn. It grows
