@@ -12,7 +12,7 @@ DEB_PACKAGES := build-essential cmake pkg-config libifcplusplus-dev libboost-dev
                 nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libembree-dev libbullet-dev \
                 libyaml-cpp-dev libboost-filesystem-dev librosbag-storage-dev libsensor-msgs-dev \
                 libnav-msgs-dev libtf2-msgs-dev pluginlib-dev librcpputils-dev libament-index-cpp-dev \
-                python3-rosbag python3-numpy libpcl-dev libosmesa6-dev libpng-dev libceres-dev
+                python3-rosbag python3-numpy libpcl-dev libosmesa6-dev libpng-dev libceres-dev tcpdump
 
 .PHONY: all deps build test demo bench worlds meshes clean
 

@@ -181,7 +181,7 @@ TEST(BagInput, RenamedTopicsAndFramesLocalizeWithTheOptions) {
   const auto refused = runBimloc("localize '" + bag + "' --plan '" + kPlan + "'");
   EXPECT_EQ(refused.exit_code, 1);
   // The missing topic, then every topic of the bag with its type.
-  EXPECT_NE(refused.err.find(bag + ": no topic /velodyne_points (sensor_msgs/PointCloud2; choose another with --cloud-topic)"),
+  EXPECT_NE(refused.err.find(bag + ": no topic /velodyne_points (sensor_msgs/PointCloud2 or velodyne_msgs/VelodyneScan; choose another with --cloud-topic)"),
             std::string::npos) << refused.err;
   EXPECT_NE(refused.err.find("/lidar/points (sensor_msgs/PointCloud2, 80 messages)"), std::string::npos) << refused.err;
   EXPECT_NE(refused.err.find("/legs/odom (nav_msgs/Odometry,"), std::string::npos) << refused.err;

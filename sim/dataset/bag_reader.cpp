@@ -2,6 +2,8 @@
 
 #include "sim/dataset/cloud_fields.hpp"
 #include "sim/dataset/deskew.hpp"
+#include "sim/dataset/velodyne_scan_msg.hpp"
+#include "sim/dataset/velodyne_scan_points.hpp"
 
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -69,6 +71,45 @@ std::string bagProblem(const std::exception& e) {
          (cut ? " (a bag cut short, e.g. a recording that did not finish: 'rosbag reindex' rebuilds its index)" : "");
 }
 
+constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
+constexpr const char* kPacketsType = "velodyne_msgs/VelodyneScan";
+
+// One message of the cloud topic: its stamp and frame at once, its points when asked.
+struct CloudMessage {
+  double header_s = 0;
+  std::string frame;
+  std::function<CloudPoints()> points;
+};
+
+CloudMessage readCloudMessage(const rosbag::MessageInstance& m, bool packets, const std::string& where) {
+  CloudMessage out;
+  if (packets) {  // the VLP-16's raw packets, decoded as the manual says (vlp16_packet.hpp)
+    const auto scan = m.instantiate<velodyne_msgs::VelodyneScan>();
+    if (!scan) throw std::runtime_error(where + ": cannot be read as velodyne_msgs/VelodyneScan");
+    out.header_s = scan->header.stamp.toSec();
+    out.frame = frameName(scan->header.frame_id);
+    out.points = [scan, where, header_s = out.header_s] {
+      std::vector<RawPacket> raw;
+      raw.reserve(scan->packets.size());
+      for (const auto& packet : scan->packets) raw.push_back({packet.stamp.toSec(), packet.data.data(), packet.data.size()});
+      return decodeVelodyneScan(raw, header_s, Vlp16DecodeOptions{}, where);
+    };
+    return out;
+  }
+  const auto cloud = m.instantiate<sensor_msgs::PointCloud2>();
+  if (!cloud) throw std::runtime_error(where + ": cannot be read as sensor_msgs/PointCloud2");
+  out.header_s = cloud->header.stamp.toSec();
+  out.frame = frameName(cloud->header.frame_id);
+  out.points = [cloud, where] {
+    CloudLayout layout;
+    for (const auto& f : cloud->fields) layout.fields.push_back({f.name, f.offset, f.datatype, f.count});
+    layout.width = cloud->width, layout.height = cloud->height, layout.point_step = cloud->point_step;
+    layout.row_step = cloud->row_step, layout.is_bigendian = cloud->is_bigendian;
+    return decodeCloud(layout, cloud->data.data(), cloud->data.size(), where);
+  };
+  return out;
+}
+
 }  // namespace
 
 struct BagInput::Impl {
@@ -110,7 +151,10 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
         fail("topic " + topic + " is " + it->second.first + ", not " + type + " (choose another with " + option +
              "). The bag has:" + topicList());
     };
-    require(options.cloud_topic, "sensor_msgs/PointCloud2", "--cloud-topic");
+    // The clouds: a driver's PointCloud2, or the VLP-16's raw packets, decoded here.
+    const auto cloud_it = impl_->topics.find(options.cloud_topic);
+    packets_ = cloud_it != impl_->topics.end() && cloud_it->second.first == kPacketsType;
+    if (!packets_) require(options.cloud_topic, std::string(kCloudType) + " or " + kPacketsType, "--cloud-topic");
     const bool odom_topic = impl_->topics.count(options.odom_topic) > 0;
     if (odom_topic || options.odom_topic_given) require(options.odom_topic, "nav_msgs/Odometry", "--odom-topic");
 
@@ -205,30 +249,20 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
       std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
       turn_period_s_ = gaps[gaps.size() / 2];
     }
-    const auto first = clouds.begin()->instantiate<sensor_msgs::PointCloud2>();
-    if (!first) fail(options.cloud_topic + ": the first message cannot be read as sensor_msgs/PointCloud2");
-    lidar_frame_ = frameName(first->header.frame_id);
-    bool has_time = false;
-    for (const auto& f : first->fields) has_time = has_time || f.name == "time";
-    timed_ = has_time;
+    const CloudMessage first = readCloudMessage(*clouds.begin(), packets_, path + ": " + options.cloud_topic + " message 0");
+    lidar_frame_ = first.frame;
     // The driver stamps a turn at its first firing (times >= 0) or, configured so, at its last
     // (times <= 0): the turn's middle is half a period after, or before, the stamp.
-    if (has_time) {
-      CloudLayout layout;
-      for (const auto& f : first->fields) layout.fields.push_back({f.name, f.offset, f.datatype, f.count});
-      layout.width = first->width, layout.height = first->height, layout.point_step = first->point_step;
-      layout.row_step = first->row_step, layout.is_bigendian = first->is_bigendian;
-      const CloudPoints p = decodeCloud(layout, first->data.data(), first->data.size(), path + ": " + options.cloud_topic + " message 0");
-      double sum = 0;
-      for (double t : p.time_s) sum += t;
-      first_offset_s_ = !p.time_s.empty() && sum < 0 ? -0.5 * turn_period_s_ : 0.5 * turn_period_s_;
-    } else {
-      first_offset_s_ = 0.5 * turn_period_s_;
-    }
-    first_turn_s_ = first->header.stamp.toSec() + first_offset_s_;
+    const CloudPoints p = first.points();
+    time_field_ = p.time_field;
+    timed_ = !p.time_s.empty();
+    double sum = 0;
+    for (double t : p.time_s) sum += p.time_absolute ? t - first.header_s : t;
+    first_offset_s_ = !p.time_s.empty() && sum < 0 ? -0.5 * turn_period_s_ : 0.5 * turn_period_s_;
+    first_turn_s_ = first.header_s + first_offset_s_;
     // Odometry outside the clouds' time (another clock: sim time against wall time) would make
     // every turn look taken from one pose: refused, as the dataset reader refuses it.
-    const double c0 = first->header.stamp.toSec(), c1 = c0 + turn_period_s_ * static_cast<double>(turns_);
+    const double c0 = first.header_s, c1 = c0 + turn_period_s_ * static_cast<double>(turns_);
     if (odometry_.back().stamp_s < c0 || odometry_.front().stamp_s > c1) {
       char what[256];
       std::snprintf(what, sizeof what, "the clouds (%.3f to %.3f s) and the odometry (%.3f to %.3f s) never overlap in time",
@@ -267,24 +301,19 @@ void BagInput::forEachTurn(const std::function<void(const BagTurn&)>& visit) con
     double previous = -1e300;
     for (const rosbag::MessageInstance& m : clouds) {
       const std::string where = path_ + ": " + options_.cloud_topic + " message " + std::to_string(index);
-      const auto cloud = m.instantiate<sensor_msgs::PointCloud2>();
-      if (!cloud) throw std::runtime_error(where + ": cannot be read as sensor_msgs/PointCloud2");
-      const double header_s = cloud->header.stamp.toSec();
+      const CloudMessage message = readCloudMessage(m, packets_, where);
+      const double header_s = message.header_s;
       BagTurn turn;
       turn.index = index++;
       turn.stamp_s = header_s + first_offset_s_;
       if (!(turn.stamp_s > previous))
         throw std::runtime_error(where + ": stamp " + std::to_string(header_s) + " does not follow the previous cloud's");
       previous = turn.stamp_s;
-      turn.points = [this, cloud, where, header_s, ref = turn.stamp_s] {
-        CloudLayout layout;
-        for (const auto& f : cloud->fields) layout.fields.push_back({f.name, f.offset, f.datatype, f.count});
-        layout.width = cloud->width, layout.height = cloud->height, layout.point_step = cloud->point_step;
-        layout.row_step = cloud->row_step, layout.is_bigendian = cloud->is_bigendian;
-        CloudPoints p = decodeCloud(layout, cloud->data.data(), cloud->data.size(), where);
+      turn.points = [this, message, header_s, ref = turn.stamp_s] {
+        CloudPoints p = message.points();
         if (options_.deskew && !p.time_s.empty()) {
           // Some drivers give absolute times (seconds since the epoch): make them relative.
-          if (std::abs(p.time_s.front()) > 1e6)
+          if (p.time_absolute)
             for (double& t : p.time_s) t -= header_s;
           deskew(p.xyz, p.time_s, header_s, ref, odometry_, T_base_lidar_);
         }

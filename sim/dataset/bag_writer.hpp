@@ -3,6 +3,7 @@
 #pragma once
 
 #include "sim/dataset/dataset_writer.hpp"
+#include "sim/lidar/vlp16_packet_encoder.hpp"
 
 #include <cstdint>
 #include <map>
@@ -22,6 +23,9 @@ class BagWriter {
   // `stamp_ns` is the dataset time (dataset_clock.hpp) of the sample; `seq` its index in
   // its stream, which becomes header.seq.
   void writeScan(std::uint64_t stamp_ns, std::uint32_t seq, const LidarScan& scan);  // /velodyne_points
+  // /velodyne_packets: one velodyne_msgs/VelodyneScan a turn, stamped as its first packet
+  // (`stamp_ns`); each packet stamped with its first firing (dataset time, packet.stamp_s).
+  void writePackets(std::uint64_t stamp_ns, std::uint32_t seq, const std::vector<Vlp16StampedPacket>& packets);
   // /odom, and on /tf both odom -> base_link and the mount base_link -> velodyne.
   void writeOdometry(std::uint64_t stamp_ns, std::uint32_t seq, const OdometrySample& odom);
   void writeGroundTruth(std::uint64_t stamp_ns, std::uint32_t seq, const GroundTruthSample& truth);

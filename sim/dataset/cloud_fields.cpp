@@ -2,6 +2,7 @@
 
 #include "sim/dataset/velodyne_points.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -43,20 +44,36 @@ double readValue(const std::uint8_t* p, std::uint8_t datatype, bool swap) {
   }
 }
 
+bool isInteger(std::uint8_t datatype) { return datatype >= 1 && datatype <= 6; }
+
 }  // namespace
 
+std::string cloudTimeField(const CloudLayout& layout) {
+  for (const char* name : kCloudTimeFields)
+    for (const CloudField& f : layout.fields)
+      if (f.name == name) return name;
+  return "";
+}
+
 CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std::size_t size, const std::string& where) {
-  std::optional<CloudField> axis[3], time;
+  std::optional<CloudField> axis[3], time, ring;
+  const std::string time_name = cloudTimeField(layout);
+  const bool has_ring = std::any_of(layout.fields.begin(), layout.fields.end(), [](const CloudField& f) { return f.name == "ring"; });
+  const std::string ring_name = has_ring ? "ring" : "channel";
   for (const CloudField& f : layout.fields) {
     const std::size_t bytes = datatypeBytes(f.datatype);
-    const bool wanted = f.name == "x" || f.name == "y" || f.name == "z" || f.name == "time";
-    if (!wanted) continue;  // intensity, ring...: not used, any datatype
+    // The ring is informative only: one of an unknown datatype or outside the point is ignored.
+    const bool is_time = !time_name.empty() && f.name == time_name,
+               is_ring = f.name == ring_name && bytes > 0 && std::uint64_t{f.offset} + bytes <= layout.point_step;
+    const bool wanted = f.name == "x" || f.name == "y" || f.name == "z" || is_time || is_ring;
+    if (!wanted) continue;  // intensity, ...: not used, any datatype
     if (bytes == 0) fail(where, "field '" + f.name + "' has unknown datatype " + std::to_string(f.datatype));
     if (f.count < 1) fail(where, "field '" + f.name + "' has count 0");
     if (std::uint64_t{f.offset} + bytes > layout.point_step)
       fail(where, "field '" + f.name + "' at offset " + std::to_string(f.offset) + " lies outside point_step " +
                       std::to_string(layout.point_step));
-    if (f.name == "time") time = f;
+    if (is_time) time = f;
+    else if (is_ring) ring = f;
     else axis[f.name[0] - 'x'] = f;
   }
   for (int i = 0; i < 3; ++i)
@@ -73,7 +90,10 @@ CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std
   const bool swap = layout.is_bigendian == hostIsLittleEndian();
   CloudPoints out;
   out.xyz.reserve(width * height);
-  if (time) out.time_s.reserve(width * height);
+  if (time) out.time_s.reserve(width * height), out.time_field = time->name;
+  if (ring) out.ring.reserve(width * height);
+  // Integer times are nanoseconds; a float `timestamp` in nanoseconds is told by its size.
+  const double time_scale = time && isInteger(time->datatype) ? 1e-9 : 1.0;
   for (std::uint64_t r = 0; r < height; ++r) {
     for (std::uint64_t c = 0; c < width; ++c) {
       const std::uint8_t* p = data + r * row_step + c * layout.point_step;
@@ -82,8 +102,14 @@ CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std
                               readValue(p + axis[2]->offset, axis[2]->datatype, swap));
       if (!v.allFinite()) continue;  // no return: organised clouds pad with NaN
       out.xyz.push_back(v.cast<float>());
-      if (time) out.time_s.push_back(readValue(p + time->offset, time->datatype, swap));
+      if (time) out.time_s.push_back(time_scale * readValue(p + time->offset, time->datatype, swap));
+      if (ring) out.ring.push_back(static_cast<std::uint16_t>(readValue(p + ring->offset, ring->datatype, swap)));
     }
+  }
+  if (!out.time_s.empty()) {
+    if (std::abs(out.time_s.front()) > 1e12)
+      for (double& t : out.time_s) t *= 1e-9;
+    out.time_absolute = std::abs(out.time_s.front()) > 1e6;
   }
   return out;
 }

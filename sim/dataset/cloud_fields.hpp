@@ -29,12 +29,30 @@ struct CloudLayout {
   bool is_bigendian = false;
 };
 
+// The per-point time fields of the common lidar drivers, by name (the first present wins):
+//   time         Velodyne (velodyne_pointcloud), FLOAT32 seconds relative to the header stamp
+//   t            Ouster (ouster-ros), UINT32 nanoseconds relative
+//   offset_time  Livox (livox_ros_driver2), UINT32 nanoseconds relative
+//   time_stamp   tier4/nebula, UINT32 nanoseconds relative
+//   timestamp    Hesai (HesaiLidar_ROS_2.0), RoboSense (rslidar_sdk), Livox: FLOAT64 absolute
+//                seconds (nanoseconds when the value is beyond 1e12)
+// Units follow the datatype: integers are nanoseconds, floats seconds. A value beyond 1e6 s is
+// absolute (since the epoch): CloudPoints::time_absolute, and the caller subtracts the stamp.
+inline constexpr const char* kCloudTimeFields[] = {"time", "t", "offset_time", "time_stamp", "timestamp"};
+
 struct CloudPoints {
   std::vector<Eigen::Vector3f> xyz;  // finite points only (an organised cloud pads with NaN)
-  // Seconds of each point relative to the header stamp (the driver's `time` field, FLOAT32 or
-  // FLOAT64), one per kept point; empty when the cloud has no `time` field.
+  // Seconds of each point (relative to the header stamp, or since the epoch when
+  // time_absolute), one per kept point; empty when the cloud has no time field.
   std::vector<double> time_s;
+  std::string time_field;  // the field the times came from ("" without); "packets" for decoded packets
+  bool time_absolute = false;
+  // The laser of each kept point (`ring`, UINT16 or UINT8, or `channel`); empty without.
+  std::vector<std::uint16_t> ring;
 };
+
+// The time field decodeCloud would use, or "" when the layout has none.
+std::string cloudTimeField(const CloudLayout& layout);
 
 // Throws std::runtime_error "WHERE: problem" when x, y or z is missing, a field lies outside
 // point_step, a datatype is unknown, or the data is shorter than the layout says.

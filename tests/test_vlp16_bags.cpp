@@ -1,0 +1,147 @@
+// The VLP-16's packets and the other drivers' point layouts through the command line (issue
+// 29, parts 3 and 4): `bimloc simulate --packets` writes /velodyne_packets and velodyne.pcap,
+// python rosbag reads the packets back (its message class rebuilt from the definition the bag
+// stores), and `bimloc localize` runs on the packets and on the clouds rewritten into Ouster's,
+// Hesai's and a time-less layout by python rosbag. The truth of the runs: the same bag's
+// /velodyne_points, which the decoder of the packets must match.
+#include "test_support.hpp"
+
+#include "sim/lidar/vlp16_packet.hpp"
+#include "sim/lidar/vlp16_turns.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using namespace bimloc;
+using test::runBimloc;
+
+namespace {
+
+const std::string kPlan = std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc";
+
+// One short simulation with packets for the whole file (the corridor start of test_bag_input).
+const std::string& simulated() {
+  static const std::string dir = [] {
+    const std::string d = test::tempDir("vlp16-bags");
+    std::ofstream(d + "/s.yaml") << "name: packets\nworld: " << kPlan
+                                 << "\nstart: {room: C100, yaw_deg: 0}\nmotion: {type: tour, rooms: [R101]}\n"
+                                    "duration_s: 8\nodometry: {preset: legged}\nseed: 3\n";
+    const auto r = runBimloc("simulate '" + d + "/s.yaml' --out '" + d + "/data' --quiet --packets");
+    if (r.exit_code != 0) ADD_FAILURE() << r.err;
+    return d;
+  }();
+  return dir;
+}
+
+std::string run(const std::string& cmd) {
+  std::string out;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return out;
+  char buffer[4096];
+  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  pclose(pipe);
+  return out;
+}
+
+std::string rewritten(const std::string& mode) {
+  const std::string out = simulated() + "/" + mode + ".bag";
+  if (!fs::exists(out)) {
+    const std::string cmd = "/usr/bin/python3 '" + std::string(BIMLOC_TESTS_DIR) + "/rewrite_bag.py' '" + simulated() +
+                            "/data/dataset.bag' '" + out + "' " + mode;
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  }
+  return out;
+}
+
+nlohmann::json localizeJson(const std::string& input, const std::string& options = "") {
+  const auto r = runBimloc("localize '" + input + "' --plan '" + kPlan + "' --json " + options);
+  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
+  try {
+    return nlohmann::json::parse(r.out)["scenarios"][0];
+  } catch (const std::exception&) {
+    ADD_FAILURE() << "not JSON: " << r.out << r.err;
+    return {};
+  }
+}
+
+}  // namespace
+
+TEST(Vlp16Bags, SimulateWritesThePacketsInTheBagAndThePcap) {
+  const std::string data = simulated() + "/data";
+  const auto meta = nlohmann::json::parse(std::ifstream(data + "/metadata.json"));
+  EXPECT_EQ(meta["topics"]["/velodyne_packets"]["type"], "velodyne_msgs/VelodyneScan") << meta["topics"].dump();
+  EXPECT_EQ(meta["topics"]["/velodyne_packets"]["messages"], 80);
+  ASSERT_TRUE(fs::exists(data + "/velodyne.pcap"));
+  // ROS's own reader: genmsg's MD5 sum, one message a turn of 76 packets, stamped as the clouds.
+  const std::string json = run("/usr/bin/python3 '" + std::string(BIMLOC_TESTS_DIR) + "/read_velodyne_scan.py' '" + data +
+                               "/dataset.bag' /velodyne_packets");
+  nlohmann::json j;
+  ASSERT_NO_THROW(j = nlohmann::json::parse(json)) << json;
+  EXPECT_EQ(j["type"], "velodyne_msgs/VelodyneScan");
+  EXPECT_EQ(j["md5sum"], "50804fc9533a0e579e6322c04ae70566");
+  EXPECT_EQ(j["messages"], 80);
+  for (const auto& n : j["packets"]) EXPECT_EQ(n, 76);
+  EXPECT_EQ(j["frames"][0], "velodyne");
+  EXPECT_NEAR(j["stamps"][0].get<double>(), 1000.0, 1e-9);
+  EXPECT_NEAR(j["first_packet_stamp"].get<double>(), 1000.0, 1e-9);
+  // The first packet as python read it decodes to the start of a turn.
+  const std::string hex = j["first_packet_hex"];
+  ASSERT_EQ(hex.size(), 2 * sim::kVlp16PacketBytes);
+  std::vector<std::uint8_t> bytes(sim::kVlp16PacketBytes);
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<std::uint8_t>(std::stoi(hex.substr(2 * i, 2), nullptr, 16));
+  std::vector<sim::Vlp16Point> points;
+  sim::decodeVlp16Packet(bytes.data(), bytes.size(), 1000.0, {}, points, "first packet");
+  ASSERT_FALSE(points.empty());
+  EXPECT_LT(points.front().azimuth_deg, 0.01);
+  EXPECT_NEAR(bytes[1204], 0x37, 0);
+  // The pcap holds the same stream: 80 turns of 76 datagrams.
+  const std::string pcap = run("/usr/bin/python3 '" + std::string(BIMLOC_TESTS_DIR) + "/read_pcap.py' '" + data +
+                               "/velodyne.pcap' '" + simulated() + "/payloads.bin'");
+  nlohmann::json p;
+  ASSERT_NO_THROW(p = nlohmann::json::parse(pcap)) << pcap;
+  EXPECT_EQ(p["packets"], 80 * 76);
+  EXPECT_EQ(p["bad_udp_checksums"], 0);
+  EXPECT_NEAR(p["first_stamp"].get<double>(), 1000.0, 1e-6);
+}
+
+TEST(Vlp16Bags, LocalizeOnThePacketsLikeOnTheClouds) {
+  const std::string bag = simulated() + "/data/dataset.bag";
+  const auto clouds = localizeJson(bag);
+  const auto packets = localizeJson(bag, "--cloud-topic /velodyne_packets");
+  ASSERT_TRUE(clouds["converged"]);
+  EXPECT_EQ(packets["converged"], true);
+  EXPECT_EQ(packets["false_convergence"], false);
+  EXPECT_EQ(packets["found_room"], clouds["found_room"]);
+  // The same turns within the packets' 2 mm and 0.01 deg: the same place, nearly the same pose.
+  EXPECT_NEAR(packets["position_error_m"].get<double>(), clouds["position_error_m"].get<double>(), 0.02);
+  const auto r = runBimloc("localize '" + bag + "' --plan '" + kPlan + "' --cloud-topic /velodyne_packets");
+  EXPECT_NE(r.out.find("de-skew: on (per-point time from the VLP-16's packets on /velodyne_packets)"), std::string::npos)
+      << r.out;
+}
+
+TEST(Vlp16Bags, OtherDriversLayoutsDeskewFromTheirOwnTimeFieldsAndNoTimeIsSaidOnce) {
+  const std::string bag = simulated() + "/data/dataset.bag";
+  const auto velodyne = localizeJson(bag);
+  for (const auto& [mode, field] : {std::pair<std::string, std::string>{"ouster", "t"}, {"hesai", "timestamp"}}) {
+    SCOPED_TRACE(mode);
+    const auto j = localizeJson(rewritten(mode));
+    EXPECT_EQ(j["converged"], velodyne["converged"]);
+    EXPECT_NEAR(j["position_error_m"].get<double>(), velodyne["position_error_m"].get<double>(), 1e-3);
+    const auto r = runBimloc("localize '" + rewritten(mode) + "' --plan '" + kPlan + "'");
+    EXPECT_NE(r.out.find("de-skew: on (per-point time from the field '" + field + "')"), std::string::npos) << r.out;
+  }
+  const auto r = runBimloc("localize '" + rewritten("notime") + "' --plan '" + kPlan + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::string note = "de-skew: off (the clouds on /velodyne_points have no per-point time field";
+  const auto first = r.out.find(note);
+  EXPECT_NE(first, std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(note, first + 1), std::string::npos) << "said more than once:\n" << r.out;
+  // Without de-skew, as the Velodyne layout with --no-deskew.
+  EXPECT_NEAR(localizeJson(rewritten("notime"))["position_error_m"].get<double>(),
+              localizeJson(bag, "--no-deskew")["position_error_m"].get<double>(), 1e-3);
+}
