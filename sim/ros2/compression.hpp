@@ -1,0 +1,20 @@
+// MCAP chunk compression: "zstd" (libzstd), "lz4" (an LZ4 frame, liblz4) or "" (none).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace bimloc::sim::ros2 {
+
+// Decompresses `size` bytes into exactly `uncompressed_size` bytes. Throws std::runtime_error
+// "WHERE: problem" for an unknown compression, a size the data cannot have (bounded by the
+// format's largest ratio, so a damaged size allocates nothing huge), or data that does not
+// decompress to that size.
+std::vector<std::uint8_t> decompress(const std::string& compression, const std::uint8_t* data, std::size_t size,
+                                     std::uint64_t uncompressed_size, const std::string& where);
+
+std::vector<std::uint8_t> compress(const std::string& compression, const std::vector<std::uint8_t>& data);
+
+}  // namespace bimloc::sim::ros2
