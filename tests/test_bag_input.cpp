@@ -3,6 +3,7 @@
 // rewritten by ROS's own python rosbag (tests/rewrite_bag.py: renamed topics and frames,
 // the clouds' fields in another order and width, no odometry), analytic clouds and motions
 // for the field decoding and the de-skew, and python rosbag again reading localized.bag.
+#include "bag_fixtures.hpp"
 #include "test_support.hpp"
 
 #include "sim/dataset/cloud_fields.hpp"
@@ -23,49 +24,13 @@ using test::runBimloc;
 
 namespace {
 
-const std::string kPlan = std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc";
+const std::string& kPlan = test::officePlan();
 
-// One short simulation for the whole file: from the corridor, which converges within 2 s.
-const std::string& simulated() {
-  static const std::string dir = [] {
-    const std::string d = test::tempDir("bag-input");
-    std::ofstream(d + "/s.yaml") << "name: bag input\nworld: " << kPlan
-                                 << "\nstart: {room: C100, yaw_deg: 0}\nmotion: {type: tour, rooms: [R101]}\n"
-                                    "duration_s: 8\nodometry: {preset: legged}\nseed: 3\n";
-    const auto r = runBimloc("simulate '" + d + "/s.yaml' --out '" + d + "/data' --quiet");
-    if (r.exit_code != 0) ADD_FAILURE() << r.err;
-    return d;
-  }();
-  return dir;
-}
+const std::string& simulated() { return test::simulatedCorridor("bag-input"); }
 
-std::string rewritten(const std::string& mode) {
-  const std::string out = simulated() + "/" + mode + ".bag";
-  if (!fs::exists(out)) {
-    const std::string cmd = "/usr/bin/python3 '" + std::string(BIMLOC_TESTS_DIR) + "/rewrite_bag.py' '" + simulated() +
-                            "/data/dataset.bag' '" + out + "' " + mode;
-    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  }
-  return out;
-}
+std::string rewritten(const std::string& mode) { return test::rewrittenBag(simulated(), mode); }
 
-nlohmann::json localizeJson(const std::string& input, const std::string& options = "") {
-  const auto r = runBimloc("localize '" + input + "' --plan '" + kPlan + "' --json " + options);
-  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
-  try {
-    auto j = nlohmann::json::parse(r.out)["scenarios"][0];
-    j.erase("wall_seconds"), j.erase("name");  // the input's path and the machine's speed
-    for (auto& w : j["warnings"]) {  // "INPUT: message N: ...": the same without the path
-      std::string text = w.get<std::string>();
-      if (text.rfind(input, 0) == 0) text.erase(0, input.size());
-      w = text;
-    }
-    return j;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not JSON: " << r.out << r.err;
-    return {};
-  }
-}
+using test::localizeJson;
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

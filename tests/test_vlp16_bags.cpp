@@ -4,6 +4,7 @@
 // stores), and `bimloc localize` runs on the packets and on the clouds rewritten into Ouster's,
 // Hesai's and a time-less layout by python rosbag. The truth of the runs: the same bag's
 // /velodyne_points, which the decoder of the packets must match.
+#include "bag_fixtures.hpp"
 #include "test_support.hpp"
 
 #include "sim/lidar/vlp16_packet.hpp"
@@ -12,7 +13,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -22,52 +22,15 @@ using test::runBimloc;
 
 namespace {
 
-const std::string kPlan = std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc";
+const std::string& kPlan = test::officePlan();
 
 // One short simulation with packets for the whole file (the corridor start of test_bag_input).
-const std::string& simulated() {
-  static const std::string dir = [] {
-    const std::string d = test::tempDir("vlp16-bags");
-    std::ofstream(d + "/s.yaml") << "name: packets\nworld: " << kPlan
-                                 << "\nstart: {room: C100, yaw_deg: 0}\nmotion: {type: tour, rooms: [R101]}\n"
-                                    "duration_s: 8\nodometry: {preset: legged}\nseed: 3\n";
-    const auto r = runBimloc("simulate '" + d + "/s.yaml' --out '" + d + "/data' --quiet --packets");
-    if (r.exit_code != 0) ADD_FAILURE() << r.err;
-    return d;
-  }();
-  return dir;
-}
+const std::string& simulated() { return test::simulatedCorridor("vlp16-bags", "--packets"); }
 
-std::string run(const std::string& cmd) {
-  std::string out;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return out;
-  char buffer[4096];
-  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
-  pclose(pipe);
-  return out;
-}
+std::string rewritten(const std::string& mode) { return test::rewrittenBag(simulated(), mode); }
 
-std::string rewritten(const std::string& mode) {
-  const std::string out = simulated() + "/" + mode + ".bag";
-  if (!fs::exists(out)) {
-    const std::string cmd = "/usr/bin/python3 '" + std::string(BIMLOC_TESTS_DIR) + "/rewrite_bag.py' '" + simulated() +
-                            "/data/dataset.bag' '" + out + "' " + mode;
-    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  }
-  return out;
-}
-
-nlohmann::json localizeJson(const std::string& input, const std::string& options = "") {
-  const auto r = runBimloc("localize '" + input + "' --plan '" + kPlan + "' --json " + options);
-  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
-  try {
-    return nlohmann::json::parse(r.out)["scenarios"][0];
-  } catch (const std::exception&) {
-    ADD_FAILURE() << "not JSON: " << r.out << r.err;
-    return {};
-  }
-}
+using test::localizeJson;
+using test::runPython;
 
 }  // namespace
 
@@ -78,8 +41,7 @@ TEST(Vlp16Bags, SimulateWritesThePacketsInTheBagAndThePcap) {
   EXPECT_EQ(meta["topics"]["/velodyne_packets"]["messages"], 80);
   ASSERT_TRUE(fs::exists(data + "/velodyne.pcap"));
   // ROS's own reader: genmsg's MD5 sum, one message a turn of 76 packets, stamped as the clouds.
-  const std::string json = run("/usr/bin/python3 '" + std::string(BIMLOC_TESTS_DIR) + "/read_velodyne_scan.py' '" + data +
-                               "/dataset.bag' /velodyne_packets");
+  const std::string json = runPython("read_velodyne_scan.py", "'" + data + "/dataset.bag' /velodyne_packets");
   nlohmann::json j;
   ASSERT_NO_THROW(j = nlohmann::json::parse(json)) << json;
   EXPECT_EQ(j["type"], "velodyne_msgs/VelodyneScan");
@@ -100,8 +62,7 @@ TEST(Vlp16Bags, SimulateWritesThePacketsInTheBagAndThePcap) {
   EXPECT_LT(points.front().azimuth_deg, 0.01);
   EXPECT_NEAR(bytes[1204], 0x37, 0);
   // The pcap holds the same stream: 80 turns of 76 datagrams.
-  const std::string pcap = run("/usr/bin/python3 '" + std::string(BIMLOC_TESTS_DIR) + "/read_pcap.py' '" + data +
-                               "/velodyne.pcap' '" + simulated() + "/payloads.bin'");
+  const std::string pcap = runPython("read_pcap.py", "'" + data + "/velodyne.pcap' '" + simulated() + "/payloads.bin'");
   nlohmann::json p;
   ASSERT_NO_THROW(p = nlohmann::json::parse(pcap)) << pcap;
   EXPECT_EQ(p["packets"], 80 * 76);

@@ -3,6 +3,7 @@
 // packets and decoded back: a round trip), and python's struct and Debian's tcpdump reading
 // the pcap we write. The real driver's decoding of real packets is in test_vlp16_nebula.cpp.
 #include "sim_fixtures.hpp"
+#include "bag_fixtures.hpp"
 #include "test_support.hpp"
 
 #include "sim/dataset/pcap_writer.hpp"
@@ -49,16 +50,6 @@ void setReturn(Packet& p, int block, int firing, int laser, std::uint16_t units,
 std::vector<sim::Vlp16Point> decode(const Packet& p, double stamp_s, const sim::Vlp16DecodeOptions& o = {}) {
   std::vector<sim::Vlp16Point> out;
   sim::decodeVlp16Packet(p.data(), p.size(), stamp_s, o, out, "test packet");
-  return out;
-}
-
-std::string run(const std::string& cmd) {
-  std::string out;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return out;
-  char buffer[4096];
-  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
-  pclose(pipe);
   return out;
 }
 
@@ -233,8 +224,7 @@ TEST(Vlp16Packets, ThePcapHoldsTheUdpStreamAsIndependentReadersSeeIt) {
     pcap.close();
   }
   // python's struct: the global header, the frames' headers, both checksums, the payloads.
-  const std::string json = run("/usr/bin/python3 '" + std::string(BIMLOC_TESTS_DIR) + "/read_pcap.py' '" + dir +
-                               "/v.pcap' '" + dir + "/payloads.bin'");
+  const std::string json = test::runPython("read_pcap.py", "'" + dir + "/v.pcap' '" + dir + "/payloads.bin'");
   nlohmann::json j;
   ASSERT_NO_THROW(j = nlohmann::json::parse(json)) << json;
   EXPECT_EQ(j["magic"], "a1b2c3d4");
@@ -252,7 +242,7 @@ TEST(Vlp16Packets, ThePcapHoldsTheUdpStreamAsIndependentReadersSeeIt) {
     ASSERT_EQ(0, std::memcmp(payloads.data() + i * 1206, packets[i].data.data(), 1206)) << i;
   // Debian's tcpdump, when installed (Makefile's DEB_PACKAGES): every datagram, checksums verified.
   if (std::system("command -v tcpdump > /dev/null 2>&1") != 0) GTEST_SKIP() << "tcpdump not installed: python's check only";
-  const std::string dump = run("tcpdump -nn -vv -r '" + dir + "/v.pcap' 2>/dev/null");
+  const std::string dump = test::commandOutput("tcpdump -nn -vv -r '" + dir + "/v.pcap' 2>/dev/null");
   std::size_t lines = 0, ok = 0;
   for (std::size_t at = 0; (at = dump.find("192.168.1.201.2368 > 255.255.255.255.2368", at)) != std::string::npos; ++at) ++lines;
   for (std::size_t at = 0; (at = dump.find("udp sum ok", at)) != std::string::npos; ++at) ++ok;

@@ -147,14 +147,16 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
       const auto it = impl_->topics.find(topic);
       if (it == impl_->topics.end())
         fail("no topic " + topic + " (" + type + "; choose another with " + option + "). The bag has:" + topicList());
-      if (it->second.first != type)
+      // `type` may name alternatives: "A or B".
+      const std::string alternatives = " or " + type + " or ";
+      if (alternatives.find(" or " + it->second.first + " or ") == std::string::npos)
         fail("topic " + topic + " is " + it->second.first + ", not " + type + " (choose another with " + option +
              "). The bag has:" + topicList());
     };
     // The clouds: a driver's PointCloud2, or the VLP-16's raw packets, decoded here.
     const auto cloud_it = impl_->topics.find(options.cloud_topic);
     packets_ = cloud_it != impl_->topics.end() && cloud_it->second.first == kPacketsType;
-    if (!packets_) require(options.cloud_topic, std::string(kCloudType) + " or " + kPacketsType, "--cloud-topic");
+    require(options.cloud_topic, std::string(kCloudType) + " or " + kPacketsType, "--cloud-topic");
     const bool odom_topic = impl_->topics.count(options.odom_topic) > 0;
     if (odom_topic || options.odom_topic_given) require(options.odom_topic, "nav_msgs/Odometry", "--odom-topic");
 

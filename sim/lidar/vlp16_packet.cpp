@@ -132,6 +132,8 @@ Vlp16PacketHeader decodeVlp16Packet(const std::uint8_t* data, std::size_t size, 
         p.intensity = record[2];
         p.laser = static_cast<std::uint8_t>(l);
         p.ring = vlp16Ring(l);
+        p.block = static_cast<std::uint8_t>(b);
+        p.firing = static_cast<std::uint8_t>(f);
         p.kind = kind;
         p.time_s = stamp_s + vlp16FiringOffsetS(b, f, l, dual);
         out.push_back(p);

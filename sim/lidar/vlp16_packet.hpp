@@ -60,6 +60,8 @@ struct Vlp16Point {
   std::uint8_t intensity = 0;  // the calibrated reflectivity byte
   std::uint8_t laser = 0;      // laser id = firing order
   std::uint16_t ring = 0;      // 0 = lowest beam (-15 deg)
+  std::uint8_t block = 0;      // 0..11 within its packet
+  std::uint8_t firing = 0;     // the block's first (0) or second (1) firing sequence
   Vlp16Return kind = Vlp16Return::kStrongest;
   double time_s = 0;           // packet stamp + the firing's offset
 };
