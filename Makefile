@@ -12,7 +12,8 @@ DEB_PACKAGES := build-essential cmake pkg-config libifcplusplus-dev libboost-dev
                 nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libembree-dev libbullet-dev \
                 libyaml-cpp-dev libboost-filesystem-dev librosbag-storage-dev libsensor-msgs-dev \
                 libnav-msgs-dev libtf2-msgs-dev pluginlib-dev librcpputils-dev libament-index-cpp-dev \
-                python3-rosbag python3-numpy libpcl-dev libosmesa6-dev libpng-dev libceres-dev tcpdump
+                python3-rosbag python3-numpy libpcl-dev libosmesa6-dev libpng-dev libceres-dev \
+                libsqlite3-dev libzstd-dev liblz4-dev zlib1g-dev tcpdump
 
 .PHONY: all deps build test demo bench worlds meshes clean
 
@@ -26,6 +27,9 @@ deps:
 	  echo "installing Debian packages:$$missing"; \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; \
 	fi
+	@# npm for the ROS 2 oracle test (tests/npm): Debian's package, unless a node.js that brings
+	@# its own npm (NodeSource's, which conflicts with Debian's npm) is installed already.
+	@command -v npm >/dev/null 2>&1 || { $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq npm; }
 
 build: deps
 	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo

@@ -148,6 +148,8 @@ TEST(Ros2Bag, ReadsTheRealNebulaSqliteBags) {
     const std::string db3 = (fs::path(bag) / (fs::path(bag).filename().string() + "_0.db3")).string();
     EXPECT_EQ(std::to_string(n) + " " + std::to_string(first) + " " + std::to_string(last), pythonSqlite(db3)) << sensor;
     EXPECT_EQ(n, t.messages);
-    if (sensor == "vlp16") EXPECT_GT(packets, 300u);  // 754 packets a second at 600 rpm: 0.3 s of them
+    if (sensor == "vlp16") {
+      EXPECT_GT(packets, 300u);  // 754 packets a second at 600 rpm: 0.3 s of them
+    }
   }
 }

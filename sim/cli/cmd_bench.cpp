@@ -10,4 +10,5 @@ void addBenchCommand(CLI::App& app) {
   addBenchSimulateCommand(*bench);
   addBenchOdometryCommand(*bench);
   addBenchLoopCommand(*bench);
+  addBenchBagsCommand(*bench);
 }

@@ -1,6 +1,7 @@
 // bimloc localize INPUT --plan PLAN [--storey S|auto] [--method ...] [--config FILE.yaml] [--json] [--out DIR]
-//   INPUT: a dataset folder of `bimloc simulate`, or a ROS1 bag (recorded on a robot, or the
-//   dataset.bag of `simulate`): [--cloud-topic T] [--odom-topic T] [--odom-frame F]
+//   INPUT: a dataset folder of `bimloc simulate`, or a ROS 1 bag (recorded on a robot, or the
+//   dataset.bag of `simulate`), or a ROS 2 bag (a rosbag2 folder, an .mcap or .db3 file; the
+//   rosbag2/ of `simulate --format mcap|sqlite3`): [--cloud-topic T] [--odom-topic T] [--odom-frame F]
 //   [--base-frame F] [--mount x,y,z,roll,pitch,yaw] [--truth-topic T] [--no-deskew]
 // The same localizer as `bimloc run`, offline, on a recording; one loop for both kinds
 // (sim/runner/localize_recording.hpp).
@@ -9,6 +10,7 @@
 #include "sim/cli/run_report.hpp"
 #include "sim/dataset/bag_reader.hpp"
 #include "sim/dataset/deskew.hpp"
+#include "sim/ros2/rosbag2_reader.hpp"
 #include "sim/runner/localize_recording.hpp"
 #include "sim/world/world.hpp"
 
@@ -115,6 +117,7 @@ Recording openBag(const std::string& path, const BagInputOptions& options) {
   rec.T_base_lidar = bag.T_base_lidar();
   rec.ground_truth = bag.groundTruth();
   rec.input_bag = path;
+  for (const auto& w : bag.warnings()) std::cerr << "warning: " << w << "\n";
   rec.notes = {"odometry: " + bag.odometrySource(), "mount: " + bag.mountSource(),
                deskewNote(bag, options)};
   rec.turns = [b = rec.bag](const std::function<void(const RecordedTurn&)>& visit) {
@@ -134,7 +137,10 @@ Recording openBag(const std::string& path, const BagInputOptions& options) {
 
 void run(const LocalizeArgs& args) {
   const auto start = std::chrono::steady_clock::now();
-  const bool is_bag = !std::filesystem::is_directory(args.input) && isRosBag(args.input);
+  // A dataset folder has metadata.json; a rosbag2 folder metadata.yaml and its storage files.
+  const bool is_dataset = std::filesystem::is_directory(args.input) && std::filesystem::exists(args.input + "/metadata.json");
+  const bool is_ros2 = !is_dataset && bimloc::sim::ros2::isRosbag2(args.input);
+  const bool is_bag = is_ros2 || (!std::filesystem::is_directory(args.input) && isRosBag(args.input));
   if (!is_bag && !std::filesystem::is_directory(args.input) && std::filesystem::exists(args.input) &&
       args.input.size() > 4 && args.input.substr(args.input.size() - 4) == ".bag")
     throw std::runtime_error(args.input + ": not a ROS1 bag (no '#ROSBAG V2.0' at its start)");
@@ -196,7 +202,9 @@ void run(const LocalizeArgs& args) {
     if (rec.ground_truth.empty())
       std::cout << (is_bag ? "(no " + args.bag.truth_topic + " in the bag: errors not evaluated)\n"
                            : std::string("(no ground_truth.tum: errors not evaluated)\n"));
-    if (output) std::cout << "wrote " << args.out << "/ (trajectory.tum" << (is_bag ? ", localized.bag" : "") << ", report.json, snapshots/)\n";
+    if (output)
+      std::cout << "wrote " << args.out << "/ (trajectory.tum" << (is_ros2 ? ", localized.mcap" : is_bag ? ", localized.bag" : "")
+                << ", report.json, snapshots/)\n";
   }
   // As `run`: a run that did not localize, or localized falsely, fails.
   if (!r.passed) throw bimloc::cli::ExitCode{1};
@@ -210,10 +218,11 @@ void addLocalizeCommand(CLI::App& app) {
       "localize",
       "Run the localizer offline on a recording against a plan: global localization, then map <- odom. The\n"
       "recording is a dataset folder in the form `bimloc simulate` writes (clouds/*.pcd with clouds/index.csv,\n"
-      "odometry.tum, metadata.json with the mount; ground_truth.tum if known) or a ROS1 bag (sensor_msgs/PointCloud2\n"
-      "of a Velodyne driver; nav_msgs/Odometry or /tf odom -> base_link; the mount on /tf_static or --mount).\n"
+      "odometry.tum, metadata.json with the mount; ground_truth.tum if known) or a ROS 1 or ROS 2 bag (a rosbag2\n"
+      "folder, an .mcap or a .db3 file; sensor_msgs/PointCloud2 of a Velodyne driver; nav_msgs/Odometry or /tf\n"
+      "odom -> base_link; the mount on /tf_static or --mount).\n"
       "Scored like `bimloc run` when ground truth is present.");
-  cmd->add_option("input", args->input, "dataset folder or ROS1 .bag")->required();
+  cmd->add_option("input", args->input, "dataset folder, ROS 1 .bag, or ROS 2 bag (rosbag2 folder, .mcap, .db3)")->required();
   cmd->add_option("--plan", args->plan, "IFC plan")->required();
   cmd->add_option("--storey", args->storey,
                   "storey name or index (default: as recorded, else 0); auto: not told, every storey with walls and rooms "
@@ -227,9 +236,10 @@ void addLocalizeCommand(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "seed of the filter")->capture_default_str();
   cmd->add_flag("--json", args->json, "print one JSON object");
   cmd->add_option("--out", args->out,
-                  "write trajectory.tum (map <- base_link), localized.bag (bag input: + /tf map -> odom, /localization), "
+                  "write trajectory.tum (map <- base_link), localized.bag (ROS 1 input: + /tf map -> odom, /localization) or "
+                  "localized.mcap (ROS 2 input: the same + the plan on /bimloc/plan), "
                   "report.json and snapshots/ into this folder, all or nothing");
-  auto* bag = cmd->add_option_group("bag input", "for a ROS1 bag");
+  auto* bag = cmd->add_option_group("bag input", "for a ROS 1 or ROS 2 bag");
   bag->add_option("--cloud-topic", args->bag.cloud_topic,
                   "sensor_msgs/PointCloud2 with fields x, y, z (a per-point time field: de-skew; see docs/sensors.md), "
                   "or velodyne_msgs/VelodyneScan, the VLP-16's raw packets (decoded, de-skewed per firing)")
@@ -242,7 +252,7 @@ void addLocalizeCommand(CLI::App& app) {
   bag->add_option("--base-frame", args->bag.base_frame, "robot frame: the localized pose is of it")->capture_default_str();
   bag->add_option("--mount", args->mount,
                   "lidar mount base_frame -> cloud frame as x,y,z,roll,pitch,yaw (m, rad); default: from /tf_static or /tf");
-  bag->add_option("--truth-topic", args->bag.truth_topic, "nav_msgs/Odometry ground truth in map, scored when present")
+  bag->add_option("--truth-topic", args->bag.truth_topic, "nav_msgs/Odometry or geometry_msgs/PoseStamped ground truth in map, scored when present")
       ->capture_default_str();
   bag->add_flag("--no-deskew", args->no_deskew, "use the clouds as they are, even with a per-point time field");
   cmd->callback([args] { run(*args); });

@@ -1,4 +1,4 @@
-// bimloc simulate SCENARIO --out DIR [--threads N] [--packets]
+// bimloc simulate SCENARIO --out DIR [--threads N] [--format ros1|mcap|sqlite3] [--packets]
 #include "sim/cli/commands.hpp"
 #include "sim/cli/progress.hpp"
 #include "sim/dataset/dataset_metadata.hpp"
@@ -18,6 +18,7 @@ struct SimulateArgs {
   int threads = 0;
   bool quiet = false;
   bool packets = false;
+  std::string format = "ros1";
 };
 
 nlohmann::json metadata(const Simulator& sim, const std::string& scenario_path) {
@@ -47,6 +48,7 @@ void run(const SimulateArgs& args) {
   DatasetInfo info;
   info.metadata = metadata(sim, args.scenario);
   info.T_base_lidar = scenario.sensor.T_base_lidar;
+  info.bag_format = args.format;
   if (args.packets) info.packets_rpm = scenario.sensor.rpm;
   DatasetWriter writer(args.out, info);
   for (const auto& o : sim.odometry()) writer.addOdometry(o);
@@ -70,7 +72,8 @@ void addSimulateCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "simulate",
       "Simulate a scenario (a Spot-like base with a VLP-16 walking through the plan's building) and write a\n"
-      "synthetic dataset to DIR: dataset.bag (ROS1: /velodyne_points, /odom, /tf, /ground_truth), one PCD per\n"
+      "synthetic dataset to DIR: dataset.bag (ROS1: /velodyne_points, /odom, /tf, /ground_truth; with --format\n"
+      "mcap or sqlite3 a ROS 2 bag instead, the folder rosbag2/ as `ros2 bag record` writes it), one PCD per\n"
       "turn in clouds/, odometry.tum and ground_truth.tum, metadata.json. Same scenario and seed give\n"
       "bit-identical output whatever --threads. The folder appears only when everything is written.");
   cmd->add_option("scenario", args->scenario, "scenario file (YAML, see scenarios/README.md)")->required();
@@ -80,5 +83,9 @@ void addSimulateCommand(CLI::App& app) {
                 "also write the VLP-16's own data packets: velodyne_msgs/VelodyneScan on /velodyne_packets in the bag\n"
                 "(one a turn) and velodyne.pcap, the sensor's UDP stream (port 2368), for a robot's own driver");
   cmd->add_flag("--quiet", args->quiet, "print nothing on success");
+  cmd->add_option("--format", args->format,
+                  "the bag: ros1 (dataset.bag), mcap (rosbag2/rosbag2_0.mcap, zstd chunks) or sqlite3 (rosbag2/rosbag2_0.db3)")
+      ->check(CLI::IsMember({"ros1", "mcap", "sqlite3"}))
+      ->capture_default_str();
   cmd->callback([args] { run(*args); });
 }

@@ -23,12 +23,13 @@ CLI::Validator siteCheck();
 }  // namespace bimloc::cli
 
 void addExtractCommand(CLI::App& app);
-void addBenchCommand(CLI::App& app);  // bench extract | lidar | simulate | odometry | loop
+void addBenchCommand(CLI::App& app);  // bench extract | lidar | simulate | odometry | loop | bags
 void addBenchExtractCommand(CLI::App& bench);
 void addBenchLidarCommand(CLI::App& bench);
 void addBenchSimulateCommand(CLI::App& bench);
 void addBenchOdometryCommand(CLI::App& bench);
 void addBenchLoopCommand(CLI::App& bench);
+void addBenchBagsCommand(CLI::App& bench);
 void addWorldgenCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);

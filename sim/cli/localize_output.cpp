@@ -1,7 +1,9 @@
 #include "sim/cli/localize_output.hpp"
 
 #include "sim/cli/snapshots.hpp"
+#include "sim/dataset/bag_reader.hpp"
 #include "sim/dataset/localized_bag_writer.hpp"
+#include "sim/dataset/localized_mcap_writer.hpp"
 #include "sim/dataset/tum_writer.hpp"
 #include "sim/render/snapshot.hpp"
 
@@ -24,7 +26,10 @@ LocalizeOutput::LocalizeOutput(const std::string& dir, const std::string& input_
       staging_.file("trajectory.tum"),
       "timestamp tx ty tz qx qy qz qw: T_map_base, " + frames.base + " in " + frames.map +
           " (the plan's frame), at each lidar turn once localized");
-  if (!input_bag.empty())
+  if (!input_bag.empty() && !sim::isRosBag(input_bag))
+    mcap_ = std::make_unique<sim::LocalizedMcapWriter>(staging_.file("localized.mcap"), input_bag, frames.map, frames.odom,
+                                                       frames.base, frames.tf_topic);
+  else if (!input_bag.empty())
     bag_ = std::make_unique<sim::LocalizedBagWriter>(staging_.file("localized.bag"), input_bag, frames.map, frames.odom,
                                                      frames.base, frames.tf_topic);
   std::filesystem::create_directory(staging_.file("snapshots"));
@@ -64,6 +69,7 @@ void LocalizeOutput::step(const sim::RecordedTurn& turn, const LocalizationResul
   if (r.T_map_odom) {
     trajectory_->add(nanoseconds(turn.stamp_s), r.T_map_base);
     if (bag_) bag_->add(turn.stamp_s, *r.T_map_odom, r.T_map_base, r.covariance);
+    if (mcap_) mcap_->add(turn.stamp_s, *r.T_map_odom, r.T_map_base, r.covariance);
   }
   if (r.state == LocalizationState::Converged && !converged_) {
     converged_ = true;
@@ -78,6 +84,7 @@ void LocalizeOutput::commit(const nlohmann::json& report, const sim::ScenarioRes
   writeErrorPlot(staging_.path(), "snapshots", result);  // snapshots/errors.png
   trajectory_->close();
   if (bag_) bag_->close();
+  if (mcap_) mcap_->close(building_.storeys.at(last_ ? (last_->storey ? *last_->storey : last_->leading_storey) : 0));
   nlohmann::json j = report;
   j["format"] = "bimloc.localize";
   sim::writeFileAtomically(staging_.file("report.json"), j.dump(2) + "\n");

@@ -1,6 +1,7 @@
 // What `bimloc localize --out DIR` writes, all of it or nothing (one StagingDirectory):
 //   trajectory.tum  map <- base_link at every turn once localized (TUM: evo_ape tum ...)
-//   localized.bag   (bag input only) the input plus /tf map -> odom and /localization
+//   localized.bag   (ROS 1 bag input only) the input plus /tf map -> odom and /localization
+//   localized.mcap  (ROS 2 bag input only) the same, plus the plan on /bimloc/plan
 //   report.json     the report `localize --json` prints, with "format": "bimloc.localize"
 //   snapshots/      top views at convergence and at the end; errors.png with ground truth
 #pragma once
@@ -16,6 +17,7 @@
 
 namespace bimloc::sim {
 class LocalizedBagWriter;
+class LocalizedMcapWriter;
 class TumWriter;
 }  // namespace bimloc::sim
 
@@ -27,7 +29,8 @@ struct LocalizeOutputFrames {
 
 class LocalizeOutput {
  public:
-  // `input_bag`: the bag to copy into localized.bag, empty for a dataset folder. The building
+  // `input_bag`: the bag to copy into localized.bag (ROS 1) or localized.mcap (ROS 2), empty
+  // for a dataset folder. The building
   // and the localizer must outlive this.
   LocalizeOutput(const std::string& dir, const std::string& input_bag, const LocalizeOutputFrames& frames,
                  const bim::Building& building, const Localizer& localizer);
@@ -47,6 +50,7 @@ class LocalizeOutput {
   const Localizer& localizer_;
   std::unique_ptr<sim::TumWriter> trajectory_;
   std::unique_ptr<sim::LocalizedBagWriter> bag_;
+  std::unique_ptr<sim::LocalizedMcapWriter> mcap_;
   std::optional<double> start_s_;
   bool converged_ = false;
   int snapshots_ = 0;

@@ -1,16 +1,10 @@
 #include "sim/dataset/bag_reader.hpp"
 
+#include "sim/dataset/bag_messages.hpp"
 #include "sim/dataset/cloud_fields.hpp"
 #include "sim/dataset/deskew.hpp"
-#include "sim/dataset/velodyne_scan_msg.hpp"
 #include "sim/dataset/velodyne_scan_points.hpp"
-
-#include <geometry_msgs/TransformStamped.h>
-#include <nav_msgs/Odometry.h>
-#include <rosbag/bag.h>
-#include <rosbag/view.h>
-#include <sensor_msgs/PointCloud2.h>
-#include <tf2_msgs/TFMessage.h>
+#include "sim/ros2/rosbag2_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -40,14 +34,8 @@ Eigen::Isometry3d pose(double x, double y, double z, double qx, double qy, doubl
   return T;
 }
 
-Eigen::Isometry3d pose(const geometry_msgs::Pose& p, const std::string& where) {
-  return pose(p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y, p.orientation.z,
-              p.orientation.w, where);
-}
-
-Eigen::Isometry3d pose(const geometry_msgs::Transform& t, const std::string& where) {
-  return pose(t.translation.x, t.translation.y, t.translation.z, t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w,
-              where);
+Eigen::Isometry3d pose(const BagPose& p, const std::string& where) {
+  return pose(p.x, p.y, p.z, p.qx, p.qy, p.qz, p.qw, where);
 }
 
 // Sorted by stamp, one sample per stamp (a bag may hold a message twice or out of order).
@@ -62,59 +50,18 @@ struct Edge {
   Eigen::Isometry3d T;  // parent <- child, or its inverse when walked backwards
 };
 
-// rosbag's words, with what they mean for a recording: a bag cut short (the recorder killed)
-// has no index at its end, which `rosbag reindex` rebuilds.
-std::string bagProblem(const std::exception& e) {
-  const std::string what = e.what();
-  const bool cut = what.find("Error reading from file") != std::string::npos || what.find("unindexed") != std::string::npos;
-  return "damaged or unreadable bag: " + what +
-         (cut ? " (a bag cut short, e.g. a recording that did not finish: 'rosbag reindex' rebuilds its index)" : "");
-}
-
-constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
-constexpr const char* kPacketsType = "velodyne_msgs/VelodyneScan";
-
-// One message of the cloud topic: its stamp and frame at once, its points when asked.
-struct CloudMessage {
-  double header_s = 0;
-  std::string frame;
-  std::function<CloudPoints()> points;
-};
-
-CloudMessage readCloudMessage(const rosbag::MessageInstance& m, bool packets, const std::string& where) {
-  CloudMessage out;
-  if (packets) {  // the VLP-16's raw packets, decoded as the manual says (vlp16_packet.hpp)
-    const auto scan = m.instantiate<velodyne_msgs::VelodyneScan>();
-    if (!scan) throw std::runtime_error(where + ": cannot be read as velodyne_msgs/VelodyneScan");
-    out.header_s = scan->header.stamp.toSec();
-    out.frame = frameName(scan->header.frame_id);
-    out.points = [scan, where, header_s = out.header_s] {
-      std::vector<RawPacket> raw;
-      raw.reserve(scan->packets.size());
-      for (const auto& packet : scan->packets) raw.push_back({packet.stamp.toSec(), packet.data.data(), packet.data.size()});
-      return decodeVelodyneScan(raw, header_s, Vlp16DecodeOptions{}, where);
-    };
-    return out;
-  }
-  const auto cloud = m.instantiate<sensor_msgs::PointCloud2>();
-  if (!cloud) throw std::runtime_error(where + ": cannot be read as sensor_msgs/PointCloud2");
-  out.header_s = cloud->header.stamp.toSec();
-  out.frame = frameName(cloud->header.frame_id);
-  out.points = [cloud, where] {
-    CloudLayout layout;
-    for (const auto& f : cloud->fields) layout.fields.push_back({f.name, f.offset, f.datatype, f.count});
-    layout.width = cloud->width, layout.height = cloud->height, layout.point_step = cloud->point_step;
-    layout.row_step = cloud->row_step, layout.is_bigendian = cloud->is_bigendian;
-    return decodeCloud(layout, cloud->data.data(), cloud->data.size(), where);
-  };
-  return out;
-}
-
 }  // namespace
 
+CloudPoints decodeBagCloud(const BagCloud& cloud, const std::string& where) {
+  if (cloud.packets.empty()) return decodeCloud(cloud.layout, cloud.data.data(), cloud.data.size(), where);
+  std::vector<RawPacket> raw;
+  raw.reserve(cloud.packets.size());
+  for (const BagPacket& p : cloud.packets) raw.push_back({p.stamp_s, p.data.data(), p.data.size()});
+  return decodeVelodyneScan(raw, cloud.stamp_s, Vlp16DecodeOptions{}, where);
+}
+
 struct BagInput::Impl {
-  rosbag::Bag bag;
-  std::map<std::string, std::pair<std::string, std::size_t>> topics;  // topic: (type, messages)
+  std::unique_ptr<BagMessages> bag;
 };
 
 bool isRosBag(const std::string& path) {
@@ -127,38 +74,42 @@ BagInput::~BagInput() = default;
 
 std::string BagInput::topicList() const {
   std::ostringstream out;
-  for (const auto& [topic, info] : impl_->topics)
-    out << "\n  " << topic << " (" << info.first << ", " << info.second << " messages)";
-  if (impl_->topics.empty()) out << "\n  (none)";
+  for (const auto& [topic, info] : impl_->bag->topics())
+    out << "\n  " << topic << " (" << info.type << ", " << info.messages << " messages)";
+  if (impl_->bag->topics().empty()) out << "\n  (none)";
   return out.str();
 }
 
 BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     : impl_(std::make_unique<Impl>()), path_(path), options_(options) {
   auto fail = [&](const std::string& what) { throw std::runtime_error(path + ": " + what); };
-  // rosbag's exceptions (and a damaged file's bad_alloc) name no file: every read is wrapped.
-  try {
-    if (!isRosBag(path)) fail("not a ROS1 bag (no '#ROSBAG V2.0' at its start)");
-    impl_->bag.open(path, rosbag::bagmode::Read);
-    rosbag::View all(impl_->bag);
-    for (const rosbag::ConnectionInfo* c : all.getConnections()) impl_->topics[c->topic].first = c->datatype;
-    for (auto& [topic, info] : impl_->topics) info.second = rosbag::View(impl_->bag, rosbag::TopicQuery(topic)).size();
-    auto require = [&](const std::string& topic, const std::string& type, const std::string& option) {
-      const auto it = impl_->topics.find(topic);
-      if (it == impl_->topics.end())
-        fail("no topic " + topic + " (" + type + "; choose another with " + option + "). The bag has:" + topicList());
-      // `type` may name alternatives: "A or B".
-      const std::string alternatives = " or " + type + " or ";
-      if (alternatives.find(" or " + it->second.first + " or ") == std::string::npos)
-        fail("topic " + topic + " is " + it->second.first + ", not " + type + " (choose another with " + option +
-             "). The bag has:" + topicList());
+  {
+    if (isRosBag(path)) {
+      impl_->bag = openRos1Bag(path);
+    } else if (ros2::isRosbag2(path)) {
+      impl_->bag = openRos2Bag(path);
+    } else {
+      fail("neither a ROS 1 bag (no '#ROSBAG V2.0' at its start) nor a ROS 2 bag (a folder with metadata.yaml, an .mcap or .db3 file)");
+    }
+    BagMessages& bag = *impl_->bag;
+    warnings_ = bag.warnings();
+    const auto& topics = bag.topics();
+    auto require = [&](const std::string& topic, std::vector<BagMessageKind> kinds, const std::string& option) {
+      std::string types;
+      for (const auto kind : kinds) types += (types.empty() ? "" : " or ") + bag.typeName(kind);
+      const auto it = topics.find(topic);
+      if (it == topics.end())
+        fail("no topic " + topic + " (" + types + "; choose another with " + option + "). The bag has:" + topicList());
+      for (const auto kind : kinds)
+        if (it->second.type == bag.typeName(kind)) return;
+      fail("topic " + topic + " is " + it->second.type + ", not " + types + " (choose another with " + option +
+           "). The bag has:" + topicList());
     };
     // The clouds: a driver's PointCloud2, or the VLP-16's raw packets, decoded here.
-    const auto cloud_it = impl_->topics.find(options.cloud_topic);
-    packets_ = cloud_it != impl_->topics.end() && cloud_it->second.first == kPacketsType;
-    require(options.cloud_topic, std::string(kCloudType) + " or " + kPacketsType, "--cloud-topic");
-    const bool odom_topic = impl_->topics.count(options.odom_topic) > 0;
-    if (odom_topic || options.odom_topic_given) require(options.odom_topic, "nav_msgs/Odometry", "--odom-topic");
+    require(options.cloud_topic, {BagMessageKind::kPointCloud2, BagMessageKind::kVelodyneScan}, "--cloud-topic");
+    packets_ = bag.hasTopic(options.cloud_topic, BagMessageKind::kVelodyneScan);
+    const bool odom_topic = topics.count(options.odom_topic) > 0;
+    if (odom_topic || options.odom_topic_given) require(options.odom_topic, {BagMessageKind::kOdometry}, "--odom-topic");
 
     // /tf and /tf_static: the odometry transform over time, and the fixed edges for the mount.
     std::map<std::string, std::vector<Edge>> edges;
@@ -167,26 +118,22 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     std::map<std::string, std::vector<StampedPose>> from_odom;  // odom -> child, over time
     std::vector<std::string> tf_topics;
     for (const auto& t : {options.tf_static_topic, options.tf_topic})
-      if (impl_->topics.count(t) && impl_->topics[t].first == "tf2_msgs/TFMessage") tf_topics.push_back(t);
+      if (bag.hasTopic(t, BagMessageKind::kTFMessage)) tf_topics.push_back(t);
     // /tf_static first: its edges win over the same edge repeated on /tf.
     for (const auto& topic : tf_topics) {
-      for (const rosbag::MessageInstance& m : rosbag::View(impl_->bag, rosbag::TopicQuery(topic))) {
-        const auto tf = m.instantiate<tf2_msgs::TFMessage>();
-        if (!tf) continue;
-        for (const auto& t : tf->transforms) {
-          const std::string parent = frameName(t.header.frame_id), child = frameName(t.child_frame_id);
-          frames.insert(parent), frames.insert(child);
-          const std::string where = path + ": " + topic + " " + parent + " -> " + child;
-          if (parent == options.odom_frame) {  // the odometry: never a fixed edge
-            from_odom[child].push_back({t.header.stamp.toSec(), pose(t.transform, where)});
-            continue;
-          }
-          if (!seen.insert({parent, child}).second) continue;
-          const Eigen::Isometry3d T = pose(t.transform, where);
-          edges[parent].push_back({child, T});
-          edges[child].push_back({parent, T.inverse()});
+      bag.forEachTransform(topic, [&](const BagTransform& t) {
+        const std::string parent = frameName(t.parent), child = frameName(t.child);
+        frames.insert(parent), frames.insert(child);
+        const std::string where = path + ": " + topic + " " + parent + " -> " + child;
+        if (parent == options.odom_frame) {  // the odometry: never a fixed edge
+          from_odom[child].push_back({t.stamp_s, pose(t.pose, where)});
+          return;
         }
-      }
+        if (!seen.insert({parent, child}).second) return;
+        const Eigen::Isometry3d T = pose(t.pose, where);
+        edges[parent].push_back({child, T});
+        edges[child].push_back({parent, T.inverse()});
+      });
     }
 
     // Breadth-first through the fixed transforms: T_from_to, when a chain links them.
@@ -205,11 +152,10 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     };
 
     if (odom_topic) {
-      for (const rosbag::MessageInstance& m : rosbag::View(impl_->bag, rosbag::TopicQuery(options.odom_topic))) {
-        const auto odom = m.instantiate<nav_msgs::Odometry>();
-        if (odom) odometry_.push_back({odom->header.stamp.toSec(), pose(odom->pose.pose, path + ": " + options.odom_topic)});
-      }
-      odometry_source_ = options.odom_topic + " (nav_msgs/Odometry)";
+      bag.forEachPose(options.odom_topic, [&](const BagStampedPose& p) {
+        odometry_.push_back({p.stamp_s, pose(p.pose, path + ": " + options.odom_topic)});
+      });
+      odometry_source_ = options.odom_topic + " (" + bag.typeName(BagMessageKind::kOdometry) + ")";
     } else {
       // odom -> base directly, or odom -> a frame fixed to base (base_footprint -> base_link).
       for (auto& [child, samples] : from_odom) {
@@ -229,19 +175,16 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
            options.tf_topic + " transform " + options.odom_frame + " -> " + options.base_frame +
            " (choose the frames with --odom-frame, --base-frame). The bag has:" + topicList());
 
-    if (impl_->topics.count(options.truth_topic) && impl_->topics[options.truth_topic].first == "nav_msgs/Odometry") {
-      for (const rosbag::MessageInstance& m : rosbag::View(impl_->bag, rosbag::TopicQuery(options.truth_topic))) {
-        const auto truth = m.instantiate<nav_msgs::Odometry>();
-        if (truth) ground_truth_.push_back({truth->header.stamp.toSec(), pose(truth->pose.pose, path + ": " + options.truth_topic)});
-      }
+    if (bag.hasTopic(options.truth_topic, BagMessageKind::kOdometry) || bag.hasTopic(options.truth_topic, BagMessageKind::kPoseStamped)) {
+      bag.forEachPose(options.truth_topic, [&](const BagStampedPose& p) {
+        ground_truth_.push_back({p.stamp_s, pose(p.pose, path + ": " + options.truth_topic)});
+      });
       sortByStamp(ground_truth_);
     }
 
     // The clouds: their frame, the turn period (the median spacing of the recording times: a
     // Velodyne sends one cloud a turn at a fixed rpm), and whether the points carry `time`.
-    rosbag::View clouds(impl_->bag, rosbag::TopicQuery(options.cloud_topic));
-    std::vector<double> received;
-    for (const rosbag::MessageInstance& m : clouds) received.push_back(m.getTime().toSec());
+    const std::vector<double> received = bag.receiveTimes(options.cloud_topic);
     turns_ = received.size();
     if (turns_ == 0) fail("topic " + options.cloud_topic + " has no messages");
     std::vector<double> gaps;
@@ -251,20 +194,25 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
       std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
       turn_period_s_ = gaps[gaps.size() / 2];
     }
-    const CloudMessage first = readCloudMessage(*clouds.begin(), packets_, path + ": " + options.cloud_topic + " message 0");
-    lidar_frame_ = first.frame;
+    std::shared_ptr<const BagCloud> first;
+    bag.forEachCloud(options.cloud_topic, [&](std::shared_ptr<const BagCloud> c) {
+      first = std::move(c);
+      return false;
+    });
+    if (!first) fail(options.cloud_topic + ": the first message cannot be read as " + bag.typeName(BagMessageKind::kPointCloud2));
+    lidar_frame_ = frameName(first->frame_id);
     // The driver stamps a turn at its first firing (times >= 0) or, configured so, at its last
     // (times <= 0): the turn's middle is half a period after, or before, the stamp.
-    const CloudPoints p = first.points();
+    const CloudPoints p = decodeBagCloud(*first, path + ": " + options.cloud_topic + " message 0");
     time_field_ = p.time_field;
     timed_ = !p.time_s.empty();
     double sum = 0;
-    for (double t : p.time_s) sum += p.time_absolute ? t - first.header_s : t;
+    for (double t : p.time_s) sum += p.time_absolute ? t - first->stamp_s : t;
     first_offset_s_ = !p.time_s.empty() && sum < 0 ? -0.5 * turn_period_s_ : 0.5 * turn_period_s_;
-    first_turn_s_ = first.header_s + first_offset_s_;
+    first_turn_s_ = first->stamp_s + first_offset_s_;
     // Odometry outside the clouds' time (another clock: sim time against wall time) would make
     // every turn look taken from one pose: refused, as the dataset reader refuses it.
-    const double c0 = first.header_s, c1 = c0 + turn_period_s_ * static_cast<double>(turns_);
+    const double c0 = first->stamp_s, c1 = c0 + turn_period_s_ * static_cast<double>(turns_);
     if (odometry_.back().stamp_s < c0 || odometry_.front().stamp_s > c1) {
       char what[256];
       std::snprintf(what, sizeof what, "the clouds (%.3f to %.3f s) and the odometry (%.3f to %.3f s) never overlap in time",
@@ -289,45 +237,34 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
       T_base_lidar_ = *mount;
       mount_source_ = "tf " + options.base_frame + " -> " + lidar_frame_;
     }
-  } catch (const ros::Exception& e) {  // rosbag::BagException and the deserialiser's overruns
-    fail(bagProblem(e));
-  } catch (const std::bad_alloc&) {
-    fail("damaged bag: a record claims more memory than there is");
   }
 }
 
 void BagInput::forEachTurn(const std::function<void(const BagTurn&)>& visit) const {
-  try {
-    rosbag::View clouds(impl_->bag, rosbag::TopicQuery(options_.cloud_topic));
-    std::size_t index = 0;
-    double previous = -1e300;
-    for (const rosbag::MessageInstance& m : clouds) {
-      const std::string where = path_ + ": " + options_.cloud_topic + " message " + std::to_string(index);
-      const CloudMessage message = readCloudMessage(m, packets_, where);
-      const double header_s = message.header_s;
-      BagTurn turn;
-      turn.index = index++;
-      turn.stamp_s = header_s + first_offset_s_;
-      if (!(turn.stamp_s > previous))
-        throw std::runtime_error(where + ": stamp " + std::to_string(header_s) + " does not follow the previous cloud's");
-      previous = turn.stamp_s;
-      turn.points = [this, message, header_s, ref = turn.stamp_s] {
-        CloudPoints p = message.points();
-        if (options_.deskew && !p.time_s.empty()) {
-          // Some drivers give absolute times (seconds since the epoch): make them relative.
-          if (p.time_absolute)
-            for (double& t : p.time_s) t -= header_s;
-          deskew(p.xyz, p.time_s, header_s, ref, odometry_, T_base_lidar_);
-        }
-        return std::move(p.xyz);
-      };
-      visit(turn);
-    }
-  } catch (const ros::Exception& e) {
-    throw std::runtime_error(path_ + ": " + bagProblem(e));
-  } catch (const std::bad_alloc&) {
-    throw std::runtime_error(path_ + ": damaged bag: a record claims more memory than there is");
-  }
+  std::size_t index = 0;
+  double previous = -1e300;
+  impl_->bag->forEachCloud(options_.cloud_topic, [&](std::shared_ptr<const BagCloud> cloud) {
+    const std::string where = path_ + ": " + options_.cloud_topic + " message " + std::to_string(index);
+    const double header_s = cloud->stamp_s;
+    BagTurn turn;
+    turn.index = index++;
+    turn.stamp_s = header_s + first_offset_s_;
+    if (!(turn.stamp_s > previous))
+      throw std::runtime_error(where + ": stamp " + std::to_string(header_s) + " does not follow the previous cloud's");
+    previous = turn.stamp_s;
+    turn.points = [this, cloud, where, header_s, ref = turn.stamp_s] {
+      CloudPoints p = decodeBagCloud(*cloud, where);
+      if (options_.deskew && !p.time_s.empty()) {
+        // Some drivers give absolute times (seconds since the epoch): make them relative.
+        if (p.time_absolute)
+          for (double& t : p.time_s) t -= header_s;
+        deskew(p.xyz, p.time_s, header_s, ref, odometry_, T_base_lidar_);
+      }
+      return std::move(p.xyz);
+    };
+    visit(turn);
+    return true;
+  });
 }
 
 }  // namespace bimloc::sim

@@ -1,7 +1,8 @@
-// A recorded ROS1 bag as `bimloc localize` uses it: the lidar turns (sensor_msgs/PointCloud2),
+// A recorded bag, ROS 1 or ROS 2 (rosbag2: SQLite3 or MCAP; bag_messages.hpp reads both), as
+// `bimloc localize` uses it: the lidar turns (sensor_msgs/PointCloud2),
 // the odometry (nav_msgs/Odometry, or the /tf transform odom -> base_link), the lidar mount
 // (base_link -> the cloud's frame on /tf_static or /tf, or given), and the ground truth when
-// the bag has it (as `bimloc simulate` writes it). rosbag stays inside bag_reader.cpp.
+// the bag has it (as `bimloc simulate` writes it; nav_msgs/Odometry or geometry_msgs/PoseStamped).
 #pragma once
 
 #include "sim/dataset/dataset_reader.hpp"
@@ -63,6 +64,8 @@ class BagInput {
   const std::vector<StampedPose>& groundTruth() const { return ground_truth_; }  // map <- base_link; may be empty
   // "topic (type, N messages)" for each topic of the bag, one a line.
   std::string topicList() const;
+  // Things read anyway, said once: a ROS 2 recording cut short, a folder without metadata.yaml.
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
   // Calls `visit` for each turn in order. Throws as the constructor for a damaged cloud.
   void forEachTurn(const std::function<void(const BagTurn&)>& visit) const;
@@ -79,6 +82,7 @@ class BagInput {
   bool timed_ = false, packets_ = false;
   std::string time_field_;
   std::vector<StampedPose> odometry_, ground_truth_;
+  std::vector<std::string> warnings_;
 };
 
 // True when the file starts with the ROS1 bag magic "#ROSBAG V2.0".

@@ -18,7 +18,7 @@ namespace bimloc::sim {
 inline constexpr int kDatasetFormatVersion = 1;
 
 struct DatasetSummary {
-  std::map<std::string, BagWriter::TopicCount> topics;
+  std::map<std::string, DatasetBag::TopicCount> topics;
   std::size_t scans = 0, points = 0, odometry = 0, ground_truth = 0;
   std::optional<std::uint64_t> first_ns, last_ns;  // dataset time span of all streams
   std::vector<std::string> files;                  // relative to the dataset directory

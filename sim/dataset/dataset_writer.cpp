@@ -5,6 +5,7 @@
 #include "sim/dataset/dataset_metadata.hpp"
 #include "sim/dataset/pcap_writer.hpp"
 #include "sim/dataset/pcd_writer.hpp"
+#include "sim/dataset/ros2_bag_writer.hpp"
 #include "sim/dataset/tum_writer.hpp"
 #include "sim/dataset/velodyne_points.hpp"
 #include "sim/common/atomic_file.hpp"
@@ -21,6 +22,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* const kBagFile = "dataset.bag";
+const char* const kRosbag2Dir = "rosbag2";
 const char* const kOdometryFile = "odometry.tum";
 const char* const kGroundTruthFile = "ground_truth.tum";
 const char* const kCloudDir = "clouds";
@@ -64,7 +66,7 @@ struct DatasetWriter::Impl {
   std::string out_dir;
   DatasetInfo info;
   StagingDirectory staging;  // declared before the writers, so it outlives them
-  BagWriter bag;
+  std::unique_ptr<DatasetBag> bag;
   TumWriter odometry;
   TumWriter ground_truth;
   std::optional<PcapWriter> pcap;  // with packets
@@ -79,7 +81,7 @@ struct DatasetWriter::Impl {
       : out_dir(dir),
         info(std::move(dataset_info)),
         staging(dir, {kMetadataFile, "bimloc.dataset"}),
-        bag(staging.file(kBagFile), info),
+        bag(openBag(info, staging)),
         odometry(staging.file(kOdometryFile),
                  tumComment("T_odom_base, base_link in odom (the wheel odometry of /odom)")),
         ground_truth(staging.file(kGroundTruthFile),
@@ -88,6 +90,13 @@ struct DatasetWriter::Impl {
     fs::create_directory(staging.file(kCloudDir), ec);
     if (ec) throw std::runtime_error(staging.file(kCloudDir) + ": cannot create: " + ec.message());
     if (info.packets_rpm > 0) pcap.emplace(staging.file(kPcapFile));
+  }
+
+  static std::unique_ptr<DatasetBag> openBag(const DatasetInfo& info, StagingDirectory& staging) {
+    if (info.bag_format == "ros1") return std::make_unique<BagWriter>(staging.file(kBagFile), info);
+    if (info.bag_format == "mcap" || info.bag_format == "sqlite3")
+      return std::make_unique<Ros2BagWriter>(staging.file(kRosbag2Dir), info.bag_format, info);
+    throw std::invalid_argument("dataset: bag format '" + info.bag_format + "' unknown (ros1, mcap or sqlite3)");
   }
 
   void requireOpen() const {
@@ -101,7 +110,7 @@ struct DatasetWriter::Impl {
 
   nlohmann::json metadata(const std::vector<std::string>& files) const {
     DatasetSummary summary;
-    summary.topics = bag.topics();
+    summary.topics = bag->topics();
     summary.scans = cloud_files.size();
     summary.points = point_count;
     summary.odometry = odometry.size();
@@ -133,13 +142,13 @@ void DatasetWriter::addScan(const LidarScan& scan) {
   const std::uint64_t ns = nextStamp(scan.stamp_s, impl_->last_scan_ns, "scan");
   const std::size_t index = impl_->cloud_files.size();
   const std::string name = cloudFileName(index);
-  impl_->bag.writeScan(ns, static_cast<std::uint32_t>(index), scan);
+  impl_->bag->writeScan(ns, static_cast<std::uint32_t>(index), scan);
   if (impl_->pcap) {
     // The packets on the dataset's clock, as a driver stamps them: the turn's first firing at
     // the scan's stamp.
     const double stamp_s = static_cast<double>(ns) * 1e-9;
     const auto packets = encodeVlp16Turn(scan, impl_->info.packets_rpm, stamp_s);
-    impl_->bag.writePackets(ns, static_cast<std::uint32_t>(index), packets);
+    impl_->bag->writePackets(ns, static_cast<std::uint32_t>(index), packets);
     for (const auto& packet : packets) impl_->pcap->writeUdp(packet.stamp_s, packet.data.data(), packet.data.size(), kVlp16DataPort);
   }
   writePcd(impl_->staging.file(std::string(kCloudDir) + "/" + name), scan.points);
@@ -155,7 +164,7 @@ void DatasetWriter::addOdometry(const OdometrySample& odom) {
   if (!odom.linear_velocity_base.allFinite() || !odom.angular_velocity_base.allFinite())
     throw std::invalid_argument("dataset: non-finite odometry velocity");
   const std::uint64_t ns = nextStamp(odom.stamp_s, impl_->last_odometry_ns, "odometry");
-  impl_->bag.writeOdometry(ns, static_cast<std::uint32_t>(impl_->odometry.size()), odom);
+  impl_->bag->writeOdometry(ns, static_cast<std::uint32_t>(impl_->odometry.size()), odom);
   impl_->odometry.add(ns, odom.T_odom_base);
   impl_->span(ns);
 }
@@ -164,7 +173,7 @@ void DatasetWriter::addGroundTruth(const GroundTruthSample& truth) {
   impl_->requireOpen();
   requireFinite(truth.T_map_base, "ground truth");
   const std::uint64_t ns = nextStamp(truth.stamp_s, impl_->last_truth_ns, "ground truth");
-  impl_->bag.writeGroundTruth(ns, static_cast<std::uint32_t>(impl_->ground_truth.size()), truth);
+  impl_->bag->writeGroundTruth(ns, static_cast<std::uint32_t>(impl_->ground_truth.size()), truth);
   impl_->ground_truth.add(ns, truth.T_map_base);
   impl_->span(ns);
 }
@@ -172,13 +181,17 @@ void DatasetWriter::addGroundTruth(const GroundTruthSample& truth) {
 std::vector<std::string> DatasetWriter::commit() {
   impl_->requireOpen();
   impl_->finished = true;
-  impl_->bag.close();
+  impl_->bag->close();
   impl_->odometry.close();
   impl_->ground_truth.close();
   if (impl_->pcap) impl_->pcap->close();
   writeFileAtomically(impl_->staging.file(kCloudIndexFile), impl_->cloud_index);
 
-  std::vector<std::string> files{kBagFile, kMetadataFile, kOdometryFile, kGroundTruthFile, kCloudIndexFile};
+  std::vector<std::string> files;
+  if (impl_->info.bag_format == "ros1") files.push_back(kBagFile);
+  else files.insert(files.end(), {std::string(kRosbag2Dir) + "/metadata.yaml",
+                                  std::string(kRosbag2Dir) + (impl_->info.bag_format == "mcap" ? "/rosbag2_0.mcap" : "/rosbag2_0.db3")});
+  files.insert(files.end(), {kMetadataFile, kOdometryFile, kGroundTruthFile, kCloudIndexFile});
   if (impl_->pcap) files.push_back(kPcapFile);
   files.insert(files.end(), impl_->cloud_files.begin(), impl_->cloud_files.end());
   writeFileAtomically(impl_->staging.file(kMetadataFile), impl_->metadata(files).dump(1) + "\n");

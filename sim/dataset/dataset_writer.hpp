@@ -1,4 +1,4 @@
-// The synthetic dataset of `bimloc simulate`: a ROS1 bag as a real robot would record it
+// The synthetic dataset of `bimloc simulate`: a bag (ROS 1, or ROS 2 in MCAP or SQLite3) as a real robot would record it
 // (/velodyne_points, /odom, /tf, /ground_truth), the same data as plain files for people
 // without ROS (one PCD per lidar turn, TUM trajectories), and metadata.json describing both.
 #pragma once
@@ -41,6 +41,8 @@ struct DatasetInfo {
   // (m/s)^2 and (rad/s)^2 for the twist. The defaults suit a planar wheeled base.
   std::array<double, 6> odometry_pose_variance{1e-3, 1e-3, 1e-6, 1e-6, 1e-6, 1e-3};
   std::array<double, 6> odometry_twist_variance{1e-3, 1e-3, 1e-6, 1e-6, 1e-6, 1e-3};
+  // The bag's format: "ros1" (dataset.bag), "mcap" or "sqlite3" (a rosbag2 folder, rosbag2/).
+  std::string bag_format = "ros1";
   // When > 0, every turn is also written as the VLP-16's own packets at this rpm: a
   // velodyne_msgs/VelodyneScan on /velodyne_packets in the bag and the UDP stream in
   // velodyne.pcap (`bimloc simulate --packets`).

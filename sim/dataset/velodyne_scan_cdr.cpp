@@ -7,6 +7,10 @@ namespace bimloc::sim {
 
 VelodyneScanView readVelodyneScanCdr(const std::uint8_t* data, std::size_t size, const std::string& where) {
   ros2::CdrReader in(data, size, where);
+  return readVelodyneScanCdr(in);
+}
+
+VelodyneScanView readVelodyneScanCdr(ros2::CdrReader& in) {
   VelodyneScanView out;
   const ros2::Header header = ros2::readHeader(in);
   out.header_s = header.stamp.seconds();

@@ -12,6 +12,10 @@
 
 namespace bimloc::sim {
 
+namespace ros2 {
+class CdrReader;
+}
+
 struct VelodyneScanView {
   double header_s = 0;
   std::string frame_id;
@@ -20,5 +24,6 @@ struct VelodyneScanView {
 
 // Throws std::runtime_error "WHERE: broken CDR ..." for a message that is no VelodyneScan.
 VelodyneScanView readVelodyneScanCdr(const std::uint8_t* data, std::size_t size, const std::string& where);
+VelodyneScanView readVelodyneScanCdr(ros2::CdrReader& in);
 
 }  // namespace bimloc::sim

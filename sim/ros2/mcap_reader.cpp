@@ -162,7 +162,7 @@ bool McapReader::readSummary() {
                                  } else if (op == mcap::kChunkIndex) {
                                    chunk_indexes_.push_back(parseChunkIndex(c));
                                  } else if (op == mcap::kStatistics) {
-                                   c.skip(8 + 2 + 4 * 4 + 4 + 16, "Statistics");
+                                   c.skip(8 + 2 + 4 * 4 + 8 + 8, "Statistics");  // counts, then message_start_time, message_end_time
                                    const std::uint32_t n = c.u32("Statistics channel_message_counts");
                                    const std::uint64_t at = c.fileOffset();
                                    ByteCursor m(c.bytes(n, "Statistics channel_message_counts"), n, path_, at);
@@ -285,6 +285,34 @@ std::vector<McapMessage> McapReader::chunkMessages(std::uint64_t at, const std::
   if (cut) throw std::runtime_error(where + " " + std::to_string(*cut) + ": a record runs past the chunk's end");
   std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.log_time_ns < b.log_time_ns; });
   return out;
+}
+
+std::optional<std::vector<std::uint64_t>> McapReader::indexedLogTimes(const std::set<std::uint16_t>& channel_ids) const {
+  if (!indexed_) return std::nullopt;
+  const std::uint8_t* d = file_.data();
+  std::vector<std::uint64_t> times;
+  for (const auto& ci : chunk_indexes_) {
+    if (ci.message_index_offsets.empty()) return std::nullopt;  // no message indexes: read the chunks
+    for (const auto& [channel, offset] : ci.message_index_offsets) {
+      if (!channel_ids.count(channel)) continue;
+      if (offset < 8 || offset > data_end_ || data_end_ - offset < mcap::kRecordHeaderBytes || d[offset] != mcap::kMessageIndex)
+        throw std::runtime_error(path_ + ": at byte " + std::to_string(offset) + ": a chunk index points at no MessageIndex record");
+      std::uint64_t length;
+      std::memcpy(&length, d + offset + 1, 8);
+      if (length > data_end_ - offset - mcap::kRecordHeaderBytes)
+        throw std::runtime_error(path_ + ": at byte " + std::to_string(offset) + ": a MessageIndex runs past the data section");
+      ByteCursor c(d + offset + mcap::kRecordHeaderBytes, static_cast<std::size_t>(length), path_, offset + mcap::kRecordHeaderBytes);
+      if (c.u16("MessageIndex channel_id") != channel) c.fail("a MessageIndex of another channel than its chunk index says");
+      const std::uint32_t n = c.u32("MessageIndex records");
+      ByteCursor entries(c.bytes(n, "MessageIndex records"), n, path_, c.fileOffset());
+      while (!entries.done()) {
+        times.push_back(entries.u64("MessageIndex log_time"));
+        entries.u64("MessageIndex offset");
+      }
+    }
+  }
+  std::stable_sort(times.begin(), times.end());
+  return times;
 }
 
 void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std::function<void(const McapMessage&)>& visit) const {

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -42,6 +43,9 @@ class McapReader {
   // Calls `visit` for the messages of `channel_ids` (every channel when empty) in log-time order
   // (indexed; a linear scan keeps the file's order of chunks, each chunk sorted by log time).
   void forEachMessage(const std::set<std::uint16_t>& channel_ids, const std::function<void(const McapMessage&)>& visit) const;
+  // The log times of these channels' messages, sorted, from the message indexes (no chunk is
+  // decompressed); nothing when the file is not indexed (then read the messages).
+  std::optional<std::vector<std::uint64_t>> indexedLogTimes(const std::set<std::uint16_t>& channel_ids) const;
 
  private:
   bool readSummary();

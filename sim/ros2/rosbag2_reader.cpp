@@ -54,6 +54,7 @@ Rosbag2Reader::~Rosbag2Reader() = default;
 
 Rosbag2Reader::Rosbag2Reader(const std::string& path) : path_(path) {
   std::vector<std::string> files;
+  std::map<std::string, std::uint64_t> metadata_counts;  // topic: messages, as metadata.yaml says
   std::error_code ec;
   if (!fs::exists(path, ec)) throw std::runtime_error(path + ": no such file or folder");
   if (fs::is_directory(path, ec)) {
@@ -73,6 +74,9 @@ Rosbag2Reader::Rosbag2Reader(const std::string& path) : path_(path) {
           throw std::runtime_error(metadata.string() + ": compressed by rosbag2 (compression_format " + compression +
                                    ", mode " + (info["compression_mode"] ? info["compression_mode"].as<std::string>() : "?") +
                                    "), which bimloc does not read: 'ros2 bag decompress' it first");
+        if (info["topics_with_message_count"])
+          for (const auto& t : info["topics_with_message_count"])
+            metadata_counts[t["topic_metadata"]["name"].as<std::string>()] = t["message_count"].as<std::uint64_t>();
         if (info["relative_file_paths"])
           for (const auto& f : info["relative_file_paths"]) files.push_back((fs::path(path) / f.as<std::string>()).string());
       } catch (const YAML::Exception& e) {
@@ -111,6 +115,14 @@ Rosbag2Reader::Rosbag2Reader(const std::string& path) : path_(path) {
         topics_[it->second].messages += t.messages;
       }
     }
+  // A storage file that lost messages (cut, damaged) against what the recorder counted.
+  for (const auto& [name, expected] : metadata_counts) {
+    const BagTopic* t = topic(name);
+    const std::uint64_t found = t ? t->messages : 0;
+    if (found != expected)
+      warnings_.push_back(path + ": metadata.yaml counts " + std::to_string(expected) + " messages on " + name + ", the storage has " +
+                          std::to_string(found));
+  }
 }
 
 const BagTopic* Rosbag2Reader::topic(const std::string& name) const {
@@ -127,6 +139,21 @@ std::string Rosbag2Reader::topicList() const {
   for (const auto* t : sorted) out << "\n  " << t->name << " (" << t->type << ", " << t->messages << " messages)";
   if (topics_.empty()) out << "\n  (none)";
   return out.str();
+}
+
+std::vector<std::uint64_t> Rosbag2Storage::logTimes(const std::string& topic) const {
+  std::vector<std::uint64_t> times;
+  forEachMessage({topic}, [&](const BagMessage& m) { times.push_back(m.log_time_ns); });
+  return times;
+}
+
+std::vector<std::uint64_t> Rosbag2Reader::logTimes(const std::string& topic) const {
+  std::vector<std::uint64_t> times;
+  for (const auto& file : files_) {
+    const auto t = file->logTimes(topic);
+    times.insert(times.end(), t.begin(), t.end());
+  }
+  return times;
 }
 
 void Rosbag2Reader::forEachMessage(const std::vector<std::string>& topics, const std::function<void(const BagMessage&)>& visit) const {

@@ -19,6 +19,7 @@ struct BagTopic {
   std::string type;                  // "sensor_msgs/msg/PointCloud2"
   std::string serialization_format;  // "cdr"
   std::string offered_qos_profiles;  // rosbag2's YAML text, may be empty
+  std::string schema_encoding, schema_data;  // MCAP only: "ros2msg" and the type's definition
   std::uint64_t messages = 0;
 };
 
@@ -38,6 +39,9 @@ class Rosbag2Storage {
   virtual const std::vector<std::string>& warnings() const = 0;
   // The messages of the topics named (all when empty), in log-time order.
   virtual void forEachMessage(const std::vector<std::string>& topics, const std::function<void(const BagMessage&)>& visit) const = 0;
+  // The log times of a topic's messages, in order, without reading the messages where the
+  // storage has an index of them (MCAP's message indexes, SQLite's timestamp column).
+  virtual std::vector<std::uint64_t> logTimes(const std::string& topic) const;
 };
 
 std::unique_ptr<Rosbag2Storage> openSqlite3Storage(const std::string& path);
@@ -61,6 +65,8 @@ class Rosbag2Reader {
 
   // The messages of the topics named (all when empty), file after file, each in log-time order.
   void forEachMessage(const std::vector<std::string>& topics, const std::function<void(const BagMessage&)>& visit) const;
+  // A topic's log times, file after file (see Rosbag2Storage::logTimes).
+  std::vector<std::uint64_t> logTimes(const std::string& topic) const;
 
  private:
   std::string path_, storage_;

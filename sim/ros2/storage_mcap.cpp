@@ -27,6 +27,7 @@ class McapStorage final : public Rosbag2Storage {
       BagTopic t;
       t.name = channel.topic;
       t.type = schema ? schema->name : "";
+      if (schema) t.schema_encoding = schema->encoding, t.schema_data = schema->data;
       t.serialization_format = channel.message_encoding;
       const auto qos = channel.metadata.find("offered_qos_profiles");
       if (qos != channel.metadata.end()) t.offered_qos_profiles = qos->second;
@@ -39,6 +40,15 @@ class McapStorage final : public Rosbag2Storage {
 
   const std::vector<BagTopic>& topics() const override { return topics_; }
   const std::vector<std::string>& warnings() const override { return reader_.warnings(); }
+
+  std::vector<std::uint64_t> logTimes(const std::string& topic) const override {
+    std::set<std::uint16_t> ids;
+    for (const auto& [id, index] : channel_topic_)
+      if (topics_[index].name == topic) ids.insert(id);
+    if (ids.empty()) return {};
+    if (auto times = reader_.indexedLogTimes(ids)) return std::move(*times);
+    return Rosbag2Storage::logTimes(topic);
+  }
 
   void forEachMessage(const std::vector<std::string>& names, const std::function<void(const BagMessage&)>& visit) const override {
     std::set<std::uint16_t> wanted;

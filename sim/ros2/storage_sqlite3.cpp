@@ -91,6 +91,18 @@ class SqliteStorage final : public Rosbag2Storage {
   const std::vector<BagTopic>& topics() const override { return topics_; }
   const std::vector<std::string>& warnings() const override { return warnings_; }
 
+  std::vector<std::uint64_t> logTimes(const std::string& topic) const override {
+    std::vector<std::uint64_t> times;
+    const auto it = ids_.find(topic);
+    if (it == ids_.end()) return times;
+    Statement rows(db_, "SELECT timestamp FROM messages WHERE topic_id = " + std::to_string(it->second) + " ORDER BY timestamp, id", path_);
+    while (rows.step()) {
+      if (rows.integer(0) < 0) throw std::runtime_error(path_ + ": " + topic + ": a negative timestamp " + std::to_string(rows.integer(0)));
+      times.push_back(static_cast<std::uint64_t>(rows.integer(0)));
+    }
+    return times;
+  }
+
   void forEachMessage(const std::vector<std::string>& names, const std::function<void(const BagMessage&)>& visit) const override {
     std::string where_ids;
     for (const auto& n : names) {

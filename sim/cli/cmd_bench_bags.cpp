@@ -1,0 +1,106 @@
+// bimloc bench bags [SCENARIO] [--repeat N] [--json]
+// The cost of reading one run's recording as a ROS 1 bag, a ROS 2 MCAP bag (zstd chunks) and a
+// ROS 2 SQLite3 bag: the input layer of `localize` (BagInput: topics, odometry, tf, every cloud
+// decoded), best of N, each against the ROS 1 bag in the same run.
+#include "sim/cli/commands.hpp"
+#include "sim/cli/table.hpp"
+#include "sim/dataset/bag_reader.hpp"
+#include "sim/dataset/dataset_writer.hpp"
+#include "sim/simulation/simulator.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include <unistd.h>
+
+namespace {
+
+using namespace bimloc::sim;
+using Clock = std::chrono::steady_clock;
+
+struct BagBenchArgs {
+  std::string scenario = "scenarios/site_office_R101.yaml";
+  int repeat = 3;
+  bool json = false;
+};
+
+std::uintmax_t bytesOf(const std::filesystem::path& p) {
+  if (std::filesystem::is_regular_file(p)) return std::filesystem::file_size(p);
+  std::uintmax_t n = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(p))
+    if (e.is_regular_file()) n += e.file_size();
+  return n;
+}
+
+void run(const BagBenchArgs& args) {
+  const Scenario scenario = loadScenario(args.scenario);
+  const World world = World::load(scenario.world);
+  const Simulator sim(scenario, world);
+  std::vector<LidarScan> scans;
+  sim.castTurns(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())),
+                [&](LidarScan&& scan) { scans.push_back(std::move(scan)); });
+  const auto tmp = std::filesystem::temp_directory_path() / ("bimloc-bench-bags-" + std::to_string(::getpid()));
+  struct Format {
+    std::string name, input;
+  };
+  const std::vector<Format> formats = {{"ros1", "dataset.bag"}, {"mcap", "rosbag2"}, {"sqlite3", "rosbag2"}};
+  nlohmann::json rows = nlohmann::json::array();
+  bimloc::cli::Table table({"format", "bag [MB]", "read [s]", "x ROS 1", "points"});
+  double ros1_s = 0;
+  try {
+    for (const Format& f : formats) {
+      DatasetInfo info;
+      info.T_base_lidar = scenario.sensor.T_base_lidar;
+      info.bag_format = f.name;
+      const std::string dir = (tmp / f.name).string();
+      {
+        DatasetWriter writer(dir, info);
+        for (const auto& o : sim.odometry()) writer.addOdometry(o);
+        for (const auto& g : sim.groundTruth()) writer.addGroundTruth(g);
+        for (const auto& s : scans) writer.addScan(s);
+        writer.commit();
+      }
+      const std::string input = dir + "/" + f.input;
+      double best = 1e300;
+      std::size_t points = 0;
+      for (int i = 0; i < std::max(1, args.repeat); ++i) {
+        const auto t0 = Clock::now();
+        const BagInput bag(input, BagInputOptions{});
+        points = 0;
+        bag.forEachTurn([&](const BagTurn& t) { points += t.points().size(); });
+        best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+      }
+      if (f.name == "ros1") ros1_s = best;
+      const double mb = static_cast<double>(bytesOf(input)) / 1e6;
+      rows.push_back({{"format", f.name}, {"bag_bytes", bytesOf(input)}, {"read_seconds", best},
+                      {"ratio_to_ros1", best / ros1_s}, {"points", points}, {"turns", scans.size()}});
+      using bimloc::cli::fixed;
+      table.add({f.name, fixed(mb, 1), fixed(best, 3), fixed(best / ros1_s, 2), std::to_string(points)});
+    }
+  } catch (...) {
+    std::filesystem::remove_all(tmp);
+    throw;
+  }
+  std::filesystem::remove_all(tmp);
+  if (args.json) {
+    std::cout << nlohmann::json{{"scenario", args.scenario}, {"repeat", args.repeat}, {"formats", rows}}.dump() << "\n";
+  } else {
+    std::cout << args.scenario << ": " << scans.size() << " turns, best of " << args.repeat << "\n\n";
+    table.print(std::cout);
+  }
+}
+
+}  // namespace
+
+void addBenchBagsCommand(CLI::App& bench) {
+  auto args = std::make_shared<BagBenchArgs>();
+  CLI::App* cmd = bench.add_subcommand(
+      "bags", "Reading one run as a ROS 1 bag, a ROS 2 MCAP bag and a ROS 2 SQLite3 bag (localize's input layer, every "
+              "cloud decoded): seconds and the ratio to the ROS 1 bag, in the same run.");
+  cmd->add_option("scenario", args->scenario, "scenario file")->capture_default_str();
+  cmd->add_option("--repeat", args->repeat, "reads of each bag; the best is kept")->capture_default_str()->check(CLI::Range(1, 100));
+  cmd->add_flag("--json", args->json, "print one JSON object");
+  cmd->callback([args] { run(*args); });
+}

@@ -1,0 +1,149 @@
+// BagMessages of a ROS 1 bag, through Debian's rosbag_storage and the ROS 1 message headers.
+#include "sim/dataset/bag_messages.hpp"
+#include "sim/dataset/velodyne_scan_msg.hpp"
+
+#include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <fstream>
+#include <stdexcept>
+
+namespace bimloc::sim {
+namespace {
+
+// rosbag's words, with what they mean for a recording: a bag cut short (the recorder killed)
+// has no index at its end, which `rosbag reindex` rebuilds.
+std::string bagProblem(const std::exception& e) {
+  const std::string what = e.what();
+  const bool cut = what.find("Error reading from file") != std::string::npos || what.find("unindexed") != std::string::npos;
+  return "damaged or unreadable bag: " + what +
+         (cut ? " (a bag cut short, e.g. a recording that did not finish: 'rosbag reindex' rebuilds its index)" : "");
+}
+
+BagPose bagPose(const geometry_msgs::Pose& p) {
+  return {p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w};
+}
+
+class Ros1BagMessages final : public BagMessages {
+ public:
+  explicit Ros1BagMessages(const std::string& path) {
+    path_ = path;
+    guarded([&] {
+      bag_.open(path, rosbag::bagmode::Read);
+      rosbag::View all(bag_);
+      for (const rosbag::ConnectionInfo* c : all.getConnections()) topics_[c->topic].type = c->datatype;
+      for (auto& [topic, info] : topics_) info.messages = rosbag::View(bag_, rosbag::TopicQuery(topic)).size();
+    });
+  }
+
+  std::string format() const override { return "ROS 1 bag"; }
+
+  std::string typeName(BagMessageKind kind) const override {
+    switch (kind) {
+      case BagMessageKind::kPointCloud2: return "sensor_msgs/PointCloud2";
+      case BagMessageKind::kOdometry: return "nav_msgs/Odometry";
+      case BagMessageKind::kTFMessage: return "tf2_msgs/TFMessage";
+      case BagMessageKind::kPoseStamped: return "geometry_msgs/PoseStamped";
+      case BagMessageKind::kVelodyneScan: return "velodyne_msgs/VelodyneScan";
+    }
+    return "";
+  }
+
+  void forEachTransform(const std::string& topic, const std::function<void(const BagTransform&)>& visit) const override {
+    guarded([&] {
+      for (const rosbag::MessageInstance& m : rosbag::View(bag_, rosbag::TopicQuery(topic))) {
+        const auto tf = m.instantiate<tf2_msgs::TFMessage>();
+        if (!tf) continue;
+        for (const auto& t : tf->transforms) {
+          const auto& r = t.transform.rotation;
+          const auto& p = t.transform.translation;
+          visit({t.header.stamp.toSec(), t.header.frame_id, t.child_frame_id, {p.x, p.y, p.z, r.x, r.y, r.z, r.w}});
+        }
+      }
+    });
+  }
+
+  void forEachPose(const std::string& topic, const std::function<void(const BagStampedPose&)>& visit) const override {
+    guarded([&] {
+      const bool stamped = hasTopic(topic, BagMessageKind::kPoseStamped);
+      for (const rosbag::MessageInstance& m : rosbag::View(bag_, rosbag::TopicQuery(topic))) {
+        if (stamped) {
+          if (const auto p = m.instantiate<geometry_msgs::PoseStamped>()) visit({p->header.stamp.toSec(), bagPose(p->pose)});
+        } else if (const auto odom = m.instantiate<nav_msgs::Odometry>()) {
+          visit({odom->header.stamp.toSec(), bagPose(odom->pose.pose)});
+        }
+      }
+    });
+  }
+
+  std::vector<double> receiveTimes(const std::string& topic) const override {
+    std::vector<double> times;
+    guarded([&] {
+      for (const rosbag::MessageInstance& m : rosbag::View(bag_, rosbag::TopicQuery(topic))) times.push_back(m.getTime().toSec());
+    });
+    return times;
+  }
+
+  void forEachCloud(const std::string& topic, const std::function<bool(std::shared_ptr<const BagCloud>)>& visit) const override {
+    const bool packets = hasTopic(topic, BagMessageKind::kVelodyneScan);
+    guarded([&] {
+      std::size_t index = 0;
+      for (const rosbag::MessageInstance& m : rosbag::View(bag_, rosbag::TopicQuery(topic))) {
+        if (packets) {
+          const auto scan = m.instantiate<velodyne_msgs::VelodyneScan>();
+          if (!scan)
+            throw std::runtime_error(path_ + ": " + topic + " message " + std::to_string(index) + ": cannot be read as velodyne_msgs/VelodyneScan");
+          ++index;
+          auto out = std::make_shared<BagCloud>();
+          out->stamp_s = scan->header.stamp.toSec();
+          out->frame_id = scan->header.frame_id;
+          for (const auto& p : scan->packets) out->packets.push_back({p.stamp.toSec(), {p.data.begin(), p.data.end()}});
+          if (!visit(out)) break;
+          continue;
+        }
+        const auto cloud = m.instantiate<sensor_msgs::PointCloud2>();
+        if (!cloud)
+          throw std::runtime_error(path_ + ": " + topic + " message " + std::to_string(index) + ": cannot be read as sensor_msgs/PointCloud2");
+        ++index;
+        auto out = std::make_shared<BagCloud>();
+        out->stamp_s = cloud->header.stamp.toSec();
+        out->frame_id = cloud->header.frame_id;
+        for (const auto& f : cloud->fields) out->layout.fields.push_back({f.name, f.offset, f.datatype, f.count});
+        out->layout.width = cloud->width, out->layout.height = cloud->height, out->layout.point_step = cloud->point_step;
+        out->layout.row_step = cloud->row_step, out->layout.is_bigendian = cloud->is_bigendian;
+        out->data = std::move(const_cast<sensor_msgs::PointCloud2&>(*cloud).data);
+        if (!visit(out)) break;
+      }
+    });
+  }
+
+ private:
+  // rosbag's exceptions (and a damaged file's bad_alloc) name no file: every read is wrapped.
+  template <typename F>
+  void guarded(F&& f) const {
+    try {
+      f();
+    } catch (const ros::Exception& e) {  // rosbag::BagException and the deserialiser's overruns
+      throw std::runtime_error(path_ + ": " + bagProblem(e));
+    } catch (const std::bad_alloc&) {
+      throw std::runtime_error(path_ + ": damaged bag: a record claims more memory than there is");
+    }
+  }
+
+  mutable rosbag::Bag bag_;
+};
+
+}  // namespace
+
+bool BagMessages::hasTopic(const std::string& topic, BagMessageKind kind) const {
+  const auto it = topics_.find(topic);
+  return it != topics_.end() && it->second.type == typeName(kind);
+}
+
+std::unique_ptr<BagMessages> openRos1Bag(const std::string& path) { return std::make_unique<Ros1BagMessages>(path); }
+
+}  // namespace bimloc::sim
