@@ -144,7 +144,7 @@ TEST(BagInput, ASimulatedBagLocalizesLikeItsFolder) {
 TEST(BagInput, RenamedTopicsAndFramesLocalizeWithTheOptions) {
   const std::string bag = rewritten("rename");
   const auto refused = runBimloc("localize '" + bag + "' --plan '" + kPlan + "'");
-  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_EQ(refused.exit_code, 2);  // the input cannot be used
   // The missing topic, then every topic of the bag with its type.
   EXPECT_NE(refused.err.find(bag + ": no topic /velodyne_points (sensor_msgs/PointCloud2 or velodyne_msgs/VelodyneScan; choose another with --cloud-topic)"),
             std::string::npos) << refused.err;
@@ -190,7 +190,7 @@ TEST(BagInput, CloudsWithTheFieldsInAnotherOrderGiveTheSamePoints) {
 TEST(BagInput, ABagWithNoOdometryFailsClearly) {
   const std::string bag = rewritten("noodom");
   const auto r = runBimloc("localize '" + bag + "' --plan '" + kPlan + "'");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // the input cannot be used
   EXPECT_NE(r.err.find(bag + ": no odometry: no topic /odom (nav_msgs/Odometry; choose it with --odom-topic) and no "
                              "/tf transform odom -> base_link"),
             std::string::npos) << r.err;
@@ -198,7 +198,7 @@ TEST(BagInput, ABagWithNoOdometryFailsClearly) {
   // Odometry on another clock: as good as none.
   const std::string late = rewritten("otherclock");
   const auto r2 = runBimloc("localize '" + late + "' --plan '" + kPlan + "'");
-  EXPECT_EQ(r2.exit_code, 1);
+  EXPECT_EQ(r2.exit_code, 2);  // the input cannot be used
   EXPECT_NE(r2.err.find(late + ": the clouds (1000.000 to 1008.000 s) and the odometry (101000.000 to 101008.000 s) never "
                                "overlap in time"),
             std::string::npos) << r2.err;

@@ -147,7 +147,16 @@ void run(const LocalizeArgs& args) {
   BagInputOptions bag_options = args.bag;
   if (!args.mount.empty()) bag_options.mount = parseMount(args.mount);
   bag_options.deskew = !args.no_deskew;
-  Recording rec = is_bag ? openBag(args.input, bag_options) : openDataset(args.input);
+  Recording rec;
+  try {
+    rec = is_bag ? openBag(args.input, bag_options) : openDataset(args.input);
+  } catch (const std::runtime_error& e) {
+    if (!is_bag) throw;
+    // A bag that cannot be used (not a bag, damaged, no cloud topic bimloc decodes: a Hesai's
+    // pandar_msgs packets, say; no odometry, no mount): exit 2, not the 1 of a run that did not localize.
+    std::cerr << "bimloc localize: error: " << e.what() << "\n";
+    throw bimloc::cli::ExitCode{2};
+  }
   const bimloc::bim::Building building = bimloc::bim::readIfc(args.plan, {});
   const bool storey_auto = args.storey == "auto";
   // The true storey, for scoring: as recorded (with auto, the localizer is not told it).

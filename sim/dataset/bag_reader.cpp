@@ -94,12 +94,25 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     BagMessages& bag = *impl_->bag;
     warnings_ = bag.warnings();
     const auto& topics = bag.topics();
+    // Raw packets of another lidar (a Hesai's pandar_msgs, say): said, so that the user records
+    // the driver's clouds instead.
+    auto undecodedPackets = [&] {
+      std::string found;
+      for (const auto& [name, info] : topics)
+        if ((info.type.find("Packet") != std::string::npos || info.type.find("PandarScan") != std::string::npos) &&
+            info.type != bag.typeName(BagMessageKind::kVelodyneScan))
+          found += (found.empty() ? "" : ", ") + name + " (" + info.type + ")";
+      return found.empty() ? found
+                           : "; " + found + " holds raw packets bimloc does not decode (it decodes the VLP-16's): record "
+                             "the driver's sensor_msgs PointCloud2";
+    };
     auto require = [&](const std::string& topic, std::vector<BagMessageKind> kinds, const std::string& option) {
       std::string types;
       for (const auto kind : kinds) types += (types.empty() ? "" : " or ") + bag.typeName(kind);
       const auto it = topics.find(topic);
       if (it == topics.end())
-        fail("no topic " + topic + " (" + types + "; choose another with " + option + "). The bag has:" + topicList());
+        fail("no topic " + topic + " (" + types + "; choose another with " + option + ")" + undecodedPackets() +
+             ". The bag has:" + topicList());
       for (const auto kind : kinds)
         if (it->second.type == bag.typeName(kind)) return;
       fail("topic " + topic + " is " + it->second.type + ", not " + types + " (choose another with " + option +

@@ -47,7 +47,7 @@ struct Vlp16DecodeOptions {
   bool keep_last = true, keep_strongest = true;
   // Reproduce tier4/nebula's azimuths (to compare with its clouds): each firing's azimuth
   // rounded to 0.01 deg and, in dual-return mode, the second block of a pair given the next
-  // pair's azimuth and the packet's last pair's first block no interpolation. The manual's
+  // pair's azimuth without interpolation and the packet's last pair's first block no interpolation. The manual's
   // rule otherwise: both blocks of a pair share their azimuth, interpolated to the next pair.
   bool nebula_azimuths = false;
 };
