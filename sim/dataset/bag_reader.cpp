@@ -216,11 +216,12 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     lidar_frame_ = frameName(first->frame_id);
     // The driver stamps a turn at its first firing (times >= 0) or, configured so, at its last
     // (times <= 0): the turn's middle is half a period after, or before, the stamp.
-    const CloudPoints p = decodeBagCloud(*first, path + ": " + options.cloud_topic + " message 0");
+    CloudPoints p = decodeBagCloud(*first, path + ": " + options.cloud_topic + " message 0");
+    makeTimesRelative(p, first->stamp_s);
     time_field_ = p.time_field;
     timed_ = !p.time_s.empty();
     double sum = 0;
-    for (double t : p.time_s) sum += p.time_absolute ? t - first->stamp_s : t;
+    for (double t : p.time_s) sum += t;
     first_offset_s_ = !p.time_s.empty() && sum < 0 ? -0.5 * turn_period_s_ : 0.5 * turn_period_s_;
     first_turn_s_ = first->stamp_s + first_offset_s_;
     // Odometry outside the clouds' time (another clock: sim time against wall time) would make
@@ -268,9 +269,8 @@ void BagInput::forEachTurn(const std::function<void(const BagTurn&)>& visit) con
     turn.points = [this, cloud, where, header_s, ref = turn.stamp_s] {
       CloudPoints p = decodeBagCloud(*cloud, where);
       if (options_.deskew && !p.time_s.empty()) {
-        // Some drivers give absolute times (seconds since the epoch): make them relative.
-        if (p.time_absolute)
-          for (double& t : p.time_s) t -= header_s;
+        // Some drivers give absolute times (Hesai, RoboSense, Livox): make them relative.
+        makeTimesRelative(p, header_s);
         deskew(p.xyz, p.time_s, header_s, ref, odometry_, T_base_lidar_);
       }
       return std::move(p.xyz);

@@ -48,6 +48,14 @@ bool isInteger(std::uint8_t datatype) { return datatype >= 1 && datatype <= 6; }
 
 }  // namespace
 
+void makeTimesRelative(CloudPoints& points, double header_stamp_s) {
+  if (points.time_s.empty()) return;
+  const double t = points.time_s.front();
+  points.time_absolute = std::abs(t - header_stamp_s) < std::abs(t);
+  if (points.time_absolute)
+    for (double& v : points.time_s) v -= header_stamp_s;
+}
+
 std::string cloudTimeField(const CloudLayout& layout) {
   for (const char* name : kCloudTimeFields)
     for (const CloudField& f : layout.fields)

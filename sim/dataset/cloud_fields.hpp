@@ -37,7 +37,8 @@ struct CloudLayout {
 //   timestamp    Hesai (HesaiLidar_ROS_2.0), RoboSense (rslidar_sdk), Livox: FLOAT64 absolute
 //                seconds (nanoseconds when the value is beyond 1e12)
 // Units follow the datatype: integers are nanoseconds, floats seconds. A value beyond 1e6 s is
-// absolute (since the epoch): CloudPoints::time_absolute, and the caller subtracts the stamp.
+// marked absolute (since the epoch); with the header stamp, makeTimesRelative decides and
+// subtracts it.
 inline constexpr const char* kCloudTimeFields[] = {"time", "t", "offset_time", "time_stamp", "timestamp"};
 
 struct CloudPoints {
@@ -50,6 +51,11 @@ struct CloudPoints {
   // The laser of each kept point (`ring`, UINT16 or UINT8, or `channel`); empty without.
   std::vector<std::uint16_t> ring;
 };
+
+// Makes the times relative to the header stamp when they are absolute: nearer the stamp than
+// zero (a relative time is within a turn of zero, an absolute one within a turn of the stamp,
+// on whatever clock the recording has). Sets time_absolute to what was found.
+void makeTimesRelative(CloudPoints& points, double header_stamp_s);
 
 // The time field decodeCloud would use, or "" when the layout has none.
 std::string cloudTimeField(const CloudLayout& layout);
