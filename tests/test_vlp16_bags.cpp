@@ -106,3 +106,13 @@ TEST(Vlp16Bags, OtherDriversLayoutsDeskewFromTheirOwnTimeFieldsAndNoTimeIsSaidOn
   EXPECT_NEAR(localizeJson(rewritten("notime"))["position_error_m"].get<double>(),
               localizeJson(bag, "--no-deskew")["position_error_m"].get<double>(), 1e-3);
 }
+
+TEST(Vlp16Bags, APacketsTopicInAnMcapBagLocalizesAsInTheRos1Bag) {
+  // velodyne_msgs/msg/VelodyneScan in CDR, with its ros2msg schema: the same packets, the same run.
+  const std::string mcap = test::simulatedCorridor("vlp16-mcap", "--packets --format mcap") + "/data/rosbag2";
+  const auto ros2 = localizeJson(mcap, "--cloud-topic /velodyne_packets");
+  const auto ros1 = localizeJson(simulated() + "/data/dataset.bag", "--cloud-topic /velodyne_packets");
+  EXPECT_EQ(ros2["converged"], true);
+  EXPECT_EQ(ros2["converged"], ros1["converged"]);
+  EXPECT_NEAR(ros2["position_error_m"].get<double>(), ros1["position_error_m"].get<double>(), 1e-6);
+}
