@@ -13,6 +13,11 @@ Usage: rewrite_bag.py IN OUT MODE
             on /tf_static (as a legged robot's state publisher gives them)
   otherclock /odom stamped 100000 s later (another clock), nothing else changed
   noodom    no /odom and no odom -> base_link on /tf (the mount stays)
+  ouster    the clouds in ouster-ros' layout: x y z (padded to 16), intensity, t UINT32 ns
+            relative to the stamp, ring UINT8; point_step 48
+  hesai     the clouds in HesaiLidar_ROS_2.0's layout: x y z intensity, timestamp FLOAT64
+            absolute seconds, ring UINT16; point_step 32
+  notime    the clouds with x y z intensity only: no per-point time
 """
 import copy
 import sys
@@ -78,6 +83,44 @@ def reorder(inp, out):
         out.write(topic, msg, t)
 
 
+# Other drivers' layouts (name, datatype, offset) and how their time is made from the
+# Velodyne time (seconds relative to the header stamp).
+LAYOUTS = {
+    "ouster": ([("x", 7, 0), ("y", 7, 4), ("z", 7, 8), ("intensity", 7, 16), ("t", 6, 20), ("ring", 2, 26)], 48,
+               lambda rel, stamp: numpy.round(rel * 1e9).astype("<u4")),
+    "hesai": ([("x", 7, 0), ("y", 7, 4), ("z", 7, 8), ("intensity", 7, 12), ("timestamp", 8, 16), ("ring", 4, 24)], 32,
+              lambda rel, stamp: stamp + rel.astype("<f8")),
+    "notime": ([("x", 7, 0), ("y", 7, 4), ("z", 7, 8), ("intensity", 7, 12)], 16, None),
+}
+NUMPY.update({6: "<u4", 2: "u1"})
+
+
+def layout(mode):
+    def rewrite(inp, out):
+        fields, step, timing = LAYOUTS[mode]
+        for topic, msg, t in inp.read_messages():
+            if topic == "/velodyne_points":
+                old = numpy.dtype({"names": [f.name for f in msg.fields], "formats": [NUMPY[f.datatype] for f in msg.fields],
+                                   "offsets": [f.offset for f in msg.fields], "itemsize": msg.point_step})
+                points = numpy.frombuffer(bytes(msg.data), dtype=old, count=msg.width)
+                new = numpy.dtype({"names": [n for n, _, _ in fields], "formats": [NUMPY[d] for _, d, _ in fields],
+                                   "offsets": [o for _, _, o in fields], "itemsize": step})
+                packed = numpy.zeros(msg.width, dtype=new)
+                stamp = msg.header.stamp.secs + 1e-9 * msg.header.stamp.nsecs
+                for name, _, _ in fields:
+                    if name in ("t", "timestamp"):
+                        packed[name] = timing(points["time"], stamp)
+                    else:
+                        packed[name] = points[name]
+                field_class = type(msg.fields[0])
+                msg.fields = [field_class(name=n, offset=o, datatype=d, count=1) for n, d, o in fields]
+                msg.point_step = step
+                msg.row_step = step * msg.width
+                msg.data = packed.tobytes()
+            out.write(topic, msg, t)
+    return rewrite
+
+
 def footprint(inp, out):
     static_written = False
     for topic, msg, t in inp.read_messages():
@@ -129,7 +172,8 @@ def main():
     source, target, mode = sys.argv[1:4]
     with rosbag.Bag(source) as inp, rosbag.Bag(target, "w") as out:
         {"rename": rename, "reorder": reorder, "footprint": footprint, "otherclock": otherclock,
-         "noodom": noodom}[mode](inp, out)
+         "noodom": noodom, "ouster": layout("ouster"), "hesai": layout("hesai"),
+         "notime": layout("notime")}[mode](inp, out)
 
 
 if __name__ == "__main__":

@@ -3,7 +3,7 @@
 // rewritten by ROS's own python rosbag (tests/rewrite_bag.py: renamed topics and frames,
 // the clouds' fields in another order and width, no odometry), analytic clouds and motions
 // for the field decoding and the de-skew, and python rosbag again reading localized.bag.
-#include "recording_fixtures.hpp"
+#include "bag_fixtures.hpp"
 #include "test_support.hpp"
 
 #include "sim/dataset/cloud_fields.hpp"
@@ -24,41 +24,13 @@ using test::runBimloc;
 
 namespace {
 
-const std::string kPlan = test::recordingPlan();
+const std::string& kPlan = test::officePlan();
 
-// One short simulation for the whole file: from the corridor, which converges within 2 s.
-const std::string& simulated() {
-  static const std::string dir = test::simulatedRecording("bag-input");
-  return dir;
-}
+const std::string& simulated() { return test::simulatedCorridor("bag-input"); }
 
-std::string rewritten(const std::string& mode) {
-  const std::string out = simulated() + "/" + mode + ".bag";
-  if (!fs::exists(out)) {
-    const std::string cmd = "/usr/bin/python3 '" + std::string(BIMLOC_TESTS_DIR) + "/rewrite_bag.py' '" + simulated() +
-                            "/data/dataset.bag' '" + out + "' " + mode;
-    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  }
-  return out;
-}
+std::string rewritten(const std::string& mode) { return test::rewrittenBag(simulated(), mode); }
 
-nlohmann::json localizeJson(const std::string& input, const std::string& options = "") {
-  const auto r = runBimloc("localize '" + input + "' --plan '" + kPlan + "' --json " + options);
-  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
-  try {
-    auto j = nlohmann::json::parse(r.out)["scenarios"][0];
-    j.erase("wall_seconds"), j.erase("name");  // the input's path and the machine's speed
-    for (auto& w : j["warnings"]) {  // "INPUT: message N: ...": the same without the path
-      std::string text = w.get<std::string>();
-      if (text.rfind(input, 0) == 0) text.erase(0, input.size());
-      w = text;
-    }
-    return j;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not JSON: " << r.out << r.err;
-    return {};
-  }
-}
+using test::localizeJson;
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -172,9 +144,9 @@ TEST(BagInput, ASimulatedBagLocalizesLikeItsFolder) {
 TEST(BagInput, RenamedTopicsAndFramesLocalizeWithTheOptions) {
   const std::string bag = rewritten("rename");
   const auto refused = runBimloc("localize '" + bag + "' --plan '" + kPlan + "'");
-  EXPECT_EQ(refused.exit_code, 2);  // the input cannot be used (docs/exit_codes.md)
+  EXPECT_EQ(refused.exit_code, 2);  // the input cannot be used
   // The missing topic, then every topic of the bag with its type.
-  EXPECT_NE(refused.err.find(bag + ": no topic /velodyne_points (sensor_msgs/PointCloud2; choose another with --cloud-topic)"),
+  EXPECT_NE(refused.err.find(bag + ": no topic /velodyne_points (sensor_msgs/PointCloud2 or velodyne_msgs/VelodyneScan; choose another with --cloud-topic)"),
             std::string::npos) << refused.err;
   EXPECT_NE(refused.err.find("/lidar/points (sensor_msgs/PointCloud2, 80 messages)"), std::string::npos) << refused.err;
   EXPECT_NE(refused.err.find("/legs/odom (nav_msgs/Odometry,"), std::string::npos) << refused.err;
@@ -218,7 +190,7 @@ TEST(BagInput, CloudsWithTheFieldsInAnotherOrderGiveTheSamePoints) {
 TEST(BagInput, ABagWithNoOdometryFailsClearly) {
   const std::string bag = rewritten("noodom");
   const auto r = runBimloc("localize '" + bag + "' --plan '" + kPlan + "'");
-  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.exit_code, 2);  // the input cannot be used
   EXPECT_NE(r.err.find(bag + ": no odometry: no topic /odom (nav_msgs/Odometry; choose it with --odom-topic) and no "
                              "/tf transform odom -> base_link"),
             std::string::npos) << r.err;
@@ -226,7 +198,7 @@ TEST(BagInput, ABagWithNoOdometryFailsClearly) {
   // Odometry on another clock: as good as none.
   const std::string late = rewritten("otherclock");
   const auto r2 = runBimloc("localize '" + late + "' --plan '" + kPlan + "'");
-  EXPECT_EQ(r2.exit_code, 2);
+  EXPECT_EQ(r2.exit_code, 2);  // the input cannot be used
   EXPECT_NE(r2.err.find(late + ": the clouds (1000.000 to 1008.000 s) and the odometry (101000.000 to 101008.000 s) never "
                                "overlap in time"),
             std::string::npos) << r2.err;

@@ -110,6 +110,16 @@ Recording openDataset(const std::string& dir, const SensorRange& range) {
   return rec;
 }
 
+// Said once a run: whether the turns are de-skewed, and from which per-point time.
+std::string deskewNote(const BagInput& bag, const BagInputOptions& options) {
+  if (!bag.timed())
+    return "de-skew: off (the clouds on " + options.cloud_topic +
+           " have no per-point time field: time, t, offset_time, time_stamp or timestamp)";
+  if (!options.deskew) return "de-skew: off (--no-deskew)";
+  if (bag.packets()) return "de-skew: on (per-point time from the VLP-16's packets on " + options.cloud_topic + ")";
+  return "de-skew: on (per-point time from the field '" + bag.timeField() + "')";
+}
+
 Recording openBag(const std::string& path, const BagInputOptions& options) {
   Recording rec;
   rec.bag = std::make_shared<BagInput>(path, options);
@@ -122,7 +132,7 @@ Recording openBag(const std::string& path, const BagInputOptions& options) {
   rec.input_bag = path;
   for (const auto& w : bag.warnings()) std::cerr << "warning: " << w << "\n";
   rec.notes = {"odometry: " + bag.odometrySource(), "mount: " + bag.mountSource(),
-               std::string("de-skew: ") + (bag.timed() && options.deskew ? "on (per-point time)" : "off")};
+               deskewNote(bag, options)};
   rec.turns = [b = rec.bag](const std::function<void(const RecordedTurn&)>& visit) {
     b->forEachTurn([&](const BagTurn& t) {
       RecordedTurn turn;
@@ -267,7 +277,9 @@ void addLocalizeCommand(CLI::App& app) {
                   "localized.mcap (ROS 2 input: the same + the plan on /bimloc/plan), "
                   "report.json and snapshots/ into this folder, all or nothing");
   auto* bag = cmd->add_option_group("bag input", "for a ROS 1 or ROS 2 bag");
-  bag->add_option("--cloud-topic", args->bag.cloud_topic, "sensor_msgs/PointCloud2 with fields x, y, z (time: de-skew)")
+  bag->add_option("--cloud-topic", args->bag.cloud_topic,
+                  "sensor_msgs/PointCloud2 with fields x, y, z (a per-point time field: de-skew; see docs/sensors.md), "
+                  "or velodyne_msgs/VelodyneScan, the VLP-16's raw packets (decoded, de-skewed per firing)")
       ->capture_default_str();
   bag->add_option("--odom-topic", args->bag.odom_topic,
                   "nav_msgs/Odometry; when absent (and not given), /tf ODOM_FRAME -> BASE_FRAME is the odometry")

@@ -1,4 +1,4 @@
-// bimloc simulate SCENARIO --out DIR [--threads N] [--format ros1|mcap|sqlite3]
+// bimloc simulate SCENARIO --out DIR [--threads N] [--format ros1|mcap|sqlite3] [--packets]
 #include "sim/cli/commands.hpp"
 #include "sim/cli/progress.hpp"
 #include "sim/dataset/dataset_metadata.hpp"
@@ -17,6 +17,7 @@ struct SimulateArgs {
   std::string out;
   int threads = 0;
   bool quiet = false;
+  bool packets = false;
   std::string format = "ros1";
 };
 
@@ -48,6 +49,7 @@ void run(const SimulateArgs& args) {
   info.metadata = metadata(sim, args.scenario);
   info.T_base_lidar = scenario.sensor.T_base_lidar;
   info.bag_format = args.format;
+  if (args.packets) info.packets_rpm = scenario.sensor.rpm;
   DatasetWriter writer(args.out, info);
   for (const auto& o : sim.odometry()) writer.addOdometry(o);
   for (const auto& g : sim.groundTruth()) writer.addGroundTruth(g);
@@ -77,6 +79,9 @@ void addSimulateCommand(CLI::App& app) {
   cmd->add_option("scenario", args->scenario, "scenario file (YAML, see scenarios/README.md)")->required();
   cmd->add_option("--out", args->out, "output folder")->required();
   cmd->add_option("--threads", args->threads, "threads casting lidar turns (default: all cores)")->check(CLI::Range(1, 256));
+  cmd->add_flag("--packets", args->packets,
+                "also write the VLP-16's own data packets: velodyne_msgs/VelodyneScan on /velodyne_packets in the bag\n"
+                "(one a turn) and velodyne.pcap, the sensor's UDP stream (port 2368), for a robot's own driver");
   cmd->add_flag("--quiet", args->quiet, "print nothing on success");
   cmd->add_option("--format", args->format,
                   "the bag: ros1 (dataset.bag), mcap (rosbag2/rosbag2_0.mcap, zstd chunks) or sqlite3 (rosbag2/rosbag2_0.db3)")

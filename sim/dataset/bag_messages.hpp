@@ -15,7 +15,8 @@
 
 namespace bimloc::sim {
 
-enum class BagMessageKind { kPointCloud2, kOdometry, kTFMessage, kPoseStamped };
+// kVelodyneScan: velodyne_msgs VelodyneScan, the VLP-16's raw packets (docs/sensors.md).
+enum class BagMessageKind { kPointCloud2, kOdometry, kTFMessage, kPoseStamped, kVelodyneScan };
 
 struct BagPose {  // as geometry_msgs/Pose and Transform: unchecked, as recorded
   double x = 0, y = 0, z = 0, qx = 0, qy = 0, qz = 0, qw = 1;
@@ -32,12 +33,22 @@ struct BagTransform {  // one geometry_msgs/TransformStamped of a tf2_msgs/TFMes
   BagPose pose;
 };
 
-struct BagCloud {  // a sensor_msgs/PointCloud2
+struct BagPacket {  // a velodyne_msgs VelodynePacket
+  double stamp_s = 0;
+  std::vector<std::uint8_t> data;  // 1206 bytes when sound
+};
+
+struct BagCloud {  // a sensor_msgs/PointCloud2, or a velodyne_msgs VelodyneScan
   double stamp_s = 0;  // header stamp
   std::string frame_id;
   CloudLayout layout;
   std::vector<std::uint8_t> data;
+  std::vector<BagPacket> packets;  // a VelodyneScan's (layout and data then empty)
 };
+
+// The cloud's points: the PointCloud2 decoded by its fields (cloud_fields.hpp), or the packets
+// decoded as the VLP-16 manual says (velodyne_scan_points.hpp), times relative to the stamp.
+CloudPoints decodeBagCloud(const BagCloud& cloud, const std::string& where);
 
 class BagMessages {
  public:

@@ -4,6 +4,7 @@
 #include "sim/dataset/cloud_fields.hpp"
 #include "sim/dataset/deskew.hpp"
 #include "sim/dataset/recording_checks.hpp"
+#include "sim/dataset/velodyne_scan_points.hpp"
 #include "sim/ros2/rosbag2_reader.hpp"
 
 #include <algorithm>
@@ -51,6 +52,14 @@ struct Edge {
 
 }  // namespace
 
+CloudPoints decodeBagCloud(const BagCloud& cloud, const std::string& where) {
+  if (cloud.packets.empty()) return decodeCloud(cloud.layout, cloud.data.data(), cloud.data.size(), where);
+  std::vector<RawPacket> raw;
+  raw.reserve(cloud.packets.size());
+  for (const BagPacket& p : cloud.packets) raw.push_back({p.stamp_s, p.data.data(), p.data.size()});
+  return decodeVelodyneScan(raw, cloud.stamp_s, Vlp16DecodeOptions{}, where);
+}
+
 struct BagInput::Impl {
   std::unique_ptr<BagMessages> bag;
 };
@@ -85,18 +94,35 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     BagMessages& bag = *impl_->bag;
     warnings_ = bag.warnings();
     const auto& topics = bag.topics();
-    auto require = [&](const std::string& topic, BagMessageKind kind, const std::string& option) {
-      const std::string type = bag.typeName(kind);
+    // Raw packets of another lidar (a Hesai's pandar_msgs, say): said, so that the user records
+    // the driver's clouds instead.
+    auto undecodedPackets = [&] {
+      std::string found;
+      for (const auto& [name, info] : topics)
+        if ((info.type.find("Packet") != std::string::npos || info.type.find("PandarScan") != std::string::npos) &&
+            info.type != bag.typeName(BagMessageKind::kVelodyneScan))
+          found += (found.empty() ? "" : ", ") + name + " (" + info.type + ")";
+      return found.empty() ? found
+                           : "; " + found + " holds raw packets bimloc does not decode (it decodes the VLP-16's): record "
+                             "the driver's sensor_msgs PointCloud2";
+    };
+    auto require = [&](const std::string& topic, std::vector<BagMessageKind> kinds, const std::string& option) {
+      std::string types;
+      for (const auto kind : kinds) types += (types.empty() ? "" : " or ") + bag.typeName(kind);
       const auto it = topics.find(topic);
       if (it == topics.end())
-        fail("no topic " + topic + " (" + type + "; choose another with " + option + "). The bag has:" + topicList());
-      if (it->second.type != type)
-        fail("topic " + topic + " is " + it->second.type + ", not " + type + " (choose another with " + option +
-             "). The bag has:" + topicList());
+        fail("no topic " + topic + " (" + types + "; choose another with " + option + ")" + undecodedPackets() +
+             ". The bag has:" + topicList());
+      for (const auto kind : kinds)
+        if (it->second.type == bag.typeName(kind)) return;
+      fail("topic " + topic + " is " + it->second.type + ", not " + types + " (choose another with " + option +
+           "). The bag has:" + topicList());
     };
-    require(options.cloud_topic, BagMessageKind::kPointCloud2, "--cloud-topic");
+    // The clouds: a driver's PointCloud2, or the VLP-16's raw packets, decoded here.
+    require(options.cloud_topic, {BagMessageKind::kPointCloud2, BagMessageKind::kVelodyneScan}, "--cloud-topic");
+    packets_ = bag.hasTopic(options.cloud_topic, BagMessageKind::kVelodyneScan);
     const bool odom_topic = topics.count(options.odom_topic) > 0;
-    if (odom_topic || options.odom_topic_given) require(options.odom_topic, BagMessageKind::kOdometry, "--odom-topic");
+    if (odom_topic || options.odom_topic_given) require(options.odom_topic, {BagMessageKind::kOdometry}, "--odom-topic");
 
     // /tf and /tf_static: the odometry transform over time, and the fixed edges for the mount.
     std::map<std::string, std::vector<Edge>> edges;
@@ -200,19 +226,15 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     });
     if (!first) fail(options.cloud_topic + ": the first message cannot be read as " + bag.typeName(BagMessageKind::kPointCloud2));
     lidar_frame_ = frameName(first->frame_id);
-    bool has_time = false;
-    for (const auto& f : first->layout.fields) has_time = has_time || f.name == "time";
-    timed_ = has_time;
     // The driver stamps a turn at its first firing (times >= 0) or, configured so, at its last
     // (times <= 0): the turn's middle is half a period after, or before, the stamp.
-    if (has_time) {
-      const CloudPoints p = decodeCloud(first->layout, first->data.data(), first->data.size(), path + ": " + options.cloud_topic + " message 0");
-      double sum = 0;
-      for (double t : p.time_s) sum += t;
-      first_offset_s_ = !p.time_s.empty() && sum < 0 ? -0.5 * turn_period_s_ : 0.5 * turn_period_s_;
-    } else {
-      first_offset_s_ = 0.5 * turn_period_s_;
-    }
+    CloudPoints p = decodeBagCloud(*first, path + ": " + options.cloud_topic + " message 0");
+    makeTimesRelative(p, first->stamp_s);
+    time_field_ = p.time_field;
+    timed_ = !p.time_s.empty();
+    double sum = 0;
+    for (double t : p.time_s) sum += t;
+    first_offset_s_ = !p.time_s.empty() && sum < 0 ? -0.5 * turn_period_s_ : 0.5 * turn_period_s_;
     first_turn_s_ = first->stamp_s + first_offset_s_;
     // Odometry outside the clouds' time (another clock: sim time against wall time) would make
     // every turn look taken from one pose: refused, as the dataset reader refuses it.
@@ -258,18 +280,18 @@ void BagInput::forEachTurn(const std::function<void(const BagTurn&)>& visit) con
     previous = turn.stamp_s;
     // Decoded and checked now (the bytes are in memory already): a scan with no usable point
     // is skipped before the localizer sees it. De-skewed only when the localizer asks.
-    auto p = std::make_shared<CloudPoints>(decodeCloud(cloud->layout, cloud->data.data(), cloud->data.size(), where));
+    auto p = std::make_shared<CloudPoints>(decodeBagCloud(*cloud, where));
     turn.drops = keepUsablePoints(p->xyz, &p->time_s, options_.range, p->non_finite);
     turn.warnings = std::move(p->warnings);
     turn.points = [this, p, header_s, ref = turn.stamp_s] {
       if (options_.deskew && !p->time_s.empty()) {
-        std::vector<Eigen::Vector3f> xyz = p->xyz;
-        std::vector<double> time_s = p->time_s;
-        // Some drivers give absolute times (seconds since the epoch): make them relative.
-        if (std::abs(time_s.front()) > 1e6)
-          for (double& t : time_s) t -= header_s;
-        deskew(xyz, time_s, header_s, ref, odometry_, T_base_lidar_);
-        return xyz;
+        CloudPoints q;
+        q.xyz = p->xyz;
+        q.time_s = p->time_s;
+        // Some drivers give absolute times (Hesai, RoboSense, Livox): make them relative.
+        makeTimesRelative(q, header_s);
+        deskew(q.xyz, q.time_s, header_s, ref, odometry_, T_base_lidar_);
+        return q.xyz;
       }
       return p->xyz;
     };

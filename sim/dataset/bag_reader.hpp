@@ -18,7 +18,9 @@
 namespace bimloc::sim {
 
 struct BagInputOptions {
-  std::string cloud_topic = "/velodyne_points";  // the velodyne_pointcloud driver's
+  // sensor_msgs/PointCloud2 (the velodyne_pointcloud driver's), or velodyne_msgs/VelodyneScan
+  // (the VLP-16's raw packets, decoded here: one turn a message)
+  std::string cloud_topic = "/velodyne_points";
   // nav_msgs/Odometry; when the bag does not have it and odom_topic_given is false, the /tf
   // transform odom_frame -> base_frame is the odometry.
   std::string odom_topic = "/odom";
@@ -60,7 +62,9 @@ class BagInput {
   double turnPeriod() const { return turn_period_s_; }
   std::size_t turns() const { return turns_; }
   double firstTurnStamp() const { return first_turn_s_; }  // BagTurn::stamp_s of the first turn
-  bool timed() const { return timed_; }  // the clouds carry a `time` field
+  bool timed() const { return timed_; }  // the clouds carry a per-point time (cloud_fields.hpp)
+  const std::string& timeField() const { return time_field_; }  // its name; "packets" for decoded packets
+  bool packets() const { return packets_; }  // the cloud topic holds velodyne_msgs/VelodyneScan
   const std::vector<StampedPose>& odometry() const { return odometry_; }        // odom <- base_link
   const std::vector<StampedPose>& groundTruth() const { return ground_truth_; }  // map <- base_link; may be empty
   // Samples that were no pose (not finite, a zero or non-unit quaternion): dropped, counted.
@@ -85,7 +89,8 @@ class BagInput {
   std::string lidar_frame_, odometry_source_, mount_source_;
   double turn_period_s_ = 0.1, first_offset_s_ = 0.0, first_turn_s_ = 0.0;
   std::size_t turns_ = 0;
-  bool timed_ = false;
+  bool timed_ = false, packets_ = false;
+  std::string time_field_;
   std::vector<StampedPose> odometry_, ground_truth_;
   std::vector<std::string> warnings_;
   PoseSampleDrops odometry_drops_, truth_drops_;

@@ -2,12 +2,14 @@
 
 #include "sim/dataset/ros_messages.hpp"
 #include "sim/dataset/velodyne_points.hpp"
+#include "sim/dataset/velodyne_scan_msg.hpp"
 
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -96,6 +98,20 @@ BagWriter::~BagWriter() {
 void BagWriter::writeScan(std::uint64_t stamp_ns, std::uint32_t seq, const LidarScan& scan) {
   impl_->write(kCloudTopic, stamp_ns, cloudMessage(stamp_ns, seq, scan));
   ++topics_[kCloudTopic].messages;
+}
+
+void BagWriter::writePackets(std::uint64_t stamp_ns, std::uint32_t seq, const std::vector<Vlp16StampedPacket>& packets) {
+  velodyne_msgs::VelodyneScan scan;
+  scan.header = header(rosTime(stamp_ns), seq, kLidarFrame);
+  scan.packets.resize(packets.size());
+  for (std::size_t i = 0; i < packets.size(); ++i) {
+    scan.packets[i].stamp = rosTime(static_cast<std::uint64_t>(std::llround(packets[i].stamp_s * 1e9)));
+    std::copy(packets[i].data.begin(), packets[i].data.end(), scan.packets[i].data.begin());
+  }
+  impl_->write(kPacketsTopic, stamp_ns, scan);
+  auto& topic = topics_[kPacketsTopic];
+  topic.type = "velodyne_msgs/VelodyneScan";
+  ++topic.messages;
 }
 
 void BagWriter::writeOdometry(std::uint64_t stamp_ns, std::uint32_t seq, const OdometrySample& odom) {

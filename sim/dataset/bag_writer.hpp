@@ -5,6 +5,7 @@
 #pragma once
 
 #include "sim/dataset/dataset_writer.hpp"
+#include "sim/lidar/vlp16_packet_encoder.hpp"
 
 #include <cstdint>
 #include <map>
@@ -19,6 +20,9 @@ class DatasetBag {
   // `stamp_ns` is the dataset time (dataset_clock.hpp) of the sample; `seq` its index in
   // its stream, which becomes header.seq (ROS 1; a ROS 2 header has none).
   virtual void writeScan(std::uint64_t stamp_ns, std::uint32_t seq, const LidarScan& scan) = 0;  // /velodyne_points
+  // /velodyne_packets: one velodyne_msgs VelodyneScan a turn, stamped as its first packet
+  // (`stamp_ns`); each packet stamped with its first firing (dataset time, packet.stamp_s).
+  virtual void writePackets(std::uint64_t stamp_ns, std::uint32_t seq, const std::vector<Vlp16StampedPacket>& packets) = 0;
   // /odom, and on /tf both odom -> base_link and the mount base_link -> velodyne.
   virtual void writeOdometry(std::uint64_t stamp_ns, std::uint32_t seq, const OdometrySample& odom) = 0;
   virtual void writeGroundTruth(std::uint64_t stamp_ns, std::uint32_t seq, const GroundTruthSample& truth) = 0;
@@ -44,6 +48,7 @@ class BagWriter final : public DatasetBag {
   BagWriter& operator=(const BagWriter&) = delete;
 
   void writeScan(std::uint64_t stamp_ns, std::uint32_t seq, const LidarScan& scan) override;
+  void writePackets(std::uint64_t stamp_ns, std::uint32_t seq, const std::vector<Vlp16StampedPacket>& packets) override;
   void writeOdometry(std::uint64_t stamp_ns, std::uint32_t seq, const OdometrySample& odom) override;
   void writeGroundTruth(std::uint64_t stamp_ns, std::uint32_t seq, const GroundTruthSample& truth) override;
   void close() override;

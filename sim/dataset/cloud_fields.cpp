@@ -39,7 +39,12 @@ double readValue(const std::uint8_t* p, std::uint8_t datatype, bool swap) {
   }
 }
 
-bool isRead(const std::string& name) { return name == "x" || name == "y" || name == "z" || name == "time"; }
+// A field decodeCloud reads: x, y, z and the time field it uses (kCloudTimeFields, first present).
+bool isRead(const CloudLayout& layout, const std::string& name) {
+  return name == "x" || name == "y" || name == "z" || (!name.empty() && name == cloudTimeField(layout));
+}
+
+bool isInteger(std::uint8_t datatype) { return datatype >= 1 && datatype <= 6; }
 
 // Where the rows of a checked layout start: row_step apart (a row may carry padding).
 struct Geometry {
@@ -49,13 +54,19 @@ struct Geometry {
 struct Axes {
   const CloudField* xyz[3];
   const CloudField* time;
+  const CloudField* ring;  // `ring`, else `channel`; informative only (none when unreadable)
 };
 
 Axes axesOf(const CloudLayout& layout) {
-  Axes a{{nullptr, nullptr, nullptr}, nullptr};
+  Axes a{{nullptr, nullptr, nullptr}, nullptr, nullptr};
+  const std::string time_name = cloudTimeField(layout);
+  const bool has_ring = std::any_of(layout.fields.begin(), layout.fields.end(), [](const CloudField& f) { return f.name == "ring"; });
+  const std::string ring_name = has_ring ? "ring" : "channel";
   for (const CloudField& f : layout.fields) {
-    if (f.name == "time") a.time = &f;
+    const std::size_t bytes = cloudDatatypeBytes(f.datatype);
+    if (!time_name.empty() && f.name == time_name) a.time = &f;
     else if (f.name == "x" || f.name == "y" || f.name == "z") a.xyz[f.name[0] - 'x'] = &f;
+    else if (f.name == ring_name && bytes > 0 && std::uint64_t{f.offset} + bytes <= layout.point_step) a.ring = &f;
   }
   return a;
 }
@@ -124,12 +135,12 @@ CloudLayoutCheck checkCloudLayout(const CloudLayout& layout, std::size_t data_si
     const std::size_t bytes = cloudDatatypeBytes(f.datatype);
     const std::string name = "field '" + f.name + "'";
     if (bytes == 0) {
-      if (isRead(f.name)) fail(where, name + " has unknown datatype " + std::to_string(f.datatype));
+      if (isRead(layout, f.name)) fail(where, name + " has unknown datatype " + std::to_string(f.datatype));
       out.warnings.push_back(name + " has unknown datatype " + std::to_string(f.datatype) + " (not read)");
       continue;
     }
     if (f.count < 1) {
-      if (isRead(f.name)) fail(where, name + " has count 0");
+      if (isRead(layout, f.name)) fail(where, name + " has count 0");
       continue;
     }
     const std::uint64_t end = std::uint64_t{f.offset} + std::uint64_t{bytes} * f.count;
@@ -169,6 +180,21 @@ CloudLayoutCheck checkCloudLayout(const CloudLayout& layout, std::size_t data_si
   return out;
 }
 
+void makeTimesRelative(CloudPoints& points, double header_stamp_s) {
+  if (points.time_s.empty()) return;
+  const double t = points.time_s.front();
+  points.time_absolute = std::abs(t - header_stamp_s) < std::abs(t);
+  if (points.time_absolute)
+    for (double& v : points.time_s) v -= header_stamp_s;
+}
+
+std::string cloudTimeField(const CloudLayout& layout) {
+  for (const char* name : kCloudTimeFields)
+    for (const CloudField& f : layout.fields)
+      if (f.name == name) return name;
+  return "";
+}
+
 CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std::size_t size, const std::string& where) {
   CloudPoints out;
   out.warnings = checkCloudLayout(layout, size, where).warnings;
@@ -178,7 +204,10 @@ CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std
   const bool swap = layout.is_bigendian == hostIsLittleEndian();
   out.declared = g.width * g.height;
   out.xyz.reserve(out.declared);
-  if (a.time) out.time_s.reserve(out.declared);
+  if (a.time) out.time_s.reserve(out.declared), out.time_field = a.time->name;
+  if (a.ring) out.ring.reserve(out.declared);
+  // Integer times are nanoseconds; a float `timestamp` in nanoseconds is told by its size.
+  const double time_scale = a.time && isInteger(a.time->datatype) ? 1e-9 : 1.0;
   for (std::uint64_t r = 0; r < g.height; ++r) {
     for (std::uint64_t c = 0; c < g.width; ++c) {
       const std::uint8_t* p = data + r * g.row_step + c * layout.point_step;
@@ -188,8 +217,14 @@ CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std
         continue;
       }
       out.xyz.push_back(v.cast<float>());
-      if (a.time) out.time_s.push_back(readValue(p + a.time->offset, a.time->datatype, swap));
+      if (a.time) out.time_s.push_back(time_scale * readValue(p + a.time->offset, a.time->datatype, swap));
+      if (a.ring) out.ring.push_back(static_cast<std::uint16_t>(readValue(p + a.ring->offset, a.ring->datatype, swap)));
     }
+  }
+  if (!out.time_s.empty()) {
+    if (std::abs(out.time_s.front()) > 1e12)
+      for (double& t : out.time_s) t *= 1e-9;
+    out.time_absolute = std::abs(out.time_s.front()) > 1e6;
   }
   return out;
 }

@@ -3,6 +3,7 @@
 #include "sim/dataset/bag_writer.hpp"
 #include "sim/dataset/dataset_clock.hpp"
 #include "sim/dataset/dataset_metadata.hpp"
+#include "sim/dataset/pcap_writer.hpp"
 #include "sim/dataset/pcd_writer.hpp"
 #include "sim/dataset/ros2_bag_writer.hpp"
 #include "sim/dataset/tum_writer.hpp"
@@ -27,6 +28,7 @@ const char* const kGroundTruthFile = "ground_truth.tum";
 const char* const kCloudDir = "clouds";
 const char* const kCloudIndexFile = "clouds/index.csv";
 const char* const kMetadataFile = "metadata.json";
+const char* const kPcapFile = "velodyne.pcap";
 
 std::string cloudFileName(std::size_t index) {
   char name[32];
@@ -67,6 +69,7 @@ struct DatasetWriter::Impl {
   std::unique_ptr<DatasetBag> bag;
   TumWriter odometry;
   TumWriter ground_truth;
+  std::optional<PcapWriter> pcap;  // with packets
   std::string cloud_index = "file,stamp_s,points\n";
   std::vector<std::string> cloud_files;
   std::size_t point_count = 0;
@@ -86,6 +89,7 @@ struct DatasetWriter::Impl {
     std::error_code ec;
     fs::create_directory(staging.file(kCloudDir), ec);
     if (ec) throw std::runtime_error(staging.file(kCloudDir) + ": cannot create: " + ec.message());
+    if (info.packets_rpm > 0) pcap.emplace(staging.file(kPcapFile));
   }
 
   static std::unique_ptr<DatasetBag> openBag(const DatasetInfo& info, StagingDirectory& staging) {
@@ -139,6 +143,14 @@ void DatasetWriter::addScan(const LidarScan& scan) {
   const std::size_t index = impl_->cloud_files.size();
   const std::string name = cloudFileName(index);
   impl_->bag->writeScan(ns, static_cast<std::uint32_t>(index), scan);
+  if (impl_->pcap) {
+    // The packets on the dataset's clock, as a driver stamps them: the turn's first firing at
+    // the scan's stamp.
+    const double stamp_s = static_cast<double>(ns) * 1e-9;
+    const auto packets = encodeVlp16Turn(scan, impl_->info.packets_rpm, stamp_s);
+    impl_->bag->writePackets(ns, static_cast<std::uint32_t>(index), packets);
+    for (const auto& packet : packets) impl_->pcap->writeUdp(packet.stamp_s, packet.data.data(), packet.data.size(), kVlp16DataPort);
+  }
   writePcd(impl_->staging.file(std::string(kCloudDir) + "/" + name), scan.points);
   impl_->cloud_files.push_back(std::string(kCloudDir) + "/" + name);
   impl_->cloud_index += name + "," + formatStampS(ns) + "," + std::to_string(scan.points.size()) + "\n";
@@ -172,6 +184,7 @@ std::vector<std::string> DatasetWriter::commit() {
   impl_->bag->close();
   impl_->odometry.close();
   impl_->ground_truth.close();
+  if (impl_->pcap) impl_->pcap->close();
   writeFileAtomically(impl_->staging.file(kCloudIndexFile), impl_->cloud_index);
 
   std::vector<std::string> files;
@@ -179,6 +192,7 @@ std::vector<std::string> DatasetWriter::commit() {
   else files.insert(files.end(), {std::string(kRosbag2Dir) + "/metadata.yaml",
                                   std::string(kRosbag2Dir) + (impl_->info.bag_format == "mcap" ? "/rosbag2_0.mcap" : "/rosbag2_0.db3")});
   files.insert(files.end(), {kMetadataFile, kOdometryFile, kGroundTruthFile, kCloudIndexFile});
+  if (impl_->pcap) files.push_back(kPcapFile);
   files.insert(files.end(), impl_->cloud_files.begin(), impl_->cloud_files.end());
   writeFileAtomically(impl_->staging.file(kMetadataFile), impl_->metadata(files).dump(1) + "\n");
 

@@ -22,6 +22,7 @@ inline constexpr const char* kOdomFrame = "odom";
 inline constexpr const char* kBaseFrame = "base_link";
 inline constexpr const char* kLidarFrame = "velodyne";
 inline constexpr const char* kCloudTopic = "/velodyne_points";
+inline constexpr const char* kPacketsTopic = "/velodyne_packets";  // with DatasetInfo::packets_rpm
 inline constexpr const char* kOdomTopic = "/odom";
 inline constexpr const char* kTfTopic = "/tf";
 inline constexpr const char* kGroundTruthTopic = "/ground_truth";
@@ -42,6 +43,10 @@ struct DatasetInfo {
   std::array<double, 6> odometry_twist_variance{1e-3, 1e-3, 1e-6, 1e-6, 1e-6, 1e-3};
   // The bag's format: "ros1" (dataset.bag), "mcap" or "sqlite3" (a rosbag2 folder, rosbag2/).
   std::string bag_format = "ros1";
+  // When > 0, every turn is also written as the VLP-16's own packets at this rpm: a
+  // velodyne_msgs/VelodyneScan on /velodyne_packets in the bag and the UDP stream in
+  // velodyne.pcap (`bimloc simulate --packets`).
+  double packets_rpm = 0.0;
 };
 
 // Each stream (scans, odometry, ground truth) must come with strictly increasing stamps;

@@ -1,5 +1,6 @@
 // BagMessages of a ROS 1 bag, through Debian's rosbag_storage and the ROS 1 message headers.
 #include "sim/dataset/bag_messages.hpp"
+#include "sim/dataset/velodyne_scan_msg.hpp"
 
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -47,6 +48,7 @@ class Ros1BagMessages final : public BagMessages {
       case BagMessageKind::kOdometry: return "nav_msgs/Odometry";
       case BagMessageKind::kTFMessage: return "tf2_msgs/TFMessage";
       case BagMessageKind::kPoseStamped: return "geometry_msgs/PoseStamped";
+      case BagMessageKind::kVelodyneScan: return "velodyne_msgs/VelodyneScan";
     }
     return "";
   }
@@ -87,9 +89,22 @@ class Ros1BagMessages final : public BagMessages {
   }
 
   void forEachCloud(const std::string& topic, const std::function<bool(std::shared_ptr<const BagCloud>)>& visit) const override {
+    const bool packets = hasTopic(topic, BagMessageKind::kVelodyneScan);
     guarded([&] {
       std::size_t index = 0;
       for (const rosbag::MessageInstance& m : rosbag::View(bag_, rosbag::TopicQuery(topic))) {
+        if (packets) {
+          const auto scan = m.instantiate<velodyne_msgs::VelodyneScan>();
+          if (!scan)
+            throw std::runtime_error(path_ + ": " + topic + " message " + std::to_string(index) + ": cannot be read as velodyne_msgs/VelodyneScan");
+          ++index;
+          auto out = std::make_shared<BagCloud>();
+          out->stamp_s = scan->header.stamp.toSec();
+          out->frame_id = scan->header.frame_id;
+          for (const auto& p : scan->packets) out->packets.push_back({p.stamp.toSec(), {p.data.begin(), p.data.end()}});
+          if (!visit(out)) break;
+          continue;
+        }
         const auto cloud = m.instantiate<sensor_msgs::PointCloud2>();
         if (!cloud)
           throw std::runtime_error(path_ + ": " + topic + " message " + std::to_string(index) + ": cannot be read as sensor_msgs/PointCloud2");

@@ -1,5 +1,6 @@
 // BagMessages of a ROS 2 bag: sim/ros2's rosbag2 reader and CDR decoding.
 #include "sim/dataset/bag_messages.hpp"
+#include "sim/dataset/velodyne_scan_cdr.hpp"
 
 #include "sim/ros2/messages.hpp"
 #include "sim/ros2/rosbag2_reader.hpp"
@@ -29,6 +30,7 @@ class Ros2BagMessages final : public BagMessages {
       case BagMessageKind::kOdometry: return "nav_msgs/msg/Odometry";
       case BagMessageKind::kTFMessage: return "tf2_msgs/msg/TFMessage";
       case BagMessageKind::kPoseStamped: return "geometry_msgs/msg/PoseStamped";
+      case BagMessageKind::kVelodyneScan: return "velodyne_msgs/msg/VelodyneScan";
     }
     return "";
   }
@@ -64,7 +66,16 @@ class Ros2BagMessages final : public BagMessages {
   }
 
   void forEachCloud(const std::string& topic, const std::function<bool(std::shared_ptr<const BagCloud>)>& visit) const override {
+    const bool packets = hasTopic(topic, BagMessageKind::kVelodyneScan);
     forEach(topic, [&](ros2::CdrReader& in, const ros2::BagMessage&) {
+      if (packets) {
+        const VelodyneScanView scan = readVelodyneScanCdr(in);
+        auto out = std::make_shared<BagCloud>();
+        out->stamp_s = scan.header_s;
+        out->frame_id = scan.frame_id;
+        for (const auto& p : scan.packets) out->packets.push_back({p.stamp_s, {p.data, p.data + p.size}});
+        return visit(out);
+      }
       ros2::PointCloud2 c = ros2::readPointCloud2(in);
       auto out = std::make_shared<BagCloud>();
       out->stamp_s = c.header.stamp.seconds();

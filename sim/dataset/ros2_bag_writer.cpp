@@ -6,6 +6,7 @@
 #include "sim/ros2/rosbag2_writer.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace bimloc::sim {
 namespace {
@@ -35,6 +36,10 @@ Ros2BagWriter::Ros2BagWriter(const std::string& dir, const std::string& storage,
     *handles[i] = bag_->addTopic(topics[i].first, topics[i].second);
     topics_[topics[i].first].type = topics[i].second;
   }
+  if (info.packets_rpm > 0) {
+    packets_ = bag_->addTopic(kPacketsTopic, "velodyne_msgs/msg/VelodyneScan");
+    topics_[kPacketsTopic].type = "velodyne_msgs/msg/VelodyneScan";
+  }
 }
 
 Ros2BagWriter::~Ros2BagWriter() = default;
@@ -54,6 +59,20 @@ void Ros2BagWriter::writeScan(std::uint64_t stamp_ns, std::uint32_t, const Lidar
   cloud.is_dense = dense;
   bag_->write(cloud_, stamp_ns, ros2::serialize(cloud));
   ++topics_[kCloudTopic].messages;
+}
+
+void Ros2BagWriter::writePackets(std::uint64_t stamp_ns, std::uint32_t, const std::vector<Vlp16StampedPacket>& packets) {
+  if (packets_ < 0) throw std::logic_error("Ros2BagWriter: packets written without DatasetInfo::packets_rpm");
+  // velodyne_msgs/msg/VelodyneScan: Header, then VelodynePacket[] of {Time stamp; uint8[1206] data}.
+  ros2::CdrWriter out;
+  ros2::write(out, header(stamp_ns, kLidarFrame));
+  out.sequenceLength(packets.size());
+  for (const auto& p : packets) {
+    ros2::write(out, ros2::Time::fromNanoseconds(std::llround(p.stamp_s * 1e9)));
+    out.bytes(p.data.data(), p.data.size());
+  }
+  bag_->write(packets_, stamp_ns, out.take());
+  ++topics_[kPacketsTopic].messages;
 }
 
 void Ros2BagWriter::writeOdometry(std::uint64_t stamp_ns, std::uint32_t, const OdometrySample& odom) {

@@ -21,6 +21,7 @@ class Ros2BagWriter final : public DatasetBag {
   ~Ros2BagWriter() override;
 
   void writeScan(std::uint64_t stamp_ns, std::uint32_t seq, const LidarScan& scan) override;
+  void writePackets(std::uint64_t stamp_ns, std::uint32_t seq, const std::vector<Vlp16StampedPacket>& packets) override;
   void writeOdometry(std::uint64_t stamp_ns, std::uint32_t seq, const OdometrySample& odom) override;
   void writeGroundTruth(std::uint64_t stamp_ns, std::uint32_t seq, const GroundTruthSample& truth) override;
   void close() override;
@@ -28,7 +29,7 @@ class Ros2BagWriter final : public DatasetBag {
  private:
   std::unique_ptr<ros2::Rosbag2Writer> bag_;
   DatasetInfo info_;
-  int cloud_ = 0, odom_ = 0, tf_ = 0, truth_ = 0;
+  int cloud_ = 0, odom_ = 0, tf_ = 0, truth_ = 0, packets_ = -1;
 };
 
 }  // namespace bimloc::sim

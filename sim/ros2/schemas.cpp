@@ -47,6 +47,9 @@ const std::map<std::string, std::string>& definitions() {
        "geometry_msgs/Point[] points\nstd_msgs/ColorRGBA[] colors\nstring text\nstring mesh_resource\n"
        "bool mesh_use_embedded_materials\n"},
       {"visualization_msgs/msg/MarkerArray", "Marker[] markers\n"},
+      // ros-drivers/velodyne's messages (velodyne_msgs), for `simulate --packets`.
+      {"velodyne_msgs/msg/VelodynePacket", "builtin_interfaces/Time stamp\nuint8[1206] data\n"},
+      {"velodyne_msgs/msg/VelodyneScan", "std_msgs/Header header\nVelodynePacket[] packets\n"},
   };
   return d;
 }

@@ -10,7 +10,7 @@ namespace bimloc::sim::ros2 {
 
 // "sensor_msgs/msg/PointCloud2", "nav_msgs/msg/Odometry", "tf2_msgs/msg/TFMessage",
 // "geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/PoseWithCovarianceStamped",
-// "visualization_msgs/msg/MarkerArray". Throws std::invalid_argument for another type.
+// "visualization_msgs/msg/MarkerArray", "velodyne_msgs/msg/VelodyneScan". Throws std::invalid_argument for another type.
 std::string ros2msgDefinition(const std::string& type);
 
 }  // namespace bimloc::sim::ros2

@@ -1,0 +1,27 @@
+// The short simulated recording the bag tests share: the office plan from the corridor (it
+// converges within 2 s), the bag rewritten by python rosbag as other robots record theirs
+// (tests/rewrite_bag.py), and `bimloc localize --json` on it.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace bimloc::test {
+
+// worlds/site_office.ifc.
+const std::string& officePlan();
+// A folder holding s.yaml and data/ (the dataset of `bimloc simulate ... SIMULATE_OPTIONS`),
+// made once per tag in this process.
+const std::string& simulatedCorridor(const std::string& tag, const std::string& simulate_options = "");
+// DIR/MODE.bag: DIR/data/dataset.bag rewritten in that mode, made once.
+std::string rewrittenBag(const std::string& dir, const std::string& mode);
+// The run's entry of `bimloc localize INPUT --plan office --json OPTIONS`, without what depends
+// on the input's path or the machine (name, wall_seconds, the path in warnings).
+nlohmann::json localizeJson(const std::string& input, const std::string& options = "");
+// Standard output of a shell command.
+std::string commandOutput(const std::string& command);
+// Standard output of /usr/bin/python3 tests/SCRIPT ARGS (ARGS shell-quoted by the caller).
+std::string runPython(const std::string& script, const std::string& args);
+
+}  // namespace bimloc::test
