@@ -18,6 +18,9 @@ struct CommandResult {
   std::string out;
   std::string err;
 };
+// Runs `program` (a path, quoted here) with the given argument string (shell-quoted by the
+// caller), killed with SIGKILL after `timeout_s` seconds when positive (then timed_out is set).
+CommandResult runCommand(const std::string& program, const std::string& args, double timeout_s);
 // Runs the bimloc binary with the given argument string (shell-quoted by the caller).
 CommandResult runBimloc(const std::string& args);
 // The same, killed with SIGKILL after `timeout_s` seconds (then timed_out is set).
