@@ -61,11 +61,11 @@ void summaryTable(HtmlWriter& h, const Json& report) {
   const std::size_t winner = winnerOf(standings);
   using C = StandingColumn;
   const std::vector<std::pair<std::string, C>> columns{{"localized", C::Localized},
-                                                       {"false convergences", C::FalseConvergences},
-                                                       {"median convergence [s]", C::MedianTime},
+                                                       {"false", C::FalseConvergences},
+                                                       {"median time [s]", C::MedianTime},
                                                        {"median ATE [m]", C::MedianAte},
                                                        {"losses", C::Losses},
-                                                       {"step time per run [s]", C::LocalizerSeconds}};
+                                                       {"step time [s/run]", C::LocalizerSeconds}};
   h.open("table", {{"id", "summary"}}).open("tr").element("th", {}, "method");
   for (const auto& [name, column] : columns) h.element("th", {}, name);
   h.close();
@@ -225,7 +225,7 @@ std::string comparePage(const Json& report) {
   h.element("title", {}, "bimloc compare: " + plan);
   h.open("style").raw(kComparePageStyle).close().close();
   h.open("body").open("main");
-  h.element("h1", {}, "Global localization on " + plan + ": who finds the robot, how fast, how well");
+  h.element("h1", {}, "Global localization on " + plan);
   h.element("p", {{"class", "sub"}},
             report["storey"].get<std::string>() + " · " + std::to_string(report["rooms"].size()) + " start rooms × " +
                 std::to_string(report["seeds"].get<int>()) + (report["seeds"].get<int>() == 1 ? " seed" : " seeds") +
@@ -239,7 +239,8 @@ std::string comparePage(const Json& report) {
   h.element("p", {{"class", "note"}},
             "Green: the best in the column, among the methods that localized a run (none where all are equal). "
             "Localized: converged within 0.5 m and 10° of the truth, never falsely; a false convergence: declared "
-            "converged while farther off. Step time: the wall seconds of the method's steps, on this machine.");
+            "converged while farther off (false). Median time: to convergence. Losses: tracking lost after convergence. "
+            "Step time: the wall seconds of the method's steps, on this machine.");
 
   h.element("h2", {}, "Convergence time per run");
   h.open("figure").empty("img", {{"src", "convergence_times.png"}, {"alt", "convergence times, a bar per run and method"}});
