@@ -58,32 +58,24 @@ std::pair<std::string, std::string> value(const Json& run, const std::string& me
 
 void summaryTable(HtmlWriter& h, const Json& report) {
   const std::vector<MethodStanding> standings = methodStandings(report);
-  const std::size_t winner = winnerOf(standings);
-  using C = StandingColumn;
-  const std::vector<std::pair<std::string, C>> columns{{"localized", C::Localized},
-                                                       {"false", C::FalseConvergences},
-                                                       {"median time [s]", C::MedianTime},
-                                                       {"median ATE [m]", C::MedianAte},
-                                                       {"losses", C::Losses},
-                                                       {"step time [s/run]", C::LocalizerSeconds}};
+  const std::vector<std::size_t> leaders = leadersOf(standings);
+  const std::vector<StandingHeader>& columns = standingHeaders();
   h.open("table", {{"id", "summary"}}).open("tr").element("th", {}, "method");
-  for (const auto& [name, column] : columns) h.element("th", {}, name);
+  for (const auto& c : columns) h.element("th", {}, c.name);
   h.close();
   std::vector<std::vector<bool>> best;
-  for (const auto& [name, column] : columns) best.push_back(bestIn(standings, column));
+  for (const auto& c : columns) best.push_back(bestIn(standings, c.column));
   for (std::size_t k = 0; k < standings.size(); ++k) {
     const MethodStanding& s = standings[k];
-    const auto orDash = [](const std::optional<double>& v, int decimals) { return v ? fixed(*v, decimals) : std::string("-"); };
-    const std::vector<std::string> cells{
-        std::to_string(s.localized) + " / " + std::to_string(s.runs) + " (" + fixed(100.0 * s.localizedRate(), 0) + " %)",
-        std::to_string(s.false_convergences), orDash(s.median_convergence_s, 1), orDash(s.median_ate_m, 3),
-        std::to_string(s.losses), fixed(s.localizer_seconds_per_run, 2)};
     h.open("tr").open("td");
     swatch(h, k);
     h.element("b", {}, s.method);
-    if (k == winner && s.localized > 0) h.element("span", {{"class", "badge"}}, "winner");
+    if (s.localized > 0 && std::find(leaders.begin(), leaders.end(), k) != leaders.end())
+      h.element("span", {{"class", "badge"}}, leaders.size() == 1 ? "winner" : "shares the lead");
     h.close();
-    for (std::size_t c = 0; c < cells.size(); ++c) h.element("td", best[c][k] ? HtmlWriter::Attributes{{"class", "best"}} : HtmlWriter::Attributes{}, cells[c]);
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      h.element("td", best[c][k] ? HtmlWriter::Attributes{{"class", "best"}} : HtmlWriter::Attributes{},
+                standingCell(s, columns[c].column));
     h.close();
   }
   h.close();

@@ -121,29 +121,15 @@ void printCompareTables(const nlohmann::json& report, std::ostream& out, bool wi
   out << "\n";
   say("Per method (* the best in the column)");
   const std::vector<MethodStanding> standings = methodStandings(report);
-  using C = StandingColumn;
-  const std::vector<std::pair<std::string, C>> columns{{"localized", C::Localized},
-                                                       {"false", C::FalseConvergences},
-                                                       {"median time [s]", C::MedianTime},
-                                                       {"median ATE [m]", C::MedianAte},
-                                                       {"losses", C::Losses},
-                                                       {"step s/run", C::LocalizerSeconds}};
+  const std::vector<StandingHeader>& columns = standingHeaders();
   std::vector<std::string> names{"method"};
-  for (const auto& [name, column] : columns) names.push_back(name);
+  for (const auto& c : columns) names.push_back(c.name);
   Table summary(names);
   std::vector<std::vector<bool>> best;
-  for (const auto& [name, column] : columns) best.push_back(bestIn(standings, column));
+  for (const auto& c : columns) best.push_back(bestIn(standings, c.column));
   for (std::size_t k = 0; k < standings.size(); ++k) {
-    const MethodStanding& s = standings[k];
-    const auto orDash = [](const std::optional<double>& v, int decimals) { return v ? fixed(*v, decimals) : std::string("-"); };
-    std::vector<std::string> row{s.method,
-                                 std::to_string(s.localized) + "/" + std::to_string(s.runs) + " " + fixed(100.0 * s.localizedRate(), 0) + " %",
-                                 std::to_string(s.false_convergences),
-                                 orDash(s.median_convergence_s, 1),
-                                 orDash(s.median_ate_m, 3),
-                                 std::to_string(s.losses),
-                                 fixed(s.localizer_seconds_per_run, 2)};
-    for (std::size_t c = 0; c < columns.size(); ++c) row[c + 1] += best[c][k] ? "*" : " ";
+    std::vector<std::string> row{standings[k].method};
+    for (std::size_t c = 0; c < columns.size(); ++c) row.push_back(standingCell(standings[k], columns[c].column) + (best[c][k] ? "*" : " "));
     summary.add(row);
   }
   print(summary);

@@ -24,6 +24,14 @@ std::vector<MethodStanding> methodStandings(const nlohmann::json& report);
 
 enum class StandingColumn { Localized, FalseConvergences, MedianTime, MedianAte, Losses, LocalizerSeconds };
 
+// The table per method's columns, as the terminal and the page show them, and a cell's text.
+struct StandingHeader {
+  std::string name;
+  StandingColumn column;
+};
+const std::vector<StandingHeader>& standingHeaders();
+std::string standingCell(const MethodStanding& standing, StandingColumn column);
+
 // best[k]: method k is the best in the column (ties are all best). More localized is better,
 // less of everything else. In every column but Localized only the methods that localized a
 // run compete: one that never converges has no false convergence and spends little, and wins
@@ -33,6 +41,11 @@ std::vector<bool> bestIn(const std::vector<MethodStanding>& standings, StandingC
 // The winner's index: the most runs localized, then the fewest false convergences, then the
 // shortest median convergence time, then the smallest median ATE, then the first given.
 std::size_t winnerOf(const std::vector<MethodStanding>& standings);
+
+// The methods that share the lead: the winner first, then each method that localized as many
+// runs with as few false convergences and beats the winner on median time or median ATE (the
+// winner does not dominate it). One entry when the winner stands alone.
+std::vector<std::size_t> leadersOf(const std::vector<MethodStanding>& standings);
 
 // A few sentences: who wins and by how much, who is faster or more accurate at what cost,
 // who falsely converged. Plain text, numbers from the report.
