@@ -65,11 +65,13 @@ std::string tempDir(const std::string& tag) {
 
 CommandResult runBimloc(const std::string& args) { return runBimloc(args, 0.0); }
 
-CommandResult runBimloc(const std::string& args, double timeout_s) {
+CommandResult runBimloc(const std::string& args, double timeout_s) { return runCommand(BIMLOC_EXE, args, timeout_s); }
+
+CommandResult runCommand(const std::string& program, const std::string& args, double timeout_s) {
   const std::string dir = tempDir("cmd");
   const std::string out = dir + "/out.txt", err = dir + "/err.txt";
-  // exec: the shell becomes bimloc, so that a signal that ends it is seen here, not as 128 + N.
-  const std::string cmd = std::string("exec '") + BIMLOC_EXE + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
+  // exec: the shell becomes the program, so that a signal that ends it is seen here, not as 128 + N.
+  const std::string cmd = "exec '" + program + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
   CommandResult r;
   const pid_t child = ::fork();
   if (child == 0) {

@@ -24,6 +24,9 @@ std::string readFile(const std::string& path);
 // The standard output of a shell command (an independent tool: python3, sqlite3...).
 std::string commandOutput(const std::string& command);
 
+// Runs `program` (a path, quoted here) with the given argument string (shell-quoted by the
+// caller), killed with SIGKILL after `timeout_s` seconds when positive (then timed_out is set).
+CommandResult runCommand(const std::string& program, const std::string& args, double timeout_s);
 // Runs the bimloc binary with the given argument string (shell-quoted by the caller).
 CommandResult runBimloc(const std::string& args);
 // The same, killed with SIGKILL after `timeout_s` seconds (then timed_out is set).

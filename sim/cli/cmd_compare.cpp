@@ -1,17 +1,20 @@
 // bimloc compare --plan P [--storey S] (--all-rooms | --rooms A,B,C) [--seeds K] [--methods M,...]
-//                [--duration S] [--site PRESET] [--config FILE] [--jobs N] [--json] [--out DIR]
+//                [--duration S] [--site PRESET] [--config FILE] [--jobs N] [--json] [--wide] [--out DIR]
 // The paper's comparison (tables "Convergence time" and "ATE after convergence") on any plan:
 // each (start room, seed) is simulated once and every method's localizer is stepped on the
 // same turn before the next is made, so all get the same scans and the same odometry, bit for
 // bit; each declares convergence by its own criterion and one scorer (RunScore) judges all.
 #include "sim/cli/commands.hpp"
+#include "sim/cli/compare_page.hpp"
 #include "sim/cli/compare_report.hpp"
 #include "sim/cli/run_pool.hpp"
+#include "sim/cli/snapshots.hpp"
 #include "sim/runner/room_scenarios.hpp"
 #include "sim/common/atomic_file.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 
 namespace {
@@ -30,8 +33,29 @@ struct CompareArgs {
   std::string config;
   int jobs = 1;
   bool json = false;
+  bool wide = false;
   std::string out;
 };
+
+// A run's pictures of one method in DIR/snapshots/METHOD/RUN/ (N_PHASE.png by N, then
+// errors.png), as paths relative to DIR.
+std::vector<std::string> picturesOf(const std::string& dir, const std::string& method, const std::string& run) {
+  namespace fs = std::filesystem;
+  const std::string relative = "snapshots/" + bimloc::cli::fileSafe(method) + "/" + bimloc::cli::fileSafe(run);
+  std::vector<std::pair<long, std::string>> files;
+  if (fs::is_directory(dir + "/" + relative))
+    for (const auto& e : fs::directory_iterator(dir + "/" + relative)) {
+      const std::string name = e.path().filename().string();
+      if (e.path().extension() != ".png") continue;
+      // Snapshots in the order they were taken, the error plot last.
+      const long order = name == "errors.png" ? 1L << 30 : std::strtol(name.c_str(), nullptr, 10);
+      files.emplace_back(order, relative + "/" + name);
+    }
+  std::sort(files.begin(), files.end());
+  std::vector<std::string> out;
+  for (auto& f : files) out.push_back(std::move(f.second));
+  return out;
+}
 
 void check(const CompareArgs& args) {
   if (args.all_rooms == !args.rooms.empty())
@@ -73,8 +97,19 @@ void run(const CompareArgs& args) {
   bimloc::cli::forEachInParallel(scenarios.size(), args.jobs, label, [&](std::size_t i) {
     const Scenario& s = scenarios[i];
     runs[i].room = s.start.room, runs[i].seed = s.seed, runs[i].name = s.name;
+    // With --out, each method's snapshots and error plot in DIR/snapshots/METHOD/RUN/.
+    std::vector<SnapshotHook> hooks;
+    const auto folderOf = [&](const std::string& method) { return staging->path() + "/snapshots/" + bimloc::cli::fileSafe(method); };
+    if (staging)
+      for (const auto& method : args.methods)
+        hooks.push_back(bimloc::cli::snapshotWriter(world, s, folderOf(method), s.name + " - " + method));
     try {
-      runs[i].results = bimloc::cli::runCheckedMethods(s, world, /*room_mode=*/true, args.methods);
+      runs[i].results = bimloc::cli::runCheckedMethods(s, world, /*room_mode=*/true, args.methods, hooks);
+      if (staging)
+        for (std::size_t k = 0; k < args.methods.size(); ++k) {
+          bimloc::cli::writeErrorPlot(folderOf(args.methods[k]), s.name, runs[i].results[k], s.name + " - " + args.methods[k]);
+          runs[i].pictures.push_back(picturesOf(staging->path(), args.methods[k], s.name));
+        }
     } catch (const std::exception& e) {
       runs[i].error = e.what();
     }
@@ -89,12 +124,14 @@ void run(const CompareArgs& args) {
   if (staging) {
     writeFileAtomically(staging->file("compare.json"), report.dump(1) + "\n");
     bimloc::cli::writeCompareFigures(setup, runs, staging->path());
+    bimloc::cli::writeComparePage(report, staging->path());
     staging->commit();
   }
   if (args.json)
     std::cout << report.dump() << "\n";
   else
-    bimloc::cli::printCompareTables(report, std::cout);
+    bimloc::cli::printCompareTables(report, std::cout, args.wide);
+  if (staging && !args.json) std::cout << "\nThe page: " << (std::filesystem::path(args.out) / "index.html").string() << "\n";
   for (const auto& r : runs)
     if (!r.error.empty()) std::cerr << "bimloc compare: error: " << r.name << ": " << r.error << "\n";
   if (report["errors"].get<int>() > 0) throw bimloc::cli::ExitCode{1};
@@ -141,6 +178,11 @@ void addCompareCommand(CLI::App& app) {
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "print one JSON object (compare.json's) instead of the tables");
-  cmd->add_option("--out", args->out, "folder for compare.json, convergence_times.png and errors_over_time.png (all or nothing)");
+  cmd->add_flag("--wide", args->wide,
+                "print each table whole, however wide (by default they are split to fit 100 columns), and the position "
+                "error at the end of each run");
+  cmd->add_option("--out", args->out,
+                  "folder for compare.json, convergence_times.png, errors_over_time.png, snapshots/ and index.html (all "
+                  "or nothing)");
   cmd->callback([args] { run(*args); });
 }

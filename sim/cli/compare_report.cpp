@@ -1,8 +1,10 @@
 #include "sim/cli/compare_report.hpp"
 
+#include "sim/cli/compare_verdict.hpp"
 #include "sim/cli/run_report.hpp"
 #include "sim/cli/table.hpp"
 
+#include <filesystem>
 #include <numeric>
 
 namespace bimloc::cli {
@@ -14,7 +16,7 @@ nlohmann::json orNull(const std::optional<T>& v) {
 }
 
 // What a method made of one run: its own convergence, judged by the one scorer (RunScore).
-nlohmann::json methodJson(const sim::ScenarioResult& r) {
+nlohmann::json methodJson(const sim::ScenarioResult& r, const std::vector<std::string>& pictures) {
   return {{"converged", r.converged},
           {"convergence_time_s", orNull(r.convergence_time_s)},
           {"false_convergence", r.false_convergence},
@@ -26,7 +28,8 @@ nlohmann::json methodJson(const sim::ScenarioResult& r) {
           {"found_room", orNull(r.found_room)},
           {"true_room", r.true_room},
           {"losses", r.losses},
-          {"warnings", r.warnings}};
+          {"warnings", r.warnings},
+          {"pictures", pictures}};
 }
 
 double localizerSeconds(const sim::ScenarioResult& r) {
@@ -34,14 +37,14 @@ double localizerSeconds(const sim::ScenarioResult& r) {
 }
 
 // A cell of a table: one value per seed, "N.L." where the method had not converged by the
-// end, '!' after a value of a false convergence.
-std::string cell(const nlohmann::json& room, const std::string& method, const char* key, int decimals) {
+// end (unless `always`: a value every run has), '!' after a value of a false convergence.
+std::string cell(const nlohmann::json& room, const std::string& method, const char* key, int decimals, bool always = false) {
   std::string out;
   for (const auto& run : room["runs"]) {
     std::string v = "error";
     if (run["methods"].contains(method)) {
       const auto& m = run["methods"][method];
-      v = !m["converged"].get<bool>() ? "N.L." : m[key].is_null() ? "-" : fixed(m[key].get<double>(), decimals);
+      v = !always && !m["converged"].get<bool>() ? "N.L." : m[key].is_null() ? "-" : fixed(m[key].get<double>(), decimals);
       if (m["false_convergence"].get<bool>()) v += "!";
     }
     out += (out.empty() ? "" : " / ") + v;
@@ -60,7 +63,7 @@ nlohmann::json compareReport(const CompareSetup& setup, const std::vector<Compar
     if (rooms.empty() || rooms.back()["room"] != run.room) rooms.push_back({{"room", run.room}, {"runs", nlohmann::json::array()}});
     nlohmann::json methods = nlohmann::json::object();
     for (std::size_t k = 0; k < run.results.size() && k < setup.methods.size(); ++k) {
-      methods[setup.methods[k]] = methodJson(run.results[k]);
+      methods[setup.methods[k]] = methodJson(run.results[k], k < run.pictures.size() ? run.pictures[k] : std::vector<std::string>{});
       by_method[k].push_back(run.results[k]);
     }
     if (!run.results.empty()) sim_seconds += run.results.front().sim_seconds;
@@ -86,53 +89,62 @@ nlohmann::json compareReport(const CompareSetup& setup, const std::vector<Compar
           {"timing", {{"wall_seconds", wall_seconds}, {"sim_seconds", sim_seconds}, {"localizer_seconds", seconds}}}};
 }
 
-void printCompareTables(const nlohmann::json& report, std::ostream& out) {
+void printCompareTables(const nlohmann::json& report, std::ostream& out, bool wide) {
   const auto methods = report["methods"].get<std::vector<std::string>>();
   std::vector<std::string> header{"start room"};
   header.insert(header.end(), methods.begin(), methods.end());
-  const std::string where = report["plan"].get<std::string>() + ", " + report["storey"].get<std::string>() + ", " +
-                            fixed(report["duration_s"].get<double>(), 0) + " s runs, site " + report["site"].get<std::string>();
+  const auto print = [&](const Table& table) { wide ? table.print(out) : table.print(out, kNarrowColumns); };
+  const auto say = [&](const std::string& text) { out << (wide ? text + "\n" : wrapText(text, kNarrowColumns)); };
+  const std::string plan = report["plan"].get<std::string>();
+  std::size_t runs = 0;
+  for (const auto& room : report["rooms"]) runs += room["runs"].size();
+  say((wide ? plan : std::filesystem::path(plan).filename().string()) + ", " + report["storey"].get<std::string>() + ": " +
+      std::to_string(report["rooms"].size()) + " start rooms, " + std::to_string(runs) + " runs of " +
+      fixed(report["duration_s"].get<double>(), 0) + " s, site " + report["site"].get<std::string>());
   const std::string per_cell = report["seeds"].get<int>() > 1 ? " (one value per seed)" : "";
-
-  out << "Convergence time [s] per start room" << per_cell << ": " << where << "\n";
-  Table times(header);
-  for (const auto& room : report["rooms"]) {
-    std::vector<std::string> row{room["room"]};
-    for (const auto& m : methods) row.push_back(cell(room, m, "convergence_time_s", 1));
-    times.add(row);
-  }
-  times.print(out);
-
-  out << "\nATE [m] after convergence per start room" << per_cell << "\n";
-  Table ates(header);
-  for (const auto& room : report["rooms"]) {
-    std::vector<std::string> row{room["room"]};
-    for (const auto& m : methods) row.push_back(cell(room, m, "ate_m", 3));
-    ates.add(row);
-  }
-  ates.add(std::vector<std::string>(header.size(), ""));
-  const auto summaryRow = [&](const std::string& name, const auto& value) {
-    std::vector<std::string> row{name};
-    for (const auto& m : methods) row.push_back(value(report["summary"][m]));
-    ates.add(row);
+  const auto roomTable = [&](const std::string& title, const char* key, int decimals, bool always = false) {
+    out << "\n";
+    say(title + per_cell);
+    Table table(header);
+    for (const auto& room : report["rooms"]) {
+      std::vector<std::string> row{room["room"]};
+      for (const auto& m : methods) row.push_back(cell(room, m, key, decimals, always));
+      table.add(row);
+    }
+    print(table);
   };
-  const auto orDash = [](const nlohmann::json& v, int decimals) { return v.is_null() ? std::string("-") : fixed(v.get<double>(), decimals); };
-  summaryRow("localized", [](const nlohmann::json& s) {
-    return std::to_string(s["localized"].get<int>()) + "/" + std::to_string(s["runs"].get<std::size_t>());
-  });
-  summaryRow("median time [s]", [&](const nlohmann::json& s) { return orDash(s["median_convergence_s"], 1); });
-  summaryRow("median ATE [m]", [&](const nlohmann::json& s) { return orDash(s["median_ate_m"], 3); });
-  summaryRow("false", [](const nlohmann::json& s) { return std::to_string(s["false_convergences"].get<int>()); });
-  ates.print(out);
+  roomTable("Convergence time [s] per start room", "convergence_time_s", 1);
+  roomTable("ATE [m] after convergence per start room", "ate_m", 3);
+  if (wide) roomTable("Position error at the end of the run [m] per start room", "position_error_m", 2, true);
 
-  const auto& timing = report["timing"];
-  out << "\nN.L.: not localized by the end of the run. !: a false convergence (declared converged while more than "
-         "0.5 m or 10 deg off).\nlocalized: converged and never falsely; median time over every convergence, median "
-         "ATE over the true ones.\n"
-      << fixed(timing["sim_seconds"].get<double>(), 0) << " s simulated once for " << methods.size() << " methods in "
-      << fixed(timing["wall_seconds"].get<double>(), 1) << " s; localizer seconds:";
-  for (const auto& m : methods) out << " " << m << " " << fixed(timing["localizer_seconds"][m].get<double>(), 1);
+  // Per method, the best in each column marked.
   out << "\n";
+  say("Per method (* the best in the column)");
+  const std::vector<MethodStanding> standings = methodStandings(report);
+  const std::vector<StandingHeader>& columns = standingHeaders();
+  std::vector<std::string> names{"method"};
+  for (const auto& c : columns) names.push_back(c.name);
+  Table summary(names);
+  std::vector<std::vector<bool>> best;
+  for (const auto& c : columns) best.push_back(bestIn(standings, c.column));
+  for (std::size_t k = 0; k < standings.size(); ++k) {
+    std::vector<std::string> row{standings[k].method};
+    for (std::size_t c = 0; c < columns.size(); ++c) row.push_back(standingCell(standings[k], columns[c].column) + (best[c][k] ? "*" : " "));
+    summary.add(row);
+  }
+  print(summary);
+
+  out << "\n";
+  say(compareVerdict(report));
+  out << "\n";
+  const auto& timing = report["timing"];
+  say("N.L.: not localized by the end of the run. !: a false convergence (declared converged while more than 0.5 m or "
+      "10 deg off). localized: converged and never falsely; median time over every convergence, median ATE over the "
+      "true ones; step s/run: the wall seconds of the method's steps per run.");
+  std::string seconds = fixed(timing["sim_seconds"].get<double>(), 0) + " s simulated once for " + std::to_string(methods.size()) +
+                        " methods in " + fixed(timing["wall_seconds"].get<double>(), 1) + " s; localizer seconds:";
+  for (const auto& m : methods) seconds += " " + m + " " + fixed(timing["localizer_seconds"][m].get<double>(), 1);
+  say(seconds);
 }
 
 }  // namespace bimloc::cli

@@ -55,8 +55,9 @@ ScenarioResult runChecked(const Scenario& s, const World& world, bool room_mode,
 }
 
 std::vector<ScenarioResult> runCheckedMethods(const Scenario& s, const World& world, bool room_mode,
-                                              const std::vector<std::string>& methods) {
-  return checked(s, world, room_mode, nullptr, [&](const Scenario& one) { return runScenarioMethods(one, world, methods); });
+                                              const std::vector<std::string>& methods, const std::vector<SnapshotHook>& snapshots) {
+  return checked(s, world, room_mode, nullptr,
+                 [&](const Scenario& one) { return runScenarioMethods(one, world, methods, snapshots); });
 }
 
 namespace {

@@ -38,9 +38,11 @@ sim::ScenarioResult runChecked(const sim::Scenario& s, const sim::World& world, 
                                const sim::SnapshotHook& hook = {}, std::vector<sim::TraceRow>* trace = nullptr,
                                std::vector<sim::PoseRow>* poses = nullptr);
 
-// The same for several methods on one simulation (sim::runScenarioMethods).
+// The same for several methods on one simulation (sim::runScenarioMethods); snapshots[k],
+// when given, takes method k's snapshots.
 std::vector<sim::ScenarioResult> runCheckedMethods(const sim::Scenario& s, const sim::World& world, bool room_mode,
-                                                   const std::vector<std::string>& methods);
+                                                   const std::vector<std::string>& methods,
+                                                   const std::vector<sim::SnapshotHook>& snapshots = {});
 
 // work(i) for every i in [0, count) on `jobs` threads (the caller's among them), with a
 // progress bar on stderr labelled `progress_label`. `work` must not throw; each i writes its

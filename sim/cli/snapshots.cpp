@@ -66,11 +66,12 @@ sim::SnapshotGraph snapshotGraph(const sgraph::SGraphTracker& tracker, const bim
   return g;
 }
 
-sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& scenario, const std::string& out_dir) {
+sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& scenario, const std::string& out_dir,
+                                 const std::string& title) {
   const std::string dir = (std::filesystem::path(out_dir) / fileSafe(scenario.name)).string();
   const bim::Building* building = &world.building();
   int index = 0;
-  return [dir, building, name = scenario.name, index](const sim::SnapshotMoment& m) mutable {
+  return [dir, building, name = title.empty() ? scenario.name : title, index](const sim::SnapshotMoment& m) mutable {
     std::filesystem::create_directories(dir);
     sim::SnapshotScene scene;
     // The filter's storey: with storey auto, the leading one (the truth may be on another).
@@ -100,10 +101,11 @@ sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& s
   };
 }
 
-void writeErrorPlot(const std::string& out_dir, const std::string& scenario_name, const sim::ScenarioResult& result) {
+void writeErrorPlot(const std::string& out_dir, const std::string& scenario_name, const sim::ScenarioResult& result,
+                    const std::string& title) {
   if (result.error_series.empty()) return;  // the run never stepped: nothing to plot
   sim::ErrorPlotData data;
-  data.title = scenario_name + ": localization error";
+  data.title = (title.empty() ? scenario_name : title) + ": localization error";
   data.convergence_time_s = result.convergence_time_s;
   for (const auto& e : result.error_series) {
     using S = LocalizationState;

@@ -17,9 +17,14 @@ std::string fileSafe(const std::string& name);
 // indices name).
 sim::SnapshotGraph snapshotGraph(const sgraph::SGraphTracker& tracker, const bim::Storey& storey);
 
-sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& scenario, const std::string& out_dir);
+// Writes OUT/<scenario>/N_PHASE.png, N counting from 0; `title` over each picture (the
+// scenario's name when empty).
+sim::SnapshotHook snapshotWriter(const sim::World& world, const sim::Scenario& scenario, const std::string& out_dir,
+                                 const std::string& title = {});
 
-// OUT/<scenario>/errors.png: position and yaw error over the run (nothing for a run with no step).
-void writeErrorPlot(const std::string& out_dir, const std::string& scenario_name, const sim::ScenarioResult& result);
+// OUT/<scenario>/errors.png: position and yaw error over the run (nothing for a run with no step),
+// titled "TITLE: localization error" (TITLE the scenario's name when empty).
+void writeErrorPlot(const std::string& out_dir, const std::string& scenario_name, const sim::ScenarioResult& result,
+                    const std::string& title = {});
 
 }  // namespace bimloc::cli

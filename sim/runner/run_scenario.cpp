@@ -19,9 +19,10 @@ std::vector<Eigen::Vector3f> scanPoints(const LidarScan& scan) {
 }
 
 // One simulation, every localizer stepped on each turn in turn: the same scans, the same
-// odometry. The snapshots and the trace follow the first localizer.
+// odometry. hooks[k] takes localizer k's snapshots (none past the end of `hooks`, or empty);
+// the trace and the poses follow the first localizer.
 std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const std::vector<LocalizerSettings>& settings,
-                                    const SnapshotHook& snapshot, std::vector<TraceRow>* trace,
+                                    const std::vector<SnapshotHook>& hooks, std::vector<TraceRow>* trace,
                                     std::vector<PoseRow>* poses = nullptr) {
   const auto wall_start = std::chrono::steady_clock::now();
   ScenarioResult shared;
@@ -39,10 +40,11 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   std::vector<MethodRun> runs;
   runs.reserve(settings.size());
   for (const auto& one : settings) runs.emplace_back(s, world, sim, one, shared);
-  // The snapshot hook by reference: it counts its pictures.
+  // The snapshot hooks by reference: each counts its pictures.
   const SnapshotHook none;
-  const auto hookOf = [&](std::size_t k) -> const SnapshotHook& { return k == 0 ? snapshot : none; };
-  if (snapshot && !runs.empty()) runs[0].snapshotNow("initialization", 0.0, sim.trajectory().T_map_base(0.0), snapshot);
+  const auto hookOf = [&](std::size_t k) -> const SnapshotHook& { return k < hooks.size() ? hooks[k] : none; };
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    if (hookOf(k)) runs[k].snapshotNow("initialization", 0.0, sim.trajectory().T_map_base(0.0), hookOf(k));
 
   const std::vector<OdometrySample> odometry = sim.odometry();
   const auto odometryAt = [&](double t) {
@@ -90,17 +92,18 @@ std::string storeyKey(const bim::Building& building, std::size_t index) {
 
 ScenarioResult runScenario(const Scenario& s, const World& world, const SnapshotHook& snapshot, std::vector<TraceRow>* trace,
                            std::vector<PoseRow>* poses) {
-  return runLoop(s, world, {localizerSettings(s)}, snapshot, trace, poses).front();
+  return runLoop(s, world, {localizerSettings(s)}, {snapshot}, trace, poses).front();
 }
 
-std::vector<ScenarioResult> runScenarioMethods(const Scenario& s, const World& world, const std::vector<std::string>& methods) {
+std::vector<ScenarioResult> runScenarioMethods(const Scenario& s, const World& world, const std::vector<std::string>& methods,
+                                               const std::vector<SnapshotHook>& snapshots) {
   std::vector<LocalizerSettings> settings;
   for (const auto& method : methods) {
     Scenario with = s;  // the scenario's own localizer settings, its method replaced
     with.localizer["method"] = method;
     settings.push_back(localizerSettings(with));
   }
-  return runLoop(s, world, settings, {}, nullptr);
+  return runLoop(s, world, settings, snapshots, nullptr);
 }
 
 }  // namespace bimloc::sim

@@ -143,7 +143,9 @@ ScenarioResult runScenario(const Scenario& scenario, const World& world, const S
 // score by the same rule (RunScore). `methods` ("sgraph", "pf", "pf-no-rooms", "amcl", "ndt")
 // each replace the scenario's `localizer.method`; result k is what runScenario gives for the
 // scenario with method k (only wall_seconds, which counts every method, differs).
+// snapshots[k], when given and set, takes method k's snapshots, as runScenario's hook does.
 std::vector<ScenarioResult> runScenarioMethods(const Scenario& scenario, const World& world,
-                                               const std::vector<std::string>& methods);
+                                               const std::vector<std::string>& methods,
+                                               const std::vector<SnapshotHook>& snapshots = {});
 
 }  // namespace bimloc::sim
