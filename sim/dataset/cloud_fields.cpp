@@ -10,7 +10,7 @@
 namespace bimloc::sim {
 namespace {
 
-[[noreturn]] void fail(const std::string& where, const std::string& what) { throw std::runtime_error(where + ": " + what); }
+[[noreturn]] void failCloud(const std::string& where, const std::string& what) { throw std::runtime_error(where + ": " + what); }
 
 std::size_t datatypeBytes(std::uint8_t datatype) {
   switch (datatype) {  // sensor_msgs/PointField constants
@@ -51,23 +51,23 @@ CloudPoints decodeCloud(const CloudLayout& layout, const std::uint8_t* data, std
     const std::size_t bytes = datatypeBytes(f.datatype);
     const bool wanted = f.name == "x" || f.name == "y" || f.name == "z" || f.name == "time";
     if (!wanted) continue;  // intensity, ring...: not used, any datatype
-    if (bytes == 0) fail(where, "field '" + f.name + "' has unknown datatype " + std::to_string(f.datatype));
-    if (f.count < 1) fail(where, "field '" + f.name + "' has count 0");
+    if (bytes == 0) failCloud(where, "field '" + f.name + "' has unknown datatype " + std::to_string(f.datatype));
+    if (f.count < 1) failCloud(where, "field '" + f.name + "' has count 0");
     if (std::uint64_t{f.offset} + bytes > layout.point_step)
-      fail(where, "field '" + f.name + "' at offset " + std::to_string(f.offset) + " lies outside point_step " +
+      failCloud(where, "field '" + f.name + "' at offset " + std::to_string(f.offset) + " lies outside point_step " +
                       std::to_string(layout.point_step));
     if (f.name == "time") time = f;
     else axis[f.name[0] - 'x'] = f;
   }
   for (int i = 0; i < 3; ++i)
-    if (!axis[i]) fail(where, std::string("the cloud has no '") + char('x' + i) + "' field");
+    if (!axis[i]) failCloud(where, std::string("the cloud has no '") + char('x' + i) + "' field");
   const std::uint64_t width = layout.width, height = layout.height;
   const std::uint64_t row_step = height > 1 ? layout.row_step : width * layout.point_step;
   if (height > 1 && row_step < width * layout.point_step)
-    fail(where, "row_step " + std::to_string(layout.row_step) + " is shorter than width * point_step");
+    failCloud(where, "row_step " + std::to_string(layout.row_step) + " is shorter than width * point_step");
   const std::uint64_t needed = height == 0 || width == 0 ? 0 : (height - 1) * row_step + width * layout.point_step;
   if (needed > size)
-    fail(where, "data holds " + std::to_string(size) + " bytes, the layout (" + std::to_string(width) + " x " +
+    failCloud(where, "data holds " + std::to_string(size) + " bytes, the layout (" + std::to_string(width) + " x " +
                     std::to_string(height) + " points of " + std::to_string(layout.point_step) + ") needs " +
                     std::to_string(needed));
   const bool swap = layout.is_bigendian == hostIsLittleEndian();
