@@ -43,7 +43,7 @@ namespace {
 // the crossing's x in pointInPolygon.
 constexpr double kPad_m = 1e-6;
 // A plan spanning kilometres still gets a grid of bounded size (coarser cells).
-constexpr double kMaxCells = 1 << 20;
+constexpr double kMaxLookupCells = 1 << 20;
 
 }  // namespace
 
@@ -55,7 +55,7 @@ RoomGrid::RoomGrid(const bim::Storey& storey) : storey_(&storey) {
   if (lo.x() > hi.x()) return;  // no room: every lookup is nullptr
   origin_ = lo - Eigen::Vector2d(1.0, 1.0);
   const Eigen::Vector2d span = hi - origin_ + Eigen::Vector2d(1.0, 1.0);
-  cell_m_ = std::max(1.0, std::sqrt(span.x() * span.y() / kMaxCells));
+  cell_m_ = std::max(1.0, std::sqrt(span.x() * span.y() / kMaxLookupCells));
   nx_ = static_cast<int>(std::ceil(span.x() / cell_m_)) + 1;
   ny_ = static_cast<int>(std::ceil(span.y() / cell_m_)) + 1;
   cells_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), {});

@@ -9,7 +9,7 @@ namespace bimloc::cli {
 namespace {
 
 template <typename T>
-nlohmann::json orNull(const std::optional<T>& v) {
+nlohmann::json valueOrNull(const std::optional<T>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
 }
 
@@ -33,7 +33,7 @@ nlohmann::json wallsJson(const std::vector<sim::ScenarioResult::WallEstimate>& w
   for (const auto& [w, true_offset, true_angle] : walls)
     out.push_back({{"wall", w.wall_id}, {"offset_m", w.offset_m}, {"angle_deg", w.angle_deg},
                    {"thickness_change_m", w.thickness_change_m}, {"observations", w.observations},
-                   {"true_offset_m", orNull(true_offset)}, {"true_angle_deg", orNull(true_angle)}});
+                   {"true_offset_m", valueOrNull(true_offset)}, {"true_angle_deg", valueOrNull(true_angle)}});
   return out;
 }
 
@@ -81,15 +81,15 @@ double median(std::vector<double> v) {
 nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
   nlohmann::json j = {{"name", r.name}, {"plan", r.plan}, {"storey", r.storey}, {"start_room", r.start_room},
           {"method", r.method}, {"seed", r.seed}, {"converged", r.converged},
-          {"convergence_time_s", orNull(r.convergence_time_s)}, {"found_room", orNull(r.found_room)},
+          {"convergence_time_s", valueOrNull(r.convergence_time_s)}, {"found_room", valueOrNull(r.found_room)},
           {"true_room", r.true_room}, {"position_error_m", r.position_error_m},
-          {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", orNull(r.ate_m)},
-          {"rpe_m_per_m", orNull(r.rpe_m_per_m)}, {"map_rmse_m", orNull(r.map_rmse_m)}, {"losses", r.losses},
+          {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", valueOrNull(r.ate_m)},
+          {"rpe_m_per_m", valueOrNull(r.rpe_m_per_m)}, {"map_rmse_m", valueOrNull(r.map_rmse_m)}, {"losses", r.losses},
           {"path_length_m", r.path_length_m}, {"wall_deviations", wallsJson(r.wall_deviations)}, {"site", r.site},
-          {"wall_offset_error_m", orNull(r.wall_offset_error_m)},
-          {"false_convergence", r.false_convergence}, {"convergence_margin", orNull(r.convergence_margin)},
+          {"wall_offset_error_m", valueOrNull(r.wall_offset_error_m)},
+          {"false_convergence", r.false_convergence}, {"convergence_margin", valueOrNull(r.convergence_margin)},
           {"hypotheses", placesJson(r.hypotheses)}, {"storey_auto", r.storey_auto},
-          {"found_storey", orNull(r.found_storey)}, {"storey_margin", orNull(r.storey_margin)},
+          {"found_storey", valueOrNull(r.found_storey)}, {"storey_margin", valueOrNull(r.storey_margin)},
           {"storey_candidates", storeysJson(r.storey_candidates)}, {"passed", r.passed}, {"failures", r.failures},
           {"warnings", r.warnings}, {"sim_seconds", r.sim_seconds}};
   if (r.recording) j["recording"] = recordingJson(*r.recording);  // `localize` only: the schema of `run` is unchanged

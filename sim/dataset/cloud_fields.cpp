@@ -11,7 +11,7 @@
 namespace bimloc::sim {
 namespace {
 
-[[noreturn]] void fail(const std::string& where, const std::string& what) { throw std::runtime_error(where + ": " + what); }
+[[noreturn]] void failCloud(const std::string& where, const std::string& what) { throw std::runtime_error(where + ": " + what); }
 
 const char* datatypeName(std::uint8_t datatype) {
   static const char* const names[] = {"INT8", "UINT8", "INT16", "UINT16", "INT32", "UINT32", "FLOAT32", "FLOAT64"};
@@ -104,7 +104,7 @@ void checkByteOrder(const CloudLayout& layout, const Axes& a, const Geometry& g,
     other += plausible(pointAt(p, a, !swap));
   }
   if (other >= 16 && 4 * other >= samples && other > 4 * as_declared)
-    fail(where, std::string("is_bigendian = ") + (layout.is_bigendian ? "1" : "0") + ", but read so " +
+    failCloud(where, std::string("is_bigendian = ") + (layout.is_bigendian ? "1" : "0") + ", but read so " +
                     std::to_string(as_declared) + " of " + std::to_string(samples) +
                     " sampled points are plausible (finite, 1 mm to 10 km), read in the other byte order " +
                     std::to_string(other) + ": the writer set is_bigendian wrongly (refused rather than read as garbage)");
@@ -135,17 +135,17 @@ CloudLayoutCheck checkCloudLayout(const CloudLayout& layout, std::size_t data_si
     const std::size_t bytes = cloudDatatypeBytes(f.datatype);
     const std::string name = "field '" + f.name + "'";
     if (bytes == 0) {
-      if (isRead(layout, f.name)) fail(where, name + " has unknown datatype " + std::to_string(f.datatype));
+      if (isRead(layout, f.name)) failCloud(where, name + " has unknown datatype " + std::to_string(f.datatype));
       out.warnings.push_back(name + " has unknown datatype " + std::to_string(f.datatype) + " (not read)");
       continue;
     }
     if (f.count < 1) {
-      if (isRead(layout, f.name)) fail(where, name + " has count 0");
+      if (isRead(layout, f.name)) failCloud(where, name + " has count 0");
       continue;
     }
     const std::uint64_t end = std::uint64_t{f.offset} + std::uint64_t{bytes} * f.count;
     if (end > layout.point_step)
-      fail(where, name + " (" + datatypeName(f.datatype) + (f.count > 1 ? " x " + std::to_string(f.count) : "") +
+      failCloud(where, name + " (" + datatypeName(f.datatype) + (f.count > 1 ? " x " + std::to_string(f.count) : "") +
                       " at offset " + std::to_string(f.offset) + ") lies outside point_step " + step);
     spans.push_back({&f, f.offset, end});
   }
@@ -153,29 +153,29 @@ CloudLayoutCheck checkCloudLayout(const CloudLayout& layout, std::size_t data_si
   for (std::size_t i = 1; i < spans.size(); ++i) {
     const Span &a = spans[i - 1], &b = spans[i];
     if (b.begin < a.end)
-      fail(where, "fields '" + a.field->name + "' (" + datatypeName(a.field->datatype) + ", bytes " + std::to_string(a.begin) +
+      failCloud(where, "fields '" + a.field->name + "' (" + datatypeName(a.field->datatype) + ", bytes " + std::to_string(a.begin) +
                       " to " + std::to_string(a.end - 1) + ") and '" + b.field->name + "' (" + datatypeName(b.field->datatype) +
                       ", bytes " + std::to_string(b.begin) + " to " + std::to_string(b.end - 1) +
                       ") overlap in a point of " + step + " bytes");
   }
   for (const char* axis : {"x", "y", "z"}) {
     const auto n = std::count_if(layout.fields.begin(), layout.fields.end(), [&](const CloudField& f) { return f.name == axis; });
-    if (n == 0) fail(where, std::string("the cloud has no '") + axis + "' field");
-    if (n > 1) fail(where, std::string("the cloud has ") + std::to_string(n) + " fields named '" + axis + "'");
+    if (n == 0) failCloud(where, std::string("the cloud has no '") + axis + "' field");
+    if (n > 1) failCloud(where, std::string("the cloud has ") + std::to_string(n) + " fields named '" + axis + "'");
     const auto& f = *std::find_if(layout.fields.begin(), layout.fields.end(), [&](const CloudField& g) { return g.name == axis; });
     if (f.datatype != 7 && f.datatype != 8)
-      fail(where, std::string("field '") + axis + "' is " + datatypeName(f.datatype) + ": coordinates must be FLOAT32 or FLOAT64");
+      failCloud(where, std::string("field '") + axis + "' is " + datatypeName(f.datatype) + ": coordinates must be FLOAT32 or FLOAT64");
   }
   const std::uint64_t width = layout.width, height = layout.height, row_step = layout.row_step;
   const std::string shape = std::to_string(width) + " x " + std::to_string(height) + " points of " + step + " bytes, row_step " +
                             std::to_string(row_step);
-  if (width * height > 0 && layout.point_step == 0) fail(where, "point_step is 0 (" + shape + ")");
+  if (width * height > 0 && layout.point_step == 0) failCloud(where, "point_step is 0 (" + shape + ")");
   if (height > 0 && row_step < width * layout.point_step)
-    fail(where, "row_step " + std::to_string(row_step) + " is shorter than width * point_step = " +
+    failCloud(where, "row_step " + std::to_string(row_step) + " is shorter than width * point_step = " +
                     std::to_string(width * layout.point_step) + " (" + shape + ")");
   const std::uint64_t needed = height * row_step;
   if (needed != data_size)
-    fail(where, "data holds " + std::to_string(data_size) + " bytes, the layout (" + shape + ") describes " +
+    failCloud(where, "data holds " + std::to_string(data_size) + " bytes, the layout (" + shape + ") describes " +
                     std::to_string(needed) + (needed > data_size ? ": points are missing" : ": the layout does not describe the data"));
   return out;
 }

@@ -11,8 +11,8 @@
 namespace bimloc::sim {
 namespace {
 
-constexpr int kDraws = 100;          // per box; a full room is found out quickly
-constexpr double kDoorSwing_m = 1.0;  // doors: kept this much further than anything else
+constexpr int kDrawsPerBox = 100;        // per box; a full room is found out quickly
+constexpr double kBoxDoorSwing_m = 1.0;  // doors: kept this much further than anything else
 constexpr double kWallGap_m = 0.01;   // between a box and the edge it stands against
 // A wall whose axis is this close to a box's back (beyond half its thickness) is the one it stands against.
 constexpr double kHostWall_m = 0.06;
@@ -56,7 +56,7 @@ void placeClutter(const bim::Storey& storey, std::size_t storey_index, const Sit
     for (const auto& q : fp) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
     int made = 0;
     for (int k = 0; k < wanted; ++k) {
-      for (int draw = 0; draw < kDraws; ++draw) {
+      for (int draw = 0; draw < kDrawsPerBox; ++draw) {
         // Every draw takes the same numbers, so a rejection does not shift the ones after it.
         double r[9];
         for (double& v : r) v = random.uniform();
@@ -92,7 +92,7 @@ void placeClutter(const bim::Storey& storey, std::size_t storey_index, const Sit
           clear = boxToSegment(box, s, e) >= config.clearance_m + 0.5 * w.thickness_m;
         }
         for (std::size_t i = 0; clear && i < door_centres.size(); ++i)
-          clear = boxToSegment(box, door_centres[i], door_centres[i]) >= config.clearance_m + kDoorSwing_m;
+          clear = boxToSegment(box, door_centres[i], door_centres[i]) >= config.clearance_m + kBoxDoorSwing_m;
         for (const auto& p : truth.partitions)
           if (clear && p.storey == storey_index) clear = boxToSegment(box, p.start, p.end) >= config.clearance_m + 0.5 * p.thickness_m;
         for (std::size_t i = 0; clear && i < placed.size(); ++i) clear = boxToBox(box, placed[i]) >= config.clearance_m;

@@ -11,9 +11,9 @@ namespace bimloc::sim {
 namespace {
 
 // Tries per partition: rooms too small for one are found out quickly and named in a warning.
-constexpr int kDraws = 400;
+constexpr int kDrawsPerPartition = 400;
 // A door's leaf and swing: kept this much further from a partition than a wall is.
-constexpr double kDoorSwing_m = 1.0;
+constexpr double kPartitionDoorSwing_m = 1.0;
 
 double pointSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
@@ -46,7 +46,7 @@ void placePartitions(const bim::Storey& storey, std::size_t storey_index, const 
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> placed;
   for (int k = 0; k < config.partitions_per_storey; ++k) {
     bool done = false;
-    for (int draw = 0; draw < kDraws && !done; ++draw) {
+    for (int draw = 0; draw < kDrawsPerPartition && !done; ++draw) {
       // Every draw takes the same numbers, so a rejection does not shift the ones after it.
       const double r_room = random.uniform(), r_x = random.uniform(), r_y = random.uniform(),
                    r_length = random.uniform(), r_turn = random.uniform();
@@ -71,7 +71,7 @@ void placePartitions(const bim::Storey& storey, std::size_t storey_index, const 
         clear = segmentDistance(a, b, s, e) >= keep + 0.5 * w.thickness_m;
       }
       for (std::size_t i = 0; clear && i < door_centres.size(); ++i)
-        clear = pointSegment(door_centres[i], a, b) >= keep + kDoorSwing_m;
+        clear = pointSegment(door_centres[i], a, b) >= keep + kPartitionDoorSwing_m;
       for (std::size_t i = 0; clear && i < placed.size(); ++i)
         clear = segmentDistance(a, b, placed[i].first, placed[i].second) >= keep + 0.5 * config.partition_thickness_m;
       if (!clear) continue;

@@ -13,7 +13,7 @@
 namespace bimloc::sim {
 namespace {
 
-constexpr int kDraws = 100;             // per person; a room too small is found out quickly
+constexpr int kDrawsPerPerson = 100;  // per person; a room too small is found out quickly
 constexpr double kChestHeight_m = 1.0;  // legs are swept at this height above the floor:
                                         // above skirting and door sills, through clutter up to 1.5 m
 constexpr double kMinLeg_m = 1.0;
@@ -133,7 +133,7 @@ void placePeople(const World& world, const SitePeople& config, std::uint64_t see
       if (r.footprint.size() >= 3 && r.area_m2 >= 4.0) rooms.push_back(&r), total += r.area_m2;
     int made = 0;
     for (int k = 0; k < config.count_per_storey && !rooms.empty(); ++k) {
-      for (int draw = 0; draw < kDraws; ++draw) {
+      for (int draw = 0; draw < kDrawsPerPerson; ++draw) {
         // Every draw takes the same numbers, so a rejection does not shift the ones after it.
         double r[11];
         for (double& v : r) v = random.uniform();

@@ -1,0 +1,3 @@
+#pragma once
+#include "sim/base/gait.hpp"
+#include <bimloc/geometry/pose.hpp>
