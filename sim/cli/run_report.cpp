@@ -1,5 +1,6 @@
 #include "sim/cli/run_report.hpp"
 
+#include "sim/cli/oracle_report.hpp"
 #include "sim/cli/table.hpp"
 
 #include <algorithm>
@@ -46,7 +47,7 @@ double median(std::vector<double> v) {
 }
 
 nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
-  return {{"name", r.name}, {"plan", r.plan}, {"storey", r.storey}, {"start_room", r.start_room},
+  nlohmann::json entry{{"name", r.name}, {"plan", r.plan}, {"storey", r.storey}, {"start_room", r.start_room},
           {"method", r.method}, {"seed", r.seed}, {"converged", r.converged},
           {"convergence_time_s", orNull(r.convergence_time_s)}, {"found_room", orNull(r.found_room)},
           {"true_room", r.true_room}, {"position_error_m", r.position_error_m},
@@ -59,6 +60,8 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
           {"found_storey", orNull(r.found_storey)}, {"storey_margin", orNull(r.storey_margin)},
           {"storey_candidates", storeysJson(r.storey_candidates)}, {"passed", r.passed}, {"failures", r.failures},
           {"warnings", r.warnings}, {"sim_seconds", r.sim_seconds}};
+  addOracleFields(entry, r);
+  return entry;
 }
 
 nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) {
@@ -76,9 +79,11 @@ nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) 
   }
   const nlohmann::json median_time = times.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(times));
   const nlohmann::json median_ate = ates.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(ates));
-  return {{"runs", scenarios.size()}, {"localized", localized}, {"false_convergences", false_convergences},
-          {"median_convergence_s", median_time}, {"median_ate_m", median_ate}, {"losses", losses},
-          {"sim_seconds", sim_seconds}, {"wall_seconds", wall_seconds}};
+  nlohmann::json summary{{"runs", scenarios.size()}, {"localized", localized}, {"false_convergences", false_convergences},
+                         {"median_convergence_s", median_time}, {"median_ate_m", median_ate}, {"losses", losses},
+                         {"sim_seconds", sim_seconds}, {"wall_seconds", wall_seconds}};
+  if (hasOracle(scenarios)) summary.update(oracleSummary(scenarios));
+  return summary;
 }
 
 nlohmann::json runReport(const std::vector<sim::ScenarioResult>& results, double wall_seconds) {
@@ -111,6 +116,9 @@ void printRunTable(const nlohmann::json& report, std::ostream& out) {
   bool any_site = false;
   for (const auto& r : results) any_site = any_site || r.at("site").get<std::string>() != "exact";
   if (any_site) header.insert(header.begin() + 2, "site"), header.insert(header.end() - 2, "wall err [m]");
+  // With --oracle: when the scans first allowed a decision, and the localizer's lag beyond it.
+  const bool oracle = hasOracle(results);
+  if (oracle) header.insert(header.end() - 2, {"decidable [s]", "lag [s]", "ratio"});
   Table table(header);
   for (const auto& r : results) {
     const int losses = r.at("losses").get<int>();
@@ -133,6 +141,10 @@ void printRunTable(const nlohmann::json& report, std::ostream& out) {
     }
     if (any_site)
       row.insert(row.begin() + 2, r.at("site").get<std::string>()), row.insert(row.end() - 2, number(r.at("wall_offset_error_m"), 3));
+    if (oracle) {
+      const auto value = [&](const char* key, int decimals) { return r.contains(key) ? number(r.at(key), decimals) : std::string("-"); };
+      row.insert(row.end() - 2, {value("decidable_at_s", 1), value("decision_lag_s", 1), value("decision_ratio", 2)});
+    }
     table.add(row);
   }
   table.print(out);
@@ -143,6 +155,7 @@ void printRunTable(const nlohmann::json& report, std::ostream& out) {
       << ", median ATE " << (s["median_ate_m"].is_null() ? std::string("-") : fixed(s["median_ate_m"].get<double>(), 3) + " m")
       << ", " << s["losses"].get<int>() << " losses of track; " << fixed(s["sim_seconds"].get<double>(), 0) << " s simulated in " << fixed(s["wall_seconds"].get<double>(), 1)
       << " s\n";
+  if (oracle) printOracleSummary(s, out);
   for (const auto& r : results)
     for (const auto& f : r.at("failures")) out << "  " << r.at("name").get<std::string>() << ": " << f.get<std::string>() << "\n";
 }

@@ -103,10 +103,8 @@ OracleVerdict decideWhen(const bim::Storey& storey, double floor_z, const std::v
   const Lattice lattice(field, config);
   verdict.threshold = decisionThreshold(lattice.free_area_m2, config, &verdict.rival_places);
   const TruthZone zone{truth_start, config.place_radius_m, config.place_deg * M_PI / 180.0};
-  // Backwards from the last keyframe: the first one from which every later check rules every
-  // rival out.
-  std::optional<std::size_t> first;
-  for (std::size_t k = keyframes.size(); k-- > 0;) {
+  // Whether the scans up to keyframe k rule every rival out.
+  const auto ruledOut = [&](std::size_t k) {
     const PathCloud path = pathOf(keyframes, k + 1);
     if (k + 1 == keyframes.size()) verdict.points = path.size();
     const SearchContext context{field, model, path, lattice, zone};
@@ -116,9 +114,34 @@ OracleVerdict decideWhen(const bim::Storey& storey, double floor_z, const std::v
     const SearchAnswer rival = searchPlaces(context, Region::Rivals, q - static_cast<float>(verdict.threshold), true);
     ++verdict.checks;
     verdict.nodes += truth.nodes + rival.nodes, verdict.cells += truth.cells + rival.cells;
-    if (rival.reached) break;
+    return !rival.reached;
+  };
+  // Backwards from the last keyframe, every check_every-th: the first from which every later
+  // check rules every rival out; then each keyframe back from there to the failed check.
+  std::optional<std::size_t> first;
+  const auto stride = static_cast<std::size_t>(std::max(1, config.check_every));
+  std::size_t failed = 0;
+  bool any_failed = false;
+  for (std::size_t k = keyframes.size(); k-- > 0;) {
+    if (!ruledOut(k)) {
+      any_failed = true, failed = k;
+      break;
+    }
     first = k;
+    if (k < stride) {
+      for (std::size_t j = k; j-- > 0;) {
+        if (!ruledOut(j)) break;
+        first = j;
+      }
+      break;
+    }
+    k -= stride - 1;
   }
+  if (any_failed && first)
+    for (std::size_t j = *first; j-- > failed + 1;) {
+      if (!ruledOut(j)) break;
+      first = j;
+    }
   if (first) verdict.decidable_at_s = keyframes[*first].time_s;
   verdict.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return verdict;

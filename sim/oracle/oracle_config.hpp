@@ -42,6 +42,9 @@ struct OracleConfig {
   // The decision rule's false-alarm rate per run: the probability that noise alone makes the
   // truth's path beat a rival by the threshold when the rival is the true place (docs/oracle.md).
   double alpha = 0.01;
+  // The test runs at every check_every-th keyframe back from the last (about a metre of walk),
+  // and at every keyframe between the last check that failed and the first that held.
+  int check_every = 4;
 };
 
 }  // namespace bimloc::sim::oracle

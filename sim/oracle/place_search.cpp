@@ -11,6 +11,7 @@ namespace {
 constexpr int kRootCells = 32;   // a root node's side in lattice positions (3.2 m at 0.1 m)
 constexpr int kRootAngles = 8;   // ... and its headings (16 deg at 2 deg)
 constexpr int kRefineLevels = 4;  // local search steps: 1/4 of the cell, halved three times
+constexpr int kCellBoundDepth = 2;  // a cell's bound tightened over its eighths and sixty-fourths
 
 struct Node {
   int i0 = 0, j0 = 0, ni = 1, nj = 1, t0 = 0, nt = 1;
@@ -74,6 +75,21 @@ std::vector<Node> children(const SearchContext& c, const Node& n) {
     out.push_back({n.i0, n.j0, n.ni, n.nj, n.t0 + nt1, n.nt - nt1, 0});
   }
   return out;
+}
+
+// Whether some start in the box (centre, half-widths) may score at least `bar`: its bound, and
+// below the lattice the bounds of its eight halves, down to `depth` more halvings. A cell none of
+// whose parts may reach the bar is skipped without its local search (the bound still holds).
+bool mayReach(const SearchContext& c, const Eigen::Vector3d& centre, const Eigen::Vector3d& half, float bar, int depth) {
+  if (pathBound(c.field, c.model, c.path, centre.x(), centre.y(), centre.z(), half.x(), half.y(), half.z(), bar) < bar) return false;
+  if (depth == 0) return true;
+  const Eigen::Vector3d quarter = 0.5 * half;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d part = centre + Eigen::Vector3d(k & 1 ? quarter.x() : -quarter.x(), k & 2 ? quarter.y() : -quarter.y(),
+                                                          k & 4 ? quarter.z() : -quarter.z());
+    if (mayReach(c, part, quarter, bar, depth - 1)) return true;
+  }
+  return false;
 }
 
 bool leafInRegion(const SearchContext& c, Region region, int i, int j, int t) {
@@ -163,6 +179,8 @@ SearchAnswer searchPlaces(const SearchContext& c, Region region, float bar, bool
     if (n.bound < level()) continue;
     if (n.leaf()) {
       if (!leafInRegion(c, region, n.i0, n.j0, n.t0)) continue;
+      const Eigen::Vector3d half(0.5 * l.step_m, 0.5 * l.step_m, 0.5 * l.step_rad);
+      if (!mayReach(c, l.pose(n.i0, n.j0, n.t0), half, level(), kCellBoundDepth)) continue;
       Eigen::Vector3d pose;
       const float v = cellValue(c, n.i0, n.j0, n.t0, &pose, stop_at_bar ? bar : std::numeric_limits<float>::infinity());
       ++answer.cells;
