@@ -45,7 +45,7 @@ LAYERS = [
      ["sim/world", "sim/odometry", "sim/worldgen", "sim/render", "sim/ros2"]),
     ("bench: in the world (base, lidar)", ["sim/base", "sim/lidar"]),
     ("bench: recordings and scenarios", ["sim/dataset", "sim/scenario"]),
-    ("bench: map error, simulation", ["sim/metrics", "sim/simulation"]),
+    ("bench: map error, the information limit, simulation", ["sim/metrics", "sim/oracle", "sim/simulation"]),
     ("bench: in-the-loop runs", ["sim/runner"]),
     ("command line", ["sim/cli"]),
 ]

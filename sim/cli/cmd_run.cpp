@@ -1,4 +1,4 @@
-// bimloc run SCENARIO... | --plan PLAN --all-rooms [--storey S|auto] [--method M] [--config FILE.yaml] [--starts rooms|outside] [--json] [--out DIR] [--jobs N] [--shard K/N]
+// bimloc run SCENARIO... | --plan PLAN --all-rooms [--storey S|auto] [--method M] [--config FILE.yaml] [--starts rooms|outside] [--json] [--out DIR] [--jobs N] [--shard K/N] [--oracle]
 #include "sim/cli/commands.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
@@ -35,6 +35,7 @@ struct RunArgs {
   std::string site;  // --site PRESET: every scenario's site (sim/world/site_config.hpp)
   std::string shard;  // K/N: only the K-th of N slices of the scenario list (sim/cli/shards.hpp)
   std::string tum;    // folder for each scenario's truth.tum and estimate.tum
+  bool oracle = false;  // --oracle: each run's information limit (docs/oracle.md)
 };
 
 void run(const RunArgs& args) {
@@ -83,6 +84,7 @@ void run(const RunArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   bimloc::cli::RunPoolOptions pool;
   pool.jobs = args.jobs, pool.snapshots = args.out, pool.trace = args.trace, pool.tum = args.tum;
+  pool.oracle = args.oracle;
   const auto runs = bimloc::cli::runPool(scenarios, generated, worlds, pool);
   std::vector<ScenarioResult> results;
   std::vector<std::string> errors;
@@ -176,6 +178,9 @@ void addRunCommand(CLI::App& app) {
                   "folder for each scenario's trajectories in the TUM format, for `bimloc eval` or evo: truth.tum (every "
                   "step) and estimate.tum (the steps the ATE scores: converged, not lost) in DIR/<scenario>/");
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
+  cmd->add_flag("--oracle", args->oracle,
+                "also each run's information limit (docs/oracle.md): decidable_at_s (from when the scans ruled out every "
+                "place but the true one), decision_lag_s and decision_ratio; slow (its cost is in the JSON)");
   cmd->callback([args, method, duration] {
     args->method_given = method->count() > 0;
     args->duration_given = duration->count() > 0;

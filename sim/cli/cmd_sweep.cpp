@@ -1,9 +1,10 @@
-// bimloc sweep PLAN... [--sites P,Q --methods M,N --plot F.png] [--seeds K] [--method M] [--duration S] [--storey auto] [--starts rooms|outside] [--jobs N] [--json]
+// bimloc sweep PLAN... [--sites P,Q --methods M,N --plot F.png] [--seeds K] [--method M] [--duration S] [--storey auto] [--starts rooms|outside] [--jobs N] [--json] [--oracle]
 // The paper's experiment over many plans at once: every room of every storey with rooms, K
 // seeds each, and a row per plan and storey: how often it localized, how often falsely, how
 // fast, how accurately, and the smallest path-evidence margin a convergence was accepted at.
 // Generated worlds come from `bimloc worldgen --random`: this command only runs plans.
 #include "sim/cli/commands.hpp"
+#include "sim/cli/oracle_report.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
 #include "sim/cli/sweep_sites.hpp"
@@ -40,6 +41,7 @@ struct SweepArgs {
   std::vector<std::string> prior_rooms;
   std::string prior_pose;
   std::string config;  // --config FILE.yaml: localizer settings (each method reads its own sections)
+  bool oracle = false;  // --oracle: each run's information limit (docs/oracle.md)
 };
 
 // One row: a group of runs (a plan's storey, or all of them).
@@ -104,6 +106,7 @@ void run(const SweepArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   bimloc::cli::RunPoolOptions pool;
   pool.jobs = args.jobs, pool.progress_label = "sweeping " + std::to_string(scenarios.size()) + " runs";
+  pool.oracle = args.oracle;
   const auto runs = bimloc::cli::runPool(scenarios, std::vector<bool>(scenarios.size(), true), worlds, pool);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -128,18 +131,28 @@ void run(const SweepArgs& args) {
                      .dump()
               << "\n";
   } else {
-    bimloc::cli::Table table({"plan", "storey", "runs", "localized", "false", "median [s]", "p90 [s]", "max [s]",
-                              "median ATE [m]", "max ATE [m]", "RPE [m/m]", "map RMSE [m]", "lost", "path [m]", "min margin"});
+    std::vector<std::string> header{"plan", "storey", "runs", "localized", "false", "median [s]", "p90 [s]", "max [s]",
+                                    "median ATE [m]", "max ATE [m]", "RPE [m/m]", "map RMSE [m]", "lost", "path [m]", "min margin"};
+    // With --oracle: decidable starts, those localized, the lag and the ratio (median / p90).
+    if (args.oracle) header.insert(header.end(), {"decidable", "dec. localized", "lag [s]", "ratio", "oracle [s/run]"});
+    bimloc::cli::Table table(header);
     rows.push_back(total);
     // A start that could not be run is listed below the table, not counted as not localized.
-    for (const auto& g : rows)
-      table.add({g["plan"], g["storey"], std::to_string(runsThatRan(g)),
-                 std::to_string(g["localized"].get<int>()),
-                 g["false_convergences"].get<int>() ? "FALSE " + std::to_string(g["false_convergences"].get<int>()) : "0",
-                 cell(g["median_convergence_s"], 1), cell(g["p90_convergence_s"], 1), cell(g["max_convergence_s"], 1),
-                 cell(g["median_ate_m"], 3), cell(g["max_ate_m"], 3), cell(g["median_rpe_m_per_m"], 3),
-                 cell(g["median_map_rmse_m"], 3), std::to_string(g["losses"].get<int>()), cell(g["median_path_length_m"], 0),
-                 cell(g["min_accepted_margin"], 1)});
+    for (const auto& g : rows) {
+      std::vector<std::string> row{g["plan"], g["storey"], std::to_string(runsThatRan(g)),
+                                   std::to_string(g["localized"].get<int>()),
+                                   g["false_convergences"].get<int>() ? "FALSE " + std::to_string(g["false_convergences"].get<int>()) : "0",
+                                   cell(g["median_convergence_s"], 1), cell(g["p90_convergence_s"], 1), cell(g["max_convergence_s"], 1),
+                                   cell(g["median_ate_m"], 3), cell(g["max_ate_m"], 3), cell(g["median_rpe_m_per_m"], 3),
+                                   cell(g["median_map_rmse_m"], 3), std::to_string(g["losses"].get<int>()), cell(g["median_path_length_m"], 0),
+                                   cell(g["min_accepted_margin"], 1)};
+      if (args.oracle && g.contains("decidable"))
+        row.insert(row.end(), {std::to_string(g["decidable"].get<int>()), std::to_string(g["decidable_localized"].get<int>()),
+                               cell(g["median_decision_lag_s"], 1) + " / " + cell(g["p90_decision_lag_s"], 1),
+                               cell(g["median_decision_ratio"], 2) + " / " + cell(g["p90_decision_ratio"], 2),
+                               cell(g["median_oracle_seconds"], 1)});
+      table.add(row);
+    }
     table.print(std::cout);
     const int not_run = total["errors"].get<int>();
     std::cout << "\n" << total["localized"].get<int>() << " of " << runsThatRan(total) << " localized, "
@@ -210,5 +223,8 @@ void addSweepCommand(CLI::App& app) {
                   "YAML file of localizer settings (a scenario's `localizer:` keys, e.g. `amcl: {...}`); each method reads "
                   "its own sections, the method is the sweep's")
       ->check(CLI::ExistingFile);
+  cmd->add_flag("--oracle", args->oracle,
+                "also each run's information limit (docs/oracle.md): from when the scans ruled out every place but the "
+                "true one (decidable_at_s), the localizer's lag and ratio beyond it, and the summary's quantiles; slow");
   cmd->callback([args] { run(*args); });
 }

@@ -47,10 +47,10 @@ auto checked(const Scenario& s, const World& world, bool room_mode, std::vector<
 }  // namespace
 
 ScenarioResult runChecked(const Scenario& s, const World& world, bool room_mode, const SnapshotHook& hook,
-                          std::vector<TraceRow>* trace, std::vector<PoseRow>* poses) {
+                          std::vector<TraceRow>* trace, std::vector<PoseRow>* poses, bool with_oracle) {
   return checked(s, world, room_mode, trace, [&](const Scenario& one) {
     if (poses) poses->clear();  // the second try, walking inside the room, starts afresh
-    return runScenario(one, world, hook, trace, poses);
+    return runScenario(one, world, hook, trace, poses, with_oracle);
   });
 }
 
@@ -75,7 +75,7 @@ ScenarioResult runOne(const Scenario& s, WorldCache& worlds, const RunPoolOption
     if (!options.snapshots.empty()) writeErrorPlot(options.snapshots, s.name, r);  // next to the snapshots
     return r;
   };
-  return traced(runChecked(s, world, room_mode, hook, trace, poses));
+  return traced(runChecked(s, world, room_mode, hook, trace, poses, options.oracle));
 }
 
 }  // namespace

@@ -28,6 +28,7 @@ struct RunPoolOptions {
   std::string snapshots;  // folder for snapshots, empty for none
   std::string trace;      // folder for trace CSVs, empty for none
   std::string tum;        // folder for truth.tum and estimate.tum per scenario, empty for none
+  bool oracle = false;    // each run's information limit (sim/oracle/oracle.hpp), after the run
   std::string progress_label = "running";
 };
 
@@ -36,7 +37,7 @@ struct RunPoolOptions {
 // of the room: the base walks inside it instead, and the result says so in a warning.
 sim::ScenarioResult runChecked(const sim::Scenario& s, const sim::World& world, bool room_mode,
                                const sim::SnapshotHook& hook = {}, std::vector<sim::TraceRow>* trace = nullptr,
-                               std::vector<sim::PoseRow>* poses = nullptr);
+                               std::vector<sim::PoseRow>* poses = nullptr, bool with_oracle = false);
 
 // The same for several methods on one simulation (sim::runScenarioMethods); snapshots[k],
 // when given, takes method k's snapshots.

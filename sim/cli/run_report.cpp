@@ -1,5 +1,6 @@
 #include "sim/cli/run_report.hpp"
 
+#include "sim/cli/oracle_report.hpp"
 #include "sim/cli/table.hpp"
 
 #include <algorithm>
@@ -93,6 +94,7 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
           {"storey_candidates", storeysJson(r.storey_candidates)}, {"passed", r.passed}, {"failures", r.failures},
           {"warnings", r.warnings}, {"sim_seconds", r.sim_seconds}};
   if (r.recording) j["recording"] = recordingJson(*r.recording);  // `localize` only: the schema of `run` is unchanged
+  addOracleFields(j, r);
   return j;
 }
 
@@ -115,6 +117,7 @@ nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) 
                             {"median_convergence_s", median_time}, {"median_ate_m", median_ate}, {"losses", losses},
                             {"sim_seconds", sim_seconds}, {"wall_seconds", wall_seconds}};
   if (nlohmann::json dropped = recordingTotal(scenarios); !dropped.is_null()) summary["recording"] = std::move(dropped);
+  if (hasOracle(scenarios)) summary.update(oracleSummary(scenarios));
   return summary;
 }
 
@@ -148,6 +151,9 @@ void printRunTable(const nlohmann::json& report, std::ostream& out) {
   bool any_site = false;
   for (const auto& r : results) any_site = any_site || r.at("site").get<std::string>() != "exact";
   if (any_site) header.insert(header.begin() + 2, "site"), header.insert(header.end() - 2, "wall err [m]");
+  // With --oracle: when the scans first allowed a decision, and the localizer's lag beyond it.
+  const bool oracle = hasOracle(results);
+  if (oracle) header.insert(header.end() - 2, {"decidable [s]", "lag [s]", "ratio"});
   Table table(header);
   for (const auto& r : results) {
     const int losses = r.at("losses").get<int>();
@@ -170,6 +176,10 @@ void printRunTable(const nlohmann::json& report, std::ostream& out) {
     }
     if (any_site)
       row.insert(row.begin() + 2, r.at("site").get<std::string>()), row.insert(row.end() - 2, number(r.at("wall_offset_error_m"), 3));
+    if (oracle) {
+      const auto value = [&](const char* key, int decimals) { return r.contains(key) ? number(r.at(key), decimals) : std::string("-"); };
+      row.insert(row.end() - 2, {value("decidable_at_s", 1), value("decision_lag_s", 1), value("decision_ratio", 2)});
+    }
     table.add(row);
   }
   table.print(out);
@@ -180,6 +190,7 @@ void printRunTable(const nlohmann::json& report, std::ostream& out) {
       << ", median ATE " << (s["median_ate_m"].is_null() ? std::string("-") : fixed(s["median_ate_m"].get<double>(), 3) + " m")
       << ", " << s["losses"].get<int>() << " losses of track; " << fixed(s["sim_seconds"].get<double>(), 0) << " s simulated in " << fixed(s["wall_seconds"].get<double>(), 1)
       << " s\n";
+  if (oracle) printOracleSummary(s, out);
   for (const auto& r : results)
     for (const auto& f : r.at("failures")) out << "  " << r.at("name").get<std::string>() << ": " << f.get<std::string>() << "\n";
   // A recording's drops, whenever there were any (the details are in the warnings).

@@ -1,5 +1,7 @@
 #include "sim/cli/sweep_summary.hpp"
 
+#include "sim/cli/oracle_report.hpp"
+#include "sim/cli/run_report.hpp"
 #include "sim/cli/table.hpp"
 
 #include <algorithm>
@@ -33,13 +35,19 @@ nlohmann::json summariseRuns(const std::vector<const sim::ScenarioResult*>& runs
     if (r->convergence_margin) margins.push_back(*r->convergence_margin);
   }
   const auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-  return {{"runs", runs.size()}, {"localized", localized}, {"false_convergences", false_conv},
+  nlohmann::json summary{{"runs", runs.size()}, {"localized", localized}, {"false_convergences", false_conv},
           {"errors", errors}, {"median_convergence_s", num(quantile(times, 0.5))}, {"p90_convergence_s", num(quantile(times, 0.9))},
           {"max_convergence_s", num(quantile(times, 1.0))}, {"median_ate_m", num(quantile(ates, 0.5))},
           {"max_ate_m", num(quantile(ates, 1.0))}, {"median_rpe_m_per_m", num(quantile(rpes, 0.5))},
           {"median_map_rmse_m", num(quantile(map_rmses, 0.5))}, {"losses", losses},
           {"median_path_length_m", num(quantile(paths, 0.5))},
           {"min_accepted_margin", num(margins.empty() ? std::nan("") : *std::min_element(margins.begin(), margins.end()))}};
+  // With --oracle: the information limit's figures, from the runs' entries as `run` reports them.
+  nlohmann::json entries = nlohmann::json::array();
+  for (const sim::ScenarioResult* r : runs)
+    if (r->oracle) entries.push_back(scenarioJson(*r));
+  if (!entries.empty()) summary.update(oracleSummary(entries));
+  return summary;
 }
 
 std::string cell(const nlohmann::json& v, int decimals) { return v.is_null() ? "-" : fixed(v.get<double>(), decimals); }

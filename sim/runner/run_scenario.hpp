@@ -4,6 +4,7 @@
 #pragma once
 
 #include "sim/dataset/recording_checks.hpp"
+#include "sim/oracle/oracle.hpp"
 #include "sim/scenario/localizer_config.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/world/world.hpp"
@@ -98,6 +99,9 @@ struct ScenarioResult {
   std::vector<ErrorSample> error_series;
   // Wall seconds the localizer's steps took in each simulated minute (the last one partial).
   std::vector<double> localizer_seconds_by_minute;
+  // With the oracle (`--oracle`): when the scans first ruled out every place but the true one
+  // (sim/oracle/oracle.hpp), from the run's own scans, odometry and truth. Not in wall_seconds.
+  std::optional<oracle::OracleVerdict> oracle;
 };
 
 // What a snapshot needs at a moment of the run (the runner calls it at initialization, while
@@ -134,9 +138,11 @@ struct PoseRow {
   bool scored = false;
 };
 
-// `trace`, when given, receives a row per weighing; `poses` a row per step.
+// `trace`, when given, receives a row per weighing; `poses` a row per step. With `with_oracle`,
+// the oracle keeps the run's keyframes and gives its verdict at the end (ScenarioResult::oracle).
 ScenarioResult runScenario(const Scenario& scenario, const World& world, const SnapshotHook& snapshot = {},
-                           std::vector<TraceRow>* trace = nullptr, std::vector<PoseRow>* poses = nullptr);
+                           std::vector<TraceRow>* trace = nullptr, std::vector<PoseRow>* poses = nullptr,
+                           bool with_oracle = false);
 
 // Several localizers on one simulation, each stepped on every turn before the next turn is
 // made: each method gets the same scans and the same odometry, bit for bit, and its own

@@ -1,0 +1,66 @@
+// The information-limit oracle (issue 28 §1, docs/oracle.md): it knows the truth and answers
+// from what time on the scans so far rule out every place of the storey but the true one.
+// Independent of the localizer's code: its own model of the scans (a height band of points
+// against the plan's wall faces), its own search (every start pose of the storey on a grid,
+// branch-and-bound) and a likelihood-ratio test with a stated false-alarm rate.
+#pragma once
+
+#include "sim/oracle/oracle_config.hpp"
+
+#include <bimloc/bim/building.hpp>
+
+#include <Eigen/Geometry>
+#include <functional>
+#include <optional>
+#include <vector>
+
+namespace bimloc::sim::oracle {
+
+// A scan the path keeps: its time, the odometry then (x, y, yaw) and its points in the band,
+// projected to the base frame's xy.
+struct Keyframe {
+  double time_s = 0;
+  Eigen::Vector3d odom = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector2f> points;
+};
+
+// Turn by turn, what the oracle keeps of a run: keyframes (bounded: a few hundred points each).
+class KeyframeRecorder {
+ public:
+  // base_above_floor_m: the base frame's height above the floor (the band is above the floor).
+  KeyframeRecorder(const OracleConfig& config, const Eigen::Isometry3d& T_base_lidar, double base_above_floor_m);
+  // One turn at time_s; `points` (lidar frame) is called only when the turn becomes a keyframe.
+  void add(double time_s, const Eigen::Isometry3d& T_odom_base, const std::function<std::vector<Eigen::Vector3f>()>& points);
+  const std::vector<Keyframe>& keyframes() const { return keyframes_; }
+
+ private:
+  OracleConfig config_;
+  Eigen::Isometry3d T_base_lidar_;
+  double z_low_, z_high_;  // the band in the base frame
+  std::vector<Keyframe> keyframes_;
+};
+
+// The band points of one scan (lidar frame) in the base frame's xy, subsampled as configured.
+std::vector<Eigen::Vector2f> bandPoints(const std::vector<Eigen::Vector3f>& lidar_points, const Eigen::Isometry3d& T_base_lidar,
+                                        double z_low_base, double z_high_base, const OracleConfig& config);
+
+struct OracleVerdict {
+  // The first keyframe's time from which every rival place stays ruled out; unset when some
+  // rival still explains the scans at the end.
+  std::optional<double> decidable_at_s;
+  double threshold = 0;  // nats: log L(truth) - log L(best rival) needed to rule a rival out
+  double rival_places = 0;  // the places the threshold's union bound counts
+  double seconds = 0;       // the oracle's wall time
+  int keyframes = 0, checks = 0;
+  std::size_t points = 0, nodes = 0, cells = 0;
+};
+
+// The threshold ln(M / alpha) for M rival places on free_area_m2 (docs/oracle.md).
+double decisionThreshold(double free_area_m2, const OracleConfig& config, double* places = nullptr);
+
+// The verdict for a run on `storey` whose base started at truth_start (x, y, yaw) and kept
+// `keyframes`; floor_z: the floor's world z under the start (the band is above it).
+OracleVerdict decideWhen(const bim::Storey& storey, double floor_z, const std::vector<Keyframe>& keyframes,
+                         const Eigen::Vector3d& truth_start, const OracleConfig& config = {});
+
+}  // namespace bimloc::sim::oracle

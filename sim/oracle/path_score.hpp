@@ -1,0 +1,50 @@
+// A path's score against the plan: the sum over its points of the per-point log-likelihood of a
+// robust mixture (a Gaussian hit on the nearest wall plus a uniform clutter floor), and an
+// upper bound of that score over a box of start poses (for the branch-and-bound).
+#pragma once
+
+#include "sim/oracle/oracle_config.hpp"
+#include "sim/oracle/wall_field.hpp"
+
+#include <Eigen/Core>
+#include <limits>
+#include <vector>
+
+namespace bimloc::sim::oracle {
+
+// log p(d) - log p(0) for p(d) = z_hit N(d; 0, sigma) + (1 - z_hit) / max_range: 0 on a wall,
+// decreasing, down to the clutter floor. Tabulated every millimetre up to the field's clamp.
+class PointModel {
+ public:
+  PointModel(const OracleConfig& config, double clamp_m);
+  float score(float d) const;       // linear between table entries
+  float upperBound(float d) const;  // >= score(d') for every d' >= d
+  float floor() const { return table_.back(); }
+
+ private:
+  std::vector<float> table_;
+  float step_ = 0.001f;
+};
+
+// The points of a path in its start frame: each keyframe's points composed with the
+// keyframe's odometry relative to the first one. A start pose P places them at P * q.
+struct PathCloud {
+  std::vector<float> x, y, r;  // r = |q|, what a turn of the start pose moves the point by per radian
+  float r_rms = 0;
+  std::size_t size() const { return x.size(); }
+  void add(float px, float py);
+  void finish();  // r_rms
+};
+
+// The score of the path started at (x, y, yaw); below `stop_below` it may stop early and
+// return any value below it (each point only lowers the sum).
+float pathScore(const DistanceField& field, const PointModel& model, const PathCloud& path, double x, double y, double yaw,
+                float stop_below = -std::numeric_limits<float>::infinity());
+
+// An upper bound of pathScore over every start in [cx +- half_x] x [cy +- half_y] x
+// [yaw +- half_yaw]: each point's distance bounded below over the box its position sweeps.
+// Stops early below `stop_below` as pathScore does.
+float pathBound(const DistanceField& field, const PointModel& model, const PathCloud& path, double cx, double cy, double yaw,
+                double half_x, double half_y, double half_yaw, float stop_below = -std::numeric_limits<float>::infinity());
+
+}  // namespace bimloc::sim::oracle

@@ -1,0 +1,123 @@
+#include "sim/oracle/wall_field.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bimloc::sim::oracle {
+namespace {
+
+float segmentDistance(const Eigen::Vector2d& p, const Segment2& s) {
+  const Eigen::Vector2d ab = s.b - s.a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - s.a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return static_cast<float>((s.a + t * ab - p).norm());
+}
+
+}  // namespace
+
+std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low, double z_high) {
+  std::vector<Segment2> out;
+  for (const auto& wall : storey.walls)
+    for (const auto& face : wall.faces) {
+      const double z0 = face.start.z(), z1 = z0 + wall.height_m, length = face.length_m();
+      if (z1 <= z_low || z0 >= z_high || length <= 0) continue;
+      // Doorways: openings spanning the whole band leave no surface in it.
+      std::vector<std::pair<double, double>> cuts;
+      for (const auto& o : face.openings)
+        if (o.z_min_m <= z_low && o.z_max_m >= z_high) cuts.emplace_back(o.along_min_m, o.along_max_m);
+      std::sort(cuts.begin(), cuts.end());
+      const Eigen::Vector2d a = face.start.head<2>(), u = (face.end - face.start).head<2>() / length;
+      double from = 0;
+      for (const auto& [lo, hi] : cuts) {
+        if (lo > from) out.push_back({a + from * u, a + std::min(lo, length) * u});
+        from = std::max(from, hi);
+      }
+      if (from < length) out.push_back({a + from * u, a + length * u});
+    }
+  return out;
+}
+
+DistanceField::DistanceField(const std::vector<Segment2>& walls, double cell_m, double clamp_m, double margin_m)
+    : cell_(static_cast<float>(cell_m)), clamp_(static_cast<float>(clamp_m)) {
+  lower_ = Eigen::Vector2d::Constant(walls.empty() ? 0.0 : 1e300), upper_ = Eigen::Vector2d::Constant(walls.empty() ? 0.0 : -1e300);
+  for (const auto& s : walls) lower_ = lower_.cwiseMin(s.a).cwiseMin(s.b), upper_ = upper_.cwiseMax(s.a).cwiseMax(s.b);
+  lower_.array() -= margin_m, upper_.array() += margin_m;
+  nx_ = static_cast<int>(std::ceil((upper_.x() - lower_.x()) / cell_m)) + 1;
+  ny_ = static_cast<int>(std::ceil((upper_.y() - lower_.y()) / cell_m)) + 1;
+  values_.assign(static_cast<std::size_t>(nx_) * ny_, clamp_);
+  // Exact distances, each segment writing the cells within clamp of it.
+  for (const auto& s : walls) {
+    const Eigen::Vector2d lo = s.a.cwiseMin(s.b).array() - clamp_m, hi = s.a.cwiseMax(s.b).array() + clamp_m;
+    const int i0 = std::max(0, static_cast<int>(std::floor((lo.x() - lower_.x()) / cell_m)));
+    const int i1 = std::min(nx_ - 1, static_cast<int>(std::ceil((hi.x() - lower_.x()) / cell_m)));
+    const int j0 = std::max(0, static_cast<int>(std::floor((lo.y() - lower_.y()) / cell_m)));
+    const int j1 = std::min(ny_ - 1, static_cast<int>(std::ceil((hi.y() - lower_.y()) / cell_m)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        float& v = values_[static_cast<std::size_t>(j) * nx_ + i];
+        v = std::min(v, segmentDistance(lower_ + cell_m * Eigen::Vector2d(i, j), s));
+      }
+  }
+  // The min-pyramid, quantized downwards (still a lower bound).
+  levels_.resize(kLevels);
+  const float scale = 255.0f / clamp_;
+  for (int k = 1; k <= kLevels; ++k) {
+    auto& level = levels_[k - 1];
+    level.assign(values_.size(), 0);
+    const int half = 1 << (k - 1);
+    for (int j = 0; j + 2 * half <= ny_; ++j)
+      for (int i = 0; i + 2 * half <= nx_; ++i) {
+        const std::size_t at = static_cast<std::size_t>(j) * nx_ + i;
+        if (k == 1) {
+          const float m = std::min(std::min(cell(i, j), cell(i + 1, j)), std::min(cell(i, j + 1), cell(i + 1, j + 1)));
+          level[at] = static_cast<std::uint8_t>(std::min(255.0f, std::floor(m * scale)));
+        } else {
+          const auto& below = levels_[k - 2];
+          const std::size_t dx = half, dy = static_cast<std::size_t>(half) * nx_;
+          level[at] = std::min(std::min(below[at], below[at + dx]), std::min(below[at + dy], below[at + dx + dy]));
+        }
+      }
+  }
+}
+
+float DistanceField::at(float x, float y) const {
+  const float fx = (x - static_cast<float>(lower_.x())) / cell_, fy = (y - static_cast<float>(lower_.y())) / cell_;
+  const int i = static_cast<int>(std::floor(fx)), j = static_cast<int>(std::floor(fy));
+  if (i < 0 || j < 0 || i >= nx_ - 1 || j >= ny_ - 1) return clamp_;
+  const float u = fx - static_cast<float>(i), v = fy - static_cast<float>(j);
+  const float* row = &values_[static_cast<std::size_t>(j) * nx_ + i];
+  const float* next = row + nx_;
+  return (1 - v) * ((1 - u) * row[0] + u * row[1]) + v * ((1 - u) * next[0] + u * next[1]);
+}
+
+float DistanceField::minOver(float x0, float y0, float x1, float y1) const {
+  // Cells whose centres surround a point p: floor((p - lower) / cell) and the next one.
+  int i0 = static_cast<int>(std::floor((x0 - static_cast<float>(lower_.x())) / cell_));
+  int i1 = static_cast<int>(std::floor((x1 - static_cast<float>(lower_.x())) / cell_)) + 1;
+  int j0 = static_cast<int>(std::floor((y0 - static_cast<float>(lower_.y())) / cell_));
+  int j1 = static_cast<int>(std::floor((y1 - static_cast<float>(lower_.y())) / cell_)) + 1;
+  // at() is clamp wherever its cells leave the raster: only the cells inside count.
+  i0 = std::max(i0, 0), j0 = std::max(j0, 0), i1 = std::min(i1, nx_ - 1), j1 = std::min(j1, ny_ - 1);
+  if (i0 > i1 || j0 > j1) return clamp_;
+  const int size = std::max(i1 - i0 + 1, j1 - j0 + 1);
+  if (size == 1) return cell(i0, j0);
+  int k = 0;
+  while ((2 << k) <= size) ++k;  // 2^k <= size < 2^(k+1)
+  const int side = 1 << k;
+  if (k > kLevels || side > nx_ || side > ny_) return 0.0f;
+  // Four squares of side 2^k > size / 2 at the box's corners cover it.
+  const int a0 = std::clamp(i0, 0, nx_ - side), a1 = std::clamp(i1 - side + 1, 0, nx_ - side);
+  const int b0 = std::clamp(j0, 0, ny_ - side), b1 = std::clamp(j1 - side + 1, 0, ny_ - side);
+  const auto& level = levels_[k - 1];
+  const auto q = [&](int i, int j) { return level[static_cast<std::size_t>(j) * nx_ + i]; };
+  const std::uint8_t m = std::min(std::min(q(a0, b0), q(a1, b0)), std::min(q(a0, b1), q(a1, b1)));
+  return static_cast<float>(m) * clamp_ / 255.0f;
+}
+
+std::size_t DistanceField::bytes() const {
+  std::size_t n = values_.size() * sizeof(float);
+  for (const auto& l : levels_) n += l.size();
+  return n;
+}
+
+}  // namespace bimloc::sim::oracle
