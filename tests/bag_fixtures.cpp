@@ -62,14 +62,4 @@ std::string runPython(const std::string& script, const std::string& args) {
   return commandOutput("/usr/bin/python3 '" + std::string(BIMLOC_TESTS_DIR) + "/" + script + "' " + args);
 }
 
-std::string commandOutput(const std::string& cmd) {
-  std::string out;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return out;
-  char buffer[4096];
-  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
-  ::pclose(pipe);
-  return out;
-}
-
 }  // namespace bimloc::test

@@ -19,8 +19,6 @@ std::string rewrittenBag(const std::string& dir, const std::string& mode);
 // The run's entry of `bimloc localize INPUT --plan office --json OPTIONS`, without what depends
 // on the input's path or the machine (name, wall_seconds, the path in warnings).
 nlohmann::json localizeJson(const std::string& input, const std::string& options = "");
-// Standard output of a shell command.
-std::string commandOutput(const std::string& command);
 // Standard output of /usr/bin/python3 tests/SCRIPT ARGS (ARGS shell-quoted by the caller).
 std::string runPython(const std::string& script, const std::string& args);
 

@@ -1,4 +1,5 @@
 #include "sim/base/base_trajectory.hpp"
+#include "sim/common/angles.hpp"
 
 #include "sim/base/free_space.hpp"
 #include "sim/base/gait.hpp"
@@ -16,7 +17,6 @@
 namespace bimloc::sim {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
 // Floor search under the body: from body height down to a bit below the storey floor.
 constexpr double kFloorSearchBelow_m = 1.0;
 // Random walk: targets at least this far apart (or a third of the room's smaller side), so

@@ -1,4 +1,5 @@
 #include "sim/scenario/scenario_sections.hpp"
+#include "sim/common/angles.hpp"
 
 #include <Eigen/Geometry>
 
@@ -7,7 +8,6 @@
 namespace bimloc::sim::detail {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
 // Map coordinates: a building is never kilometres wide; this only catches unit slips (mm).
 const Range kCoordinate = Range::closed(-1e4, 1e4);
 const Range kAngleDeg = Range::closed(-360.0, 360.0);

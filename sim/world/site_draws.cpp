@@ -1,4 +1,5 @@
 #include "sim/world/site_draws.hpp"
+#include "sim/common/angles.hpp"
 
 #include "sim/common/seeded_random.hpp"
 #include "sim/world/site_mesh.hpp"
@@ -10,7 +11,6 @@
 namespace bimloc::sim {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
 // A hosted element's centre lies in its wall's body, give or take the frame's reveal.
 constexpr double kHostTolerance_m = 0.05;
 

@@ -1,6 +1,7 @@
 // World::withSite: the plan's world as a site. The draws (site_draws), then per storey the
 // plan's elements kept, dropped, moved with their wall or glazed (site_mesh), door leaves and
 // partitions added, and the Embree scenes and Bullet worlds built from the result.
+#include "sim/common/angles.hpp"
 #include "sim/world/site_clutter.hpp"
 #include "sim/world/site_draws.hpp"
 #include "sim/world/site_mesh.hpp"
@@ -18,7 +19,6 @@
 namespace bimloc::sim {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
 
 struct DoorBox {  // a door's extent in its host wall's frame (plan)
   double along_min, along_max, across_min, across_max, z_min, z_max;

@@ -5,18 +5,6 @@
 #include <algorithm>
 
 namespace bimloc::worldgen::layout {
-namespace {
-
-Item room(const char* use, Mm divider, bool door, Mm door_width) {
-  Item item;
-  item.use = use;
-  item.divider = divider;
-  item.door = door;
-  item.door_width = door_width;
-  return item;
-}
-
-}  // namespace
 
 void drawHall(Floor& f, int rooms) {
   Random& rng = f.rng;

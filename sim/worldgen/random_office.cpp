@@ -6,15 +6,6 @@
 namespace bimloc::worldgen::layout {
 namespace {
 
-Item room(const char* use, Mm divider, bool door, Mm door_width) {
-  Item item;
-  item.use = use;
-  item.divider = divider;
-  item.door = door;
-  item.door_width = door_width;
-  return item;  // door_at 0: fillRow centres the door
-}
-
 // A module: width, and a door that all its copies share (same side, same distance).
 Item module(Random& rng, const char* use, Mm width, Mm divider, Mm door_width, Mm latest_door_at) {
   Item m = room(use, divider, true, door_width);

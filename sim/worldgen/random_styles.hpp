@@ -11,6 +11,16 @@
 
 namespace bimloc::worldgen::layout {
 
+// A room of a row: its use, the divider after it, and its door (door_at 0: fillRow centres it).
+inline Item room(const char* use, Mm divider, bool door, Mm door_width) {
+  Item item;
+  item.use = use;
+  item.divider = divider;
+  item.door = door;
+  item.door_width = door_width;
+  return item;
+}
+
 // I: wing A alone; L: wing B at A's west end; T: `branches` wings B off A's north row (a comb
 // from two on), never at its ends.
 enum class Shape { I, L, T };
