@@ -19,7 +19,9 @@ def help_text(bimloc, words):
     r = subprocess.run([bimloc, *words, "--help"], capture_output=True, text=True, timeout=60)
     if r.returncode != 0:
         raise SystemExit(f"{bimloc} {' '.join(words)} --help exited {r.returncode}: {r.stderr}")
-    return r.stdout.rstrip("\n") + "\n"
+    # CLI11 names the program as it was called: the page names it `bimloc`.
+    text = re.sub(r"^Usage: \S*bimloc ", "Usage: bimloc ", r.stdout, flags=re.M)
+    return text.rstrip("\n") + "\n"
 
 
 def update(page, bimloc):
