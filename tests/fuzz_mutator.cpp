@@ -2,9 +2,20 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <vector>
 
 namespace bimloc::test {
+
+std::uint32_t fuzzSeed(std::uint32_t fixed, std::uint32_t offset) {
+  const char* value = std::getenv("BIMLOC_FUZZ_SEED");
+  return value ? static_cast<std::uint32_t>(std::strtoul(value, nullptr, 10)) + offset : fixed;
+}
+
+int fuzzCases(int count) {
+  const char* value = std::getenv("BIMLOC_FUZZ_SCALE");
+  return count * (value ? std::max(1, std::atoi(value)) : 1);
+}
 namespace {
 
 struct Line {

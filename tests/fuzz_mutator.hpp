@@ -9,6 +9,12 @@
 
 namespace bimloc::test {
 
+// Every fuzz test's seeds and case counts: fixed by default (CI runs the same cases every time);
+// BIMLOC_FUZZ_SEED (a base, to which each draw adds its own `offset`) and BIMLOC_FUZZ_SCALE (a
+// multiplier of the case counts) explore further by hand.
+std::uint32_t fuzzSeed(std::uint32_t fixed, std::uint32_t offset);
+int fuzzCases(int count);
+
 enum class Damage {
   kTruncation,     // the text cut at a random byte
   kLineDeletion,   // one line removed

@@ -27,17 +27,7 @@ namespace {
 
 constexpr double kTimeoutS = 60.0;
 
-// Fixed by default (CI runs the same cases every time); BIMLOC_FUZZ_SEED and BIMLOC_FUZZ_SCALE
-// (a multiplier of the case counts) explore further by hand.
-std::uint32_t seed(std::uint32_t offset) {
-  const char* value = std::getenv("BIMLOC_FUZZ_SEED");
-  return (value ? static_cast<std::uint32_t>(std::strtoul(value, nullptr, 10)) : 20261123u) + offset;
-}
-
-int cases(int count) {
-  const char* value = std::getenv("BIMLOC_FUZZ_SCALE");
-  return count * (value ? std::max(1, std::atoi(value)) : 1);
-}
+std::uint32_t seed(std::uint32_t offset) { return fuzzSeed(20261123u + offset, offset); }
 
 struct Tally {
   int cases = 0, accepted = 0, refused = 0, warned = 0;
@@ -147,13 +137,13 @@ void fuzzPlans(const std::vector<std::string>& names, int count, std::uint32_t s
 
 // Two small plans take most of the cases; the large ones (0.3-1 s each) a few each.
 TEST(Fuzz, DamagedSmallPlansNeverCrashAndNeverLoseAnElementSilently) {
-  fuzzPlans({"revit_quantities.ifc", "example.ifc"}, cases(220), seed(0), "small IFC plans");
+  fuzzPlans({"revit_quantities.ifc", "example.ifc"}, fuzzCases(220), seed(0), "small IFC plans");
 }
 
 TEST(Fuzz, DamagedLargePlansNeverCrashAndNeverLoseAnElementSilently) {
   fuzzPlans({"AC20-FZK-Haus.ifc", "Duplex_A_20110907.ifc", "ExampleHOM.ifc", "SampleHouse4.ifc", "AC11-FZK-Haus-IFC.ifc",
              "AC90R1-Jasmin-Sun-105-2x3.ifc", "Jesse.1.ifc"},
-            cases(21), seed(3), "large IFC plans");
+            fuzzCases(21), seed(3), "large IFC plans");
 }
 
 TEST(Fuzz, DamagedScenariosNeverCrashAndLeaveNoOutput) {
@@ -165,7 +155,7 @@ TEST(Fuzz, DamagedScenariosNeverCrashAndLeaveNoOutput) {
   Mutator mutator(seed(1));
   Tally tally;
   const std::string input = dir + "/case.yaml", out = dir + "/out";
-  for (int i = 0; i < cases(40); ++i) {
+  for (int i = 0; i < fuzzCases(40); ++i) {
     const Mutation m = mutator.lines(clean, true);
     const std::string trace = "case " + std::to_string(i) + ": " + damageName(m.damage) + " " + m.where;
     writeFile(dir, "case.yaml", m.text);
@@ -195,7 +185,7 @@ TEST(Fuzz, DamagedDatasetsNeverCrashAndAreRefusedByName) {
                                        "clouds/000004.pcd"};
   Mutator mutator(seed(2));
   Tally tally;
-  for (int i = 0; i < cases(40); ++i) {
+  for (int i = 0; i < fuzzCases(40); ++i) {
     const std::string& file = files[mutator.below(files.size())];
     const std::string dir = root + "/case" + std::to_string(i);
     fs::copy(root + "/clean", dir, fs::copy_options::recursive | fs::copy_options::create_hard_links);
@@ -240,7 +230,7 @@ TEST(Fuzz, DamagedExtractFoldersNeverCrashAndAreRefusedByName) {
   std::sort(files.begin(), files.end());
   Mutator mutator(seed(4));
   Tally tally;
-  for (int i = 0; i < cases(20); ++i) {
+  for (int i = 0; i < fuzzCases(20); ++i) {
     const std::string& file = files[mutator.below(files.size())];
     const std::string dir = root + "/case" + std::to_string(i);
     fs::create_directories(dir);

@@ -4,6 +4,7 @@
 // odometry, tf, every cloud decoded). Whatever the damage: no crash, no hang; either refused
 // with a message naming the bag, or read with a warning; damage that leaves nothing usable is
 // never accepted in silence. A few cases also go through the binary (exit code, stderr).
+#include "fuzz_mutator.hpp"
 #include "test_support.hpp"
 
 #include "sim/dataset/bag_reader.hpp"
@@ -167,13 +168,13 @@ TEST(Ros2Fuzz, DamagedMcapNeverCrashesAndIsRefusedOrWarnedByName) {
   for (const auto& r : recs)
     if (r.opcode == 0x06) chunks.push_back(r);
   ASSERT_GE(chunks.size(), 1u);
-  std::mt19937 rng(20261126u);
+  std::mt19937 rng(test::fuzzSeed(20261126u, 10));
   auto below = [&](std::size_t n) { return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };
   Tally tally;
   const std::string path = root + "/case.mcap";
 
   // Truncation: read as far as it goes with a warning, or refused; never silent with less.
-  for (int i = 0; i < 30; ++i) {
+  for (int i = 0; i < test::fuzzCases(30); ++i) {
     const std::size_t size = 8 + below(bytes.size() - 8);
     spit(path, bytes.substr(0, size));
     const Outcome o = readBag(path);
@@ -183,7 +184,7 @@ TEST(Ros2Fuzz, DamagedMcapNeverCrashesAndIsRefusedOrWarnedByName) {
     tally.count(o);
   }
   // Bad chunk lengths: the record's length, the records' length, the uncompressed size.
-  for (int i = 0; i < 24; ++i) {
+  for (int i = 0; i < test::fuzzCases(24); ++i) {
     std::string b = bytes;
     const Record& c = chunks[below(chunks.size())];
     const std::size_t field = i % 3 == 0 ? c.at + 1 : i % 3 == 1 ? c.at + 9 + 8 + 8 + 8 + 4 + 4 + 4 : c.at + 9 + 16;
@@ -197,7 +198,7 @@ TEST(Ros2Fuzz, DamagedMcapNeverCrashesAndIsRefusedOrWarnedByName) {
     tally.count(o);
   }
   // Bad compression: bytes of a chunk's zstd data changed; zstd or the chunk's CRC catches it.
-  for (int i = 0; i < 24; ++i) {
+  for (int i = 0; i < test::fuzzCases(24); ++i) {
     std::string b = bytes;
     const Record& c = chunks[below(chunks.size())];
     const std::size_t data = c.at + 9 + 8 + 8 + 8 + 4 + 4 + 4 + 8;  // after "zstd" and the records' length
@@ -216,10 +217,10 @@ TEST(Ros2Fuzz, DamagedMcapNeverCrashesAndIsRefusedOrWarnedByName) {
 TEST(Ros2Fuzz, BrokenCdrAndSchemaMismatchesInMcapAreRefusedByName) {
   const std::string root = simulated();
   const std::string clean = root + "/mcap/rosbag2";
-  std::mt19937 rng(29u);
+  std::mt19937 rng(test::fuzzSeed(29u, 11));
   Tally tally;
   const std::vector<std::string> topics = {"/velodyne_points", "/odom", "/tf"};
-  for (int i = 0; i < 24; ++i) {
+  for (int i = 0; i < test::fuzzCases(24); ++i) {
     const std::string topic = topics[i % topics.size()];
     const std::size_t victim = rng() % 5;
     const int kind = (i / 3) % 4;
@@ -286,7 +287,7 @@ TEST(Ros2Fuzz, DamagedSqlite3BagsNeverCrashAndAreRefusedByName) {
   const std::string root = simulated();
   const std::string clean = root + "/sqlite3/rosbag2";
   const std::string bytes = slurp(clean + "/rosbag2_0.db3");
-  std::mt19937 rng(3u);
+  std::mt19937 rng(test::fuzzSeed(3u, 12));
   Tally tally;
   auto fresh = [&](int i) {
     const std::string dir = root + "/db" + std::to_string(i);
@@ -297,7 +298,7 @@ TEST(Ros2Fuzz, DamagedSqlite3BagsNeverCrashAndAreRefusedByName) {
     return dir;
   };
   // Truncation of the file.
-  for (int i = 0; i < 12; ++i) {
+  for (int i = 0; i < test::fuzzCases(12); ++i) {
     const std::string dir = fresh(i);
     const std::size_t size = std::uniform_int_distribution<std::size_t>(0, bytes.size() - 1)(rng);
     spit(dir + "/rosbag2_0.db3", bytes.substr(0, size));
