@@ -140,6 +140,29 @@ struct Storey {
   std::size_t wallPlaneCount() const { return 2 * walls.size(); }
 };
 
+// A flight of steps or a ramp, linking the storeys its ends stand on (issue 31): an
+// IfcStairFlight / IfcRampFlight, or a whole IfcStair / IfcRamp that the file does not
+// decompose. The run line goes up, from the bottom step's nosing line to the top one's, at the
+// flight's middle, in world coordinates; its z values are the floors (or landings) there.
+struct StairFlight {
+  std::string id;        // IFC GlobalId of the flight (of the stair when not decomposed)
+  std::string name;
+  std::string ifc_type;  // IfcStairFlight, IfcStair, IfcRampFlight, IfcRamp
+  std::string stair_id;  // the IfcStair / IfcRamp it belongs to (its own id when not decomposed)
+  Eigen::Vector3d bottom = Eigen::Vector3d::Zero();  // the run line's start, at the bottom floor's z
+  Eigen::Vector3d top = Eigen::Vector3d::Zero();     // its end, at the top floor's (or landing's) z
+  double width_m = 0.0;
+  int risers = 0;               // 0 for a ramp
+  double riser_height_m = 0.0;  // rise per step
+  double going_m = 0.0;         // tread length (run per step)
+  // Indices into Building::storeys of the storeys the bottom and top stand on; -1 for a
+  // landing between storeys (the next flight of the same stair goes on from there).
+  int bottom_storey = -1, top_storey = -1;
+  std::string source;  // "IfcStairFlight attributes", "body", ...: where the numbers came from
+  double rise_m() const { return top.z() - bottom.z(); }
+  double run_m() const { return (top - bottom).head<2>().norm(); }
+};
+
 struct ExtractionTimes {
   double parse_s = 0.0;
   double geometry_s = 0.0;
@@ -150,6 +173,7 @@ struct Building {
   std::string file;    // the path it was read from
   std::string schema;  // "IFC2X3" or "IFC4"
   std::vector<Storey> storeys;  // in height order
+  std::vector<StairFlight> stairs;  // flights and ramps, in file order (empty: none read)
   std::vector<std::string> warnings;
   ExtractionTimes times;
 
