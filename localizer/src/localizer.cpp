@@ -84,6 +84,10 @@ struct Localizer::Impl {
   Eigen::Isometry3d T_base_lidar;
   LocalizerConfig config;
   std::vector<std::size_t> storeys;  // the candidates of the first search
+  struct AltitudeReading {
+    double stamp_s = 0, altitude_m = 0, sigma_m = 0;
+  };
+  std::optional<AltitudeReading> altitude;  // the latest observeAltitude(), if any
   std::unique_ptr<pf::StoreyBank> bank;            // the current (or last) search (not for peers)
   std::unique_ptr<peers::PeerLocalizer> peer;      // methods Amcl, Ndt
   std::optional<Eigen::Isometry3d> peer_T_map_odom;  // the peer's, since it converged
@@ -138,6 +142,10 @@ Localizer::Localizer(const bim::Building& building, const Eigen::Isometry3d& T_b
 
 Localizer::~Localizer() = default;
 Localizer::Localizer(Localizer&&) noexcept = default;
+
+void Localizer::observeAltitude(double stamp_s, double altitude_m, double sigma_m) {
+  impl_->altitude = Impl::AltitudeReading{stamp_s, altitude_m, sigma_m};
+}
 
 LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<Eigen::Vector3f>& points_lidar) {
   return step(stamp_s, T_odom_base, PointSource([&points_lidar] { return points_lidar; }));

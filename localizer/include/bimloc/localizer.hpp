@@ -111,6 +111,10 @@ class Localizer {
   using PointSource = std::function<std::vector<Eigen::Vector3f>()>;
   LocalizationResult step(double stamp_s, const Eigen::Isometry3d& T_odom_base, const PointSource& points_lidar);
 
+  // An altitude reading (a barometer, or any altimeter): the base's height above the plan's
+  // z = 0, with its 1-sigma. Optional; it holds for the steps after it, until the next one.
+  // What it is for (issue 31): storeys it rules out are not searched, and a climb is confirmed.
+  void observeAltitude(double stamp_s, double altitude_m, double sigma_m);
   const LocalizerConfig& config() const;
   const pf::StoreyBank* filter() const;                  // the current (or last) search; null for the peers
   const sgraph::SGraphTracker* tracker() const;          // while (or since) the S-Graph tracks; null before
