@@ -79,6 +79,7 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
   if (r_.localizer_seconds_by_minute.size() <= minute) r_.localizer_seconds_by_minute.resize(minute + 1, 0.0);
   r_.localizer_seconds_by_minute[minute] += std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
   ++updates_;
+  searching_ = step.state == LocalizationState::Searching;
   for (const auto& w : step.warnings) r_.warnings.push_back("t=" + std::to_string(t) + ": " + w);
   if (poses) poses->push_back({t, truth, step.T_map_base, RunScore::scored(step)});
   r_.error_series.push_back({t, (step.T_map_base.translation() - truth.translation()).head<2>().norm(),

@@ -27,6 +27,9 @@ class MethodRun {
             const Eigen::Isometry3d& truth, const SnapshotHook& snapshot, std::vector<TraceRow>* trace,
             std::vector<PoseRow>* poses = nullptr);
 
+  // Whether the localizer is still searching (not converged) after its last step; true before.
+  bool searching() const { return searching_; }
+
   // The snapshot of `phase` now (initialization before the first step).
   void snapshotNow(const char* phase, double t, const Eigen::Isometry3d& truth, const SnapshotHook& snapshot) const;
 
@@ -46,6 +49,7 @@ class MethodRun {
   std::size_t verdict_storey_ = 0;                // ... and the storey it spoke of
   std::optional<pf::StoreyBankReport> last_bank_;
   int updates_ = 0;
+  bool searching_ = true;
 };
 
 }  // namespace bimloc::sim

@@ -8,9 +8,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 
 namespace bimloc::sim {
 namespace {
+
+// CPU seconds of the process (all its threads): on a shared machine wall time also counts
+// waiting for a core.
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 // The turn's x, y, z; non-finite and out-of-range points are the plane extraction's to drop.
 std::vector<Eigen::Vector3f> scanPoints(const LidarScan& scan) {
@@ -61,7 +70,10 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   double path_length_m = 0;
   Eigen::Isometry3d previous_truth = Eigen::Isometry3d::Identity();
   const double half_turn = 0.5 * sim.lidar().turnPeriod_s();
+  double search_cpu = 0, tracking_cpu = 0, search_sim = 0, tracking_sim = 0;
   for (std::size_t i = 0; i < sim.turnCount(); ++i) {
+    const double cpu_turn = processCpuSeconds();
+    const bool searching = runs.empty() || runs.front().searching();
     const LidarScan scan = sim.turn(i);
     // The turn sweeps for a whole period: its planes are best explained by the mid-turn pose.
     const double t = scan.stamp_s + half_turn;
@@ -84,6 +96,8 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
       keyframes->add(t, T_odom_base, source);
     }
     for (std::size_t k = 0; k < runs.size(); ++k) runs[k].step(t, T_odom_base, source, truth, hookOf(k), k == 0 ? trace : nullptr, k == 0 ? poses : nullptr);
+    (searching ? search_cpu : tracking_cpu) += processCpuSeconds() - cpu_turn;
+    (searching ? search_sim : tracking_sim) += sim.lidar().turnPeriod_s();
   }
   const double t_end = sim.lidar().turnPeriod_s() * (static_cast<double>(sim.turnCount()) - 0.5);
   const Eigen::Isometry3d truth_end = sim.trajectory().T_map_base(std::max(0.0, t_end));
@@ -98,6 +112,8 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
     r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count() -
                      (verdict ? verdict->seconds : 0.0);
     r.oracle = verdict;
+    r.search_cpu_seconds = search_cpu, r.tracking_cpu_seconds = tracking_cpu;
+    r.search_sim_seconds = search_sim, r.tracking_sim_seconds = tracking_sim;
     results.push_back(std::move(r));
   }
   return results;

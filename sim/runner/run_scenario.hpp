@@ -99,6 +99,11 @@ struct ScenarioResult {
   std::vector<ErrorSample> error_series;
   // Wall seconds the localizer's steps took in each simulated minute (the last one partial).
   std::vector<double> localizer_seconds_by_minute;
+  // The whole loop's CPU seconds (the process's: simulator, planes, localizer, scoring) per
+  // turn, split by what the first localizer was doing when the turn began: searching (not yet
+  // converged) or tracking; and the simulated seconds of those turns. The setup before the
+  // first turn is in neither. Real-time factors per phase: bench loop.
+  double search_cpu_seconds = 0, search_sim_seconds = 0, tracking_cpu_seconds = 0, tracking_sim_seconds = 0;
   // With the oracle (`--oracle`): when the scans first ruled out every place but the true one
   // (sim/oracle/oracle.hpp), from the run's own scans, odometry and truth. Not in wall_seconds.
   std::optional<oracle::OracleVerdict> oracle;

@@ -134,6 +134,15 @@ class PathEvidence {
   // and every face of the storey: what the converged pose is refined on (pose_refinement.hpp).
   std::vector<RefinementScan> latestScans(double path_m) const;
   const RoomIndex& everyFace() const { return rooms_; }
+  // The per-scan error model the window and the searches score with (the scan's sigmas grown
+  // by the window's drift and the plan's tolerance), and the candidates' poses now (map <-
+  // base at odometry pose `odom`): what a test checks the searches against.
+  const ParticleFilterConfig& scanModel() const { return config_; }
+  std::vector<Pose2> candidatePoses(const Pose2& odom) const {
+    std::vector<Pose2> out;
+    for (const auto& c : candidates_) out.push_back(compose(c.T_map_odom, odom));
+    return out;
+  }
 
  private:
   struct Scan {
