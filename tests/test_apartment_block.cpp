@@ -275,8 +275,31 @@ TEST(ApartmentBlock, ExtractionOfEveryStoreyGivesTheSpecsRoomsAndWalls) {
     test::expectRoomsMatch(spec, building, tolerance);
     for (std::size_t k = 0; k < building.storeys.size(); ++k) {
       EXPECT_EQ(building.storeys[k].walls.size(), spec.storeys[k].walls.size()) << spec.name << " storey " << k;
+      // The flights' bodies as the reader meshed them: each spans its plan rectangle (run x
+      // width) and rises from its floor to its last tread.
       int flights = 0;
-      for (const auto& part : building.storeys[k].mesh_parts) flights += part.ifc_class == "IfcStairFlight";
+      const auto& storey = building.storeys[k];
+      for (const auto& part : storey.mesh_parts) {
+        if (part.ifc_class != "IfcStairFlight") continue;
+        ++flights;
+        const worldgen::StairFlightSpec* f = nullptr;
+        for (const auto& stair : spec.storeys[k].stairs)
+          for (const auto& candidate : stair.flights) f = candidate.name == part.name ? &candidate : f;
+        ASSERT_NE(f, nullptr) << spec.name << ": " << part.name;
+        Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
+        for (std::uint32_t v = part.first_vertex; v < part.first_vertex + part.vertex_count; ++v) {
+          const Eigen::Vector3d p = storey.mesh.vertices[v].cast<double>();
+          lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+        }
+        const Eigen::Vector2d side(-f->direction.y(), f->direction.x());
+        const Eigen::Vector2d a = f->start - side * f->width_m / 2, b = f->start + f->direction * f->run_m() + side * f->width_m / 2;
+        EXPECT_NEAR(lo.x(), std::min(a.x(), b.x()), 1e-3) << part.name;
+        EXPECT_NEAR(hi.x(), std::max(a.x(), b.x()), 1e-3) << part.name;
+        EXPECT_NEAR(lo.y(), std::min(a.y(), b.y()), 1e-3) << part.name;
+        EXPECT_NEAR(hi.y(), std::max(a.y(), b.y()), 1e-3) << part.name;
+        EXPECT_NEAR(lo.z(), spec.storeys[k].elevation_m + f->z_m, 1e-3) << part.name;
+        EXPECT_NEAR(hi.z(), spec.storeys[k].elevation_m + f->z_m + f->treads() * f->riser_m, 1e-3) << part.name;
+      }
       EXPECT_EQ(flights, k + 1 < building.storeys.size() ? 2 : 0) << spec.name << " storey " << k << ": flights in the mesh";
     }
   }
