@@ -32,9 +32,9 @@ namespace {
 
 constexpr std::uint64_t kFirstBlockSeed = 96000, kBlockSeeds = 12;
 
-worldgen::RandomWorldOptions block(int storeys = 1) {
+worldgen::RandomWorldOptions block(int storeys = 1, worldgen::RandomStyle style = worldgen::RandomStyle::ApartmentBlock) {
   worldgen::RandomWorldOptions o;
-  o.style = worldgen::RandomStyle::ApartmentBlock;
+  o.style = style;
   o.storeys = storeys;
   return o;
 }
@@ -160,10 +160,7 @@ TEST(ApartmentBlock, StoreysAreJoinedByStairsWrittenAsTheSpecSays) {
   for (const auto& [style, storeys] : {std::pair{worldgen::RandomStyle::ApartmentBlock, 3},
                                        std::pair{worldgen::RandomStyle::ApartmentBlock, 5},
                                        std::pair{worldgen::RandomStyle::Office, 2}}) {
-    worldgen::RandomWorldOptions options;
-    options.style = style;
-    options.storeys = storeys;
-    const auto spec = worldgen::randomWorld(kFirstBlockSeed, options);
+    const auto spec = worldgen::randomWorld(kFirstBlockSeed, block(storeys, style));
     const std::string at = spec.name;
     ASSERT_EQ(spec.storeys.size(), static_cast<std::size_t>(storeys)) << at;
     const auto step = parseStep(worldgen::writeIfc4(spec));
@@ -263,10 +260,7 @@ TEST(ApartmentBlock, ExtractionOfEveryStoreyGivesTheSpecsRoomsAndWalls) {
   for (const auto& [style, storeys] : {std::pair{worldgen::RandomStyle::ApartmentBlock, 1},
                                        std::pair{worldgen::RandomStyle::ApartmentBlock, 3},
                                        std::pair{worldgen::RandomStyle::Office, 2}}) {
-    worldgen::RandomWorldOptions options;
-    options.style = style;
-    options.storeys = storeys;
-    const auto spec = worldgen::randomWorld(kFirstBlockSeed + 1, options);
+    const auto spec = worldgen::randomWorld(kFirstBlockSeed + 1, block(storeys, style));
     const std::string path = dir + "/" + spec.name + ".ifc";
     std::ofstream(path) << worldgen::writeIfc4(spec);
     const bim::Building building = bim::readIfc(path);
