@@ -1,5 +1,5 @@
 // Random floors for sweeps of the localizer: realistic, and hard in the ways real plans are.
-// Drawn from a seed (same seed and options, same WorldSpec, same IFC bytes), in one of four
+// Drawn from a seed (same seed and options, same WorldSpec, same IFC bytes), in one of five
 // styles, with architects' dimensions (exterior walls 0.30-0.45 m, partitions 0.10-0.20 m,
 // load-bearing corridor walls 0.20-0.25 m, doors 0.85-1.00 m and 1.2-1.8 m double doors, rooms
 // 2.5-8 m, corridors 1.5-2.5 m, storeys 2.8-3.5 m, coordinates on 5 mm):
