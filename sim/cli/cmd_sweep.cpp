@@ -93,7 +93,7 @@ void run(const SweepArgs& args) {
     bimloc::cli::RobustnessOptions o;
     o.sites = args.sites.empty() ? std::vector<std::string>{args.site.empty() ? "exact" : args.site} : args.sites;
     o.methods = args.methods.empty() ? std::vector<std::string>{args.method} : args.methods;
-    o.plot = args.plot, o.json = args.json, o.jobs = args.jobs;
+    o.plot = args.plot, o.json = args.json, o.jobs = args.jobs, o.oracle = args.oracle;
     std::string plans;
     for (const auto& p : args.plans) plans += (plans.empty() ? "" : ", ") + std::filesystem::path(p).filename().string();
     o.title = "robustness: " + plans + ", " + std::to_string(scenarios.size()) + (scenarios.size() == 1 ? " start, " : " starts, ") +
