@@ -10,8 +10,9 @@ namespace {
 // Within this of a face's end, a crossing is a corner: the plan's faces meet there only to
 // within its drawing, and a ray may slip between two of them or stop on either.
 constexpr double kFreeSpaceCornerM = 0.15;
-// An opening counts when the ray's crossing lies inside it grown by this (door frames, the
-// ray's own width at range).
+// Within this of an opening's edge, a crossing is the opening's frame: the plan's openings are
+// drawn to within centimetres, a ray is a few centimetres wide at range, and a door leaf stands
+// in the frame. No verdict, as at a corner.
 constexpr double kFreeSpaceOpeningMarginM = 0.1;
 // The ray's range sigma grows as 1 / |cos| of its incidence on the face, up to this.
 constexpr double kFreeSpaceMinCos = 0.3;
@@ -126,10 +127,13 @@ std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::V
         if (s < -kFreeSpaceCornerM || s > f.length_m + kFreeSpaceCornerM) continue;
         const double z = z0 + dz_per_m * t;
         if (z < f.z_bottom || z > f.z_top) continue;  // above or below the wall's body
-        const bool corner = s < kFreeSpaceCornerM || s > f.length_m - kFreeSpaceCornerM;
-        if (!corner && f.openings &&
-            bim::insideOpening(*f.openings, s - 0.01, s + 0.01, z - 0.01, z + 0.01, kFreeSpaceOpeningMarginM))
-          continue;  // through a door or a window: no wall there
+        bool corner = s < kFreeSpaceCornerM || s > f.length_m - kFreeSpaceCornerM;
+        // (A rectangle of no width lies inside any set of holes, even none: a centimetre.)
+        const auto inHole = [&](double margin_m) {
+          return f.openings && bim::insideOpening(*f.openings, s - 0.01, s + 0.01, z - 0.01, z + 0.01, margin_m);
+        };
+        if (!corner && inHole(0.0)) continue;  // through a door or a window: no wall there
+        corner |= inHole(kFreeSpaceOpeningMarginM);  // at its frame: a jamb or the hole, no verdict
         Crossing c;
         c.t = t, c.wall = f.wall, c.cos_incidence = std::abs(u.dot(f.normal)), c.uncertain = corner;
         best = c;
