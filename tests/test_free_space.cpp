@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -201,11 +203,13 @@ std::optional<double> castAt(const bim::Storey& s, const Eigen::Vector2d& p, con
   std::optional<double> best;
   for (const auto& w : s.walls)
     for (const auto& f : w.faces) {
-      const Eigen::Vector2d f0 = f.start.head<2>(), e = f.end.head<2>() - f0;
-      const double den = d.x() * e.y() - d.y() * e.x();
-      if (std::abs(den) < 1e-12) continue;
-      const Eigen::Vector2d w0 = f0 - p;
-      const double t = (w0.x() * e.y() - w0.y() * e.x()) / den, u = (w0.x() * d.y() - w0.y() * d.x()) / den;
+      // p + t d = start + u (end - start), solved as a 2x2 system.
+      const Eigen::Vector2d e = (f.end - f.start).head<2>();
+      Eigen::Matrix2d m;
+      m.col(0) = d, m.col(1) = -e;
+      if (std::abs(m.determinant()) < 1e-12) continue;
+      const Eigen::Vector2d tu = m.inverse() * (f.start.head<2>() - p);
+      const double t = tu(0), u = tu(1);
       if (u < 0 || u > 1 || t <= 1e-6 || t > 20.0 || z > w.height_m || (best && t >= *best)) continue;
       const double along = u * e.norm();
       // (a rectangle of no width lies inside any set of holes, even none: give it a centimetre)
