@@ -108,7 +108,7 @@ struct Localizer::Impl {
   // Steps of Localizer::step, in order.
   bool wantsPoints(const Eigen::Isometry3d& T_odom_base) const;
   void track(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
-  void search(const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
+  void search(const std::vector<planes::ObservedPlane>& walls, const pf::RangeProfile& profile, LocalizationResult& r);
   void handOver(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
   void searchAgain(LocalizationResult& r);
   void describe(LocalizationResult& r) const;
@@ -162,13 +162,16 @@ LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_od
   // predict -> observe (only what a stage will look at) -> track -> search -> hand over or lose -> describe
   if (m.filter_active) m.bank->predict(T_odom_base);
   std::vector<planes::ObservedPlane> walls;
+  pf::RangeProfile profile;  // for the filter's free-space evidence (pf/range_profile.hpp)
   if (m.wantsPoints(T_odom_base)) {
-    walls = planes::extractPlanes(points_lidar(), m.config.planes).walls;
+    const std::vector<Eigen::Vector3f> points = points_lidar();
+    walls = planes::extractPlanes(points, m.config.planes).walls;
+    if (m.filter_active && m.config.pf.free_space_evidence) profile = pf::rangeProfile(points, m.T_base_lidar, pf::profileConfig(m.config.pf));
     r.used_points = true;
     r.walls_observed = static_cast<int>(walls.size());
   }
   if (m.tracker) m.track(stamp_s, T_odom_base, walls, r);
-  if (m.filter_active) m.search(walls, r);
+  if (m.filter_active) m.search(walls, profile, r);
   if (m.usesTracker() && m.filter_active && m.bank->converged()) m.handOver(stamp_s, T_odom_base, walls, r);
   m.describe(r);
   return r;
@@ -194,8 +197,8 @@ void Localizer::Impl::track(double stamp_s, const Eigen::Isometry3d& T_odom_base
   }
 }
 
-void Localizer::Impl::search(const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r) {
-  pf::StoreyBankReport report = bank->update(walls);
+void Localizer::Impl::search(const std::vector<planes::ObservedPlane>& walls, const pf::RangeProfile& profile, LocalizationResult& r) {
+  pf::StoreyBankReport report = bank->update(walls, &profile);
   for (const auto& w : report.filter.warnings) r.warnings.push_back("pf: " + w);
   r.filter = std::move(report);
   if (bank->converged() && !convergence_stamp) convergence_stamp = r.stamp_s;
