@@ -245,3 +245,35 @@ TEST(StairJson, FlightsRoundTripAndVersionOneStillReads) {
   doc["version"] = 3;
   EXPECT_THROW((void)buildingFromJson(doc), std::runtime_error);
 }
+
+// A ramp built in code: a wedge rising 0.5 m over 6 m (1:12), 1.2 m wide, turned and shifted.
+TEST(StairBody, RampGivesItsRunLineFromItsSlope) {
+  const double run = 6.0, rise = 0.5, width = 1.2, floor_z = 3.1;
+  const auto pose = turnedAndShifted(0.9, Eigen::Vector3d(2.0, 1.0, 0.0));
+  TriangleMesh wedge;
+  for (const auto& p : std::vector<Eigen::Vector3d>{{0, 0, floor_z}, {run, 0, floor_z}, {run, width, floor_z}, {0, width, floor_z},
+                                                    {run, 0, floor_z + rise}, {run, width, floor_z + rise}})
+    wedge.vertices.push_back((pose * p).cast<float>());
+  // bottom (down), slope (up), high end (+x), two sides
+  wedge.triangles = {{0, 2, 1}, {0, 3, 2}, {0, 4, 5}, {0, 5, 3}, {1, 2, 5}, {1, 5, 4}, {0, 1, 4}, {3, 5, 2}};
+  std::string problem;
+  const auto got = rampFromBody(wedge, problem);
+  ASSERT_TRUE(got) << problem;
+  EXPECT_LT((got->bottom - pose * Eigen::Vector3d(0, width / 2, floor_z)).norm(), 1e-4) << got->bottom.transpose();
+  EXPECT_LT((got->top - pose * Eigen::Vector3d(run, width / 2, floor_z + rise)).norm(), 1e-4) << got->top.transpose();
+  EXPECT_NEAR(got->width_m, width, 1e-4);
+  EXPECT_EQ(got->risers, 0);
+
+  RawProduct p;
+  p.ifc_class = "IfcRamp";
+  const auto flight = stairFlightOf(p, wedge, {3.1}, problem);
+  ASSERT_TRUE(flight) << problem;
+  EXPECT_NEAR(flight->rise_m(), rise, 1e-4);
+  EXPECT_NEAR(flight->run_m(), run, 1e-4);
+  EXPECT_EQ(flight->source, "body");
+
+  TriangleMesh box;  // flat: no walking slope
+  addBox(box, 0, 4, 0, 1, 0, 0.2, Eigen::Isometry3d::Identity());
+  EXPECT_FALSE(rampFromBody(box, problem));
+  EXPECT_EQ(problem, "the body has no sloped walking surface (0.5° to 25°): no ramp");
+}

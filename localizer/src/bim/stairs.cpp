@@ -47,7 +47,7 @@ bool sameFlightSizes(double a, double b, double relative) { return std::abs(a - 
 
 }  // namespace
 
-std::vector<TreadLevel> treadLevels(const TriangleMesh& body) {
+std::vector<TreadLevel> treadLevels(const TriangleMesh& body, bool either_side) {
   struct Face {
     double z, area;
     Eigen::Vector2d centroid;
@@ -59,7 +59,8 @@ std::vector<TreadLevel> treadLevels(const TriangleMesh& body) {
                           c = body.vertices[t[2]].cast<double>();
     const Eigen::Vector3d n = (b - a).cross(c - a);
     const double norm = n.norm();
-    if (norm < 1e-9 || n.z() < 0.98 * norm) continue;  // up-facing and horizontal within ~11°
+    const double up = either_side ? std::abs(n.z()) : n.z();
+    if (norm < 1e-9 || up < 0.98 * norm) continue;  // up-facing and horizontal within ~11°
     faces.push_back({(a.z() + b.z() + c.z()) / 3.0, norm / 2.0, ((a + b + c) / 3.0).head<2>(),
                      {a.head<2>(), b.head<2>(), c.head<2>()}});
   }
@@ -77,6 +78,18 @@ std::vector<TreadLevel> treadLevels(const TriangleMesh& body) {
 
 std::optional<BodyFlight> flightFromBody(const TriangleMesh& body, const std::vector<double>& floors,
                                          std::string& problem) {
+  auto flight = flightFromFaces(body, floors, false, problem);
+  if (flight || body.empty()) return flight;
+  // A surface model of open shells (ArchiCAD 11's stairs) faces its triangles either way:
+  // take the horizontal ones whichever way they face (a tread's underside merges into it).
+  std::string either_problem;
+  flight = flightFromFaces(body, floors, true, either_problem);
+  if (flight) problem.clear();
+  return flight;
+}
+
+std::optional<BodyFlight> flightFromFaces(const TriangleMesh& body, const std::vector<double>& floors, bool either_side,
+                                          std::string& problem) {
   problem.clear();
   if (body.empty()) {
     problem = "no body";
@@ -88,11 +101,14 @@ std::optional<BodyFlight> flightFromBody(const TriangleMesh& body, const std::ve
   // tread and its nosing, Revit; a tread board on its carriage, ArchiCAD): its top face counts.
   // Then the small ones go (railing tops, a handrail's), against the larger treads' area.
   std::vector<TreadLevel> levels;
-  for (auto& level : treadLevels(body)) {
+  for (auto& level : treadLevels(body, either_side)) {
     if (level.z_m <= z_min + 0.03) continue;
     if (!levels.empty() && level.z_m - levels.back().z_m < kMergeStepM) {
-      level.area_m2 = std::max(level.area_m2, levels.back().area_m2);
-      levels.back() = std::move(level);
+      // The upper face, unless it is a speck over a tread (a post's top): then the tread.
+      if (level.area_m2 >= 0.5 * levels.back().area_m2) {
+        level.area_m2 = std::max(level.area_m2, levels.back().area_m2);
+        levels.back() = std::move(level);
+      }
     } else {
       levels.push_back(std::move(level));
     }
@@ -163,6 +179,41 @@ std::optional<BodyFlight> flightFromBody(const TriangleMesh& body, const std::ve
   return flight;
 }
 
+std::optional<BodyFlight> rampFromBody(const TriangleMesh& body, std::string& problem) {
+  problem.clear();
+  // The walking surface: faces up, sloped between 0.5° and 25° (ramps rise 1:20 to 1:8; steeper
+  // is no ramp a base drives up). The run goes up their area-weighted slope.
+  const double cos_flat = std::cos(0.5 * M_PI / 180.0), cos_steep = std::cos(25.0 * M_PI / 180.0);
+  Eigen::Vector2d uphill = Eigen::Vector2d::Zero();
+  std::vector<Eigen::Vector3d> surface;
+  for (const auto& t : body.triangles) {
+    const Eigen::Vector3d a = body.vertices[t[0]].cast<double>(), b = body.vertices[t[1]].cast<double>(),
+                          c = body.vertices[t[2]].cast<double>();
+    const Eigen::Vector3d n = (b - a).cross(c - a);  // length: twice the area
+    const double norm = n.norm();
+    if (norm < 1e-9 || n.z() >= cos_flat * norm || n.z() < cos_steep * norm) continue;
+    uphill -= n.head<2>();  // z rises against the normal's horizontal part; area-weighted
+    surface.insert(surface.end(), {a, b, c});
+  }
+  if (surface.empty() || uphill.norm() < 1e-9) {
+    problem = "the body has no sloped walking surface (0.5° to 25°): no ramp";
+    return std::nullopt;
+  }
+  const Eigen::Vector2d d = uphill.normalized(), across(-d.y(), d.x());
+  double s0 = std::numeric_limits<double>::infinity(), s1 = -s0, z0 = s0, z1 = -s0, w0 = s0, w1 = -s0;
+  for (const auto& p : surface) {
+    const double s = p.head<2>().dot(d), w = p.head<2>().dot(across);
+    s0 = std::min(s0, s), s1 = std::max(s1, s), w0 = std::min(w0, w), w1 = std::max(w1, w);
+    z0 = std::min(z0, p.z()), z1 = std::max(z1, p.z());
+  }
+  BodyFlight ramp;
+  ramp.width_m = w1 - w0;
+  const Eigen::Vector2d b = d * s0 + across * (w0 + w1) / 2, t = d * s1 + across * (w0 + w1) / 2;
+  ramp.bottom = {b.x(), b.y(), z0};
+  ramp.top = {t.x(), t.y(), z1};
+  return ramp;
+}
+
 int storeyAt(double z, const std::vector<Storey>& storeys) {
   int best = -1;
   double best_gap = kStoreyToleranceM;
@@ -181,7 +232,8 @@ std::optional<StairFlight> stairFlightOf(const RawProduct& flight, const Triangl
   out.name = flight.name;
   out.ifc_type = flight.ifc_class;
   std::string body_problem;
-  const auto shape = flightFromBody(body, floors, body_problem);
+  const bool ramp = flight.ifc_class == "IfcRamp" || flight.ifc_class == "IfcRampFlight";
+  const auto shape = ramp ? rampFromBody(body, body_problem) : flightFromBody(body, floors, body_problem);
   if (!shape) {
     problem = "no usable body (" + body_problem + ")";
     return std::nullopt;
