@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 namespace {
@@ -197,7 +198,7 @@ struct Step {
 // The walk through a localizer at 10 Hz: odometry with 1 % scale, 0.3 deg/m heading drift and
 // 2 % height scale; `altitude_sigma_m` > 0: the true altitude with that noise, every turn.
 std::vector<Step> run(const bim::Building& building, const Walk& w, LocalizerConfig config, double altitude_sigma_m,
-                      bool hole = true) {
+                      bool hole = true, double stairs_slip = 0.0, bool blind_on_flight = false) {
   const Eigen::Isometry3d T_base_lidar(Eigen::Translation3d(0, 0, 0.3));
   Localizer localizer(building, T_base_lidar, config);
   const Caster caster{building, hole};
@@ -212,12 +213,16 @@ std::vector<Step> run(const bim::Building& building, const Walk& w, LocalizerCon
     previous = truth;
     const double metres = delta.translation().head<2>().norm();
     Eigen::Isometry3d drifted = delta;
-    drifted.translation().head<2>() *= 1.01;
+    // On the flight, feet slip: the odometry overshoots by `stairs_slip` of the run.
+    const bool on_flight = std::abs(delta.translation().z()) > 1e-6;
+    drifted.translation().head<2>() *= 1.01 + (on_flight ? stairs_slip : 0.0);
     drifted.translation().z() *= 1.02;
     drifted.rotate(Eigen::AngleAxisd(0.3 * M_PI / 180 * metres, Eigen::Vector3d::UnitZ()));
     odom = odom * drifted;
     if (altitude_sigma_m > 0) localizer.observeAltitude(t, truth.translation().z() + altitude_sigma_m * gauss(rng), altitude_sigma_m);
-    const auto points = [&] { return caster.scan(truth * T_base_lidar, rng); };
+    const double floor_z = truth.translation().z() - kBaseHeight;
+    const bool blind = blind_on_flight && floor_z > 0.01 && floor_z < kStoreyHeight - 0.01;
+    const auto points = [&] { return blind ? std::vector<Eigen::Vector3f>{} : caster.scan(truth * T_base_lidar, rng); };
     steps.push_back({localizer.step(t, odom, Localizer::PointSource(points)), truth});
   }
   return steps;
@@ -290,6 +295,11 @@ TEST(StoreyChange, TheLocalizerFollowsTheRobotUpTheStairsOntoTheFirstFloor) {
       EXPECT_NEAR(r.T_map_base.translation().z(), s.truth.translation().z(), 0.15) << "t=" << r.stamp_s;
     }
   }
+  double worst_after = 0;
+  for (const auto& s : steps)
+    if (switched && s.result.stamp_s > *switched + 2.0) worst_after = std::max(worst_after, error(s));
+  std::printf("converged at %.1f s, left the flight at %.1f s, on the first floor at %.1f s, worst error after %.3f m, last %.3f m\n",
+              converged.value_or(NAN), left_flight, switched.value_or(NAN), worst_after, error(steps.back()));
   ASSERT_TRUE(converged);
   EXPECT_LT(*converged, w.times[5]) << "converged on the ground floor before the stairs";
   ASSERT_EQ(arrivals, 1);
@@ -311,5 +321,69 @@ TEST(StoreyChange, AnAltitudeDecidesBetweenIdenticalStoreysTheWallsCannot) {
   EXPECT_EQ(*decided, 1u);
   EXPECT_LT(error(with.back()), 0.1);
   const auto without = run(building, w, fastConfig(), 0.0, false);
-  for (const auto& s : without) ASSERT_FALSE(s.result.storey) << "t=" << s.result.stamp_s << ": the walls alone cannot decide";
+  std::optional<pf::StoreyBankReport> last;
+  for (const auto& s : without) {
+    ASSERT_FALSE(s.result.storey) << "t=" << s.result.stamp_s << ": the walls alone cannot decide";
+    if (s.result.filter) last = s.result.filter;
+  }
+  // Not for want of evidence: each storey's filter found the place, on its own storey.
+  ASSERT_TRUE(last);
+  ASSERT_EQ(last->candidates.size(), 2u);
+  for (const auto& c : last->candidates) EXPECT_TRUE(c.converged) << building.storeys[c.storey].name;
+}
+
+TEST(StoreyChange, AfterSlippingOnTheStairsTheNewStoreysWallsBringThePoseBack) {
+  // The odometry overshoots the flight by 20 % (0.8 m): the pose carried onto the first floor is
+  // that far off. The first floor's graph (or, if it cannot confirm the walls, the search
+  // around the landing) brings it back.
+  const bim::Building building = twoStoreys();
+  const Walk w = upTheStairs();
+  LocalizerConfig config = fastConfig();
+  config.storey = "0";
+  config.pf.prior_pose = Eigen::Vector3d(2, 2, std::atan2(2.5, 1.0));
+  config.pf.prior_sigma_m = 0.5;
+  config.pf.prior_sigma_yaw_deg = 10;
+  const auto steps = run(building, w, config, 0.0, true, 0.2);
+  std::optional<double> switched;
+  for (const auto& s : steps)
+    if (s.result.arrival) switched = s.result.stamp_s;
+  ASSERT_TRUE(switched);
+  EXPECT_LT(*switched, w.times[6] + 5.0);
+  const Step& end = steps.back();
+  std::printf("on the first floor at %.1f s, %d losses, final state %s, error %.3f m\n", *switched, end.result.losses,
+              toString(end.result.state), error(end));
+  EXPECT_EQ(end.result.storey, std::optional<std::size_t>(1));
+  EXPECT_NE(end.result.state, LocalizationState::Lost);
+  EXPECT_LT(error(end), 0.1);
+}
+
+TEST(StoreyChange, BlindOnTheStairsAndSlippingTheLandingIsTheSearchsPrior) {
+  // No scan on the flight (a lidar looking into the steps) and the odometry overshooting it by
+  // 30 % (1.2 m): the pose carried across is off by more than the tracker's gates. The first
+  // floor's graph cannot confirm the walls, says lost, and the filter searches around the
+  // landing on the first floor, where it finds the robot.
+  const bim::Building building = twoStoreys();
+  const Walk w = upTheStairs();
+  LocalizerConfig config = fastConfig();
+  config.storey = "0";
+  config.pf.prior_pose = Eigen::Vector3d(2, 2, std::atan2(2.5, 1.0));
+  config.pf.prior_sigma_m = 0.5;
+  config.pf.prior_sigma_yaw_deg = 10;
+  const auto steps = run(building, w, config, 0.0, true, 0.3, true);
+  std::optional<double> switched;
+  bool searched_upstairs = false;
+  for (const auto& s : steps) {
+    if (s.result.arrival) switched = s.result.stamp_s;
+    if (switched && s.result.filter) {
+      searched_upstairs = true;
+      EXPECT_EQ(s.result.filter->leader, 1u) << "the search is on the new storey";
+    }
+  }
+  ASSERT_TRUE(switched);
+  const Step& end = steps.back();
+  std::printf("on the first floor at %.1f s, %d losses, searched there: %s, final state %s, error %.3f m\n", *switched,
+              end.result.losses, searched_upstairs ? "yes" : "no", toString(end.result.state), error(end));
+  EXPECT_EQ(end.result.storey, std::optional<std::size_t>(1));
+  EXPECT_NE(end.result.state, LocalizationState::Lost);
+  EXPECT_LT(error(end), 0.1);
 }

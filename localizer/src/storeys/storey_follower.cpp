@@ -102,7 +102,14 @@ std::optional<StoreyArrival> StoreyFollower::step(double stamp_s, std::size_t st
   noteHeight(stamp_s, base_map.z());
   if (!config_.follow || !base_map.allFinite()) return std::nullopt;
   const int on = flightAt(building_, base_map, base_height_m, config_.flight_margin_m);
-  const std::optional<std::size_t> at = storeyAtHeight(building_, all_, base_map.z(), base_height_m, config_.floor_tolerance_m);
+  std::optional<std::size_t> at = storeyAtHeight(building_, all_, base_map.z(), base_height_m, config_.floor_tolerance_m);
+  // Storeys at (nearly) the same height as the tracked one (a plan's duplicate levels, split
+  // levels): it stays on the tracked one. A change of storey is a climb of more than the tolerance.
+  const double off_tracked = std::abs(base_map.z() - base_height_m - building_.storeys.at(storey).elevation_m);
+  if (at && *at != storey &&
+      (off_tracked <= config_.floor_tolerance_m ||
+       std::abs(building_.storeys[*at].elevation_m - building_.storeys[storey].elevation_m) <= config_.floor_tolerance_m))
+    at = storey;
   climbing_ = on >= 0 || !(at && *at == storey);
   if (on >= 0) {
     last_flight_ = on, last_on_flight_ = base_map;
