@@ -237,6 +237,16 @@ LocalizerConfig fastConfig() {
   return c;
 }
 
+// Told the storey and the start (within 0.5 m, 10 deg): the test is what happens at the stairs.
+LocalizerConfig startKnown() {
+  LocalizerConfig c = fastConfig();
+  c.storey = "0";
+  c.pf.prior_pose = Eigen::Vector3d(2, 2, std::atan2(2.5, 1.0));
+  c.pf.prior_sigma_m = 0.5;
+  c.pf.prior_sigma_yaw_deg = 10;
+  return c;
+}
+
 }  // namespace
 
 TEST(StoreyFollower, AltitudeRulesOutStoreysAndHalfLandingsLeadOn) {
@@ -265,11 +275,7 @@ TEST(StoreyFollower, AltitudeRulesOutStoreysAndHalfLandingsLeadOn) {
 TEST(StoreyChange, TheLocalizerFollowsTheRobotUpTheStairsOntoTheFirstFloor) {
   const bim::Building building = twoStoreys();
   const Walk w = upTheStairs();
-  LocalizerConfig config = fastConfig();
-  config.storey = "0";
-  config.pf.prior_pose = Eigen::Vector3d(2, 2, std::atan2(2.5, 1.0));
-  config.pf.prior_sigma_m = 0.5;
-  config.pf.prior_sigma_yaw_deg = 10;
+  const LocalizerConfig config = startKnown();
   const auto steps = run(building, w, config, 0.0);
   const double left_flight = w.times[6];  // the base steps off the flight's top
   std::optional<double> converged, switched;
@@ -338,11 +344,7 @@ TEST(StoreyChange, AfterSlippingOnTheStairsTheNewStoreysWallsBringThePoseBack) {
   // around the landing) brings it back.
   const bim::Building building = twoStoreys();
   const Walk w = upTheStairs();
-  LocalizerConfig config = fastConfig();
-  config.storey = "0";
-  config.pf.prior_pose = Eigen::Vector3d(2, 2, std::atan2(2.5, 1.0));
-  config.pf.prior_sigma_m = 0.5;
-  config.pf.prior_sigma_yaw_deg = 10;
+  const LocalizerConfig config = startKnown();
   const auto steps = run(building, w, config, 0.0, true, 0.2);
   std::optional<double> switched;
   for (const auto& s : steps)
@@ -364,11 +366,7 @@ TEST(StoreyChange, BlindOnTheStairsAndSlippingTheLandingIsTheSearchsPrior) {
   // landing on the first floor, where it finds the robot.
   const bim::Building building = twoStoreys();
   const Walk w = upTheStairs();
-  LocalizerConfig config = fastConfig();
-  config.storey = "0";
-  config.pf.prior_pose = Eigen::Vector3d(2, 2, std::atan2(2.5, 1.0));
-  config.pf.prior_sigma_m = 0.5;
-  config.pf.prior_sigma_yaw_deg = 10;
+  const LocalizerConfig config = startKnown();
   const auto steps = run(building, w, config, 0.0, true, 0.3, true);
   std::optional<double> switched;
   bool searched_upstairs = false;
