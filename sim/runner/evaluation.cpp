@@ -40,6 +40,7 @@ std::optional<std::size_t> RunScore::floorStorey(const bim::Building& building, 
 void RunScore::followStorey(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth) {
   if (!start_z_) start_z_ = truth.translation().z();
   const std::optional<std::size_t> on = floorStorey(building_, start_storey_, *start_z_, truth.translation().z());
+  on_stairs_ = !on;
   if (on && *on != storey_) {
     storey_ = *on;
     changed_at_ = t;
@@ -71,9 +72,8 @@ bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isomet
   // Right place, wrong storey is a false convergence too: the plan's x, y repeat on every storey.
   const double error = (estimate_.translation() - truth.translation()).head<2>().norm();
   // The storey it left counts as wrong once the localizer had its window to follow.
-  const bool on_stairs = !floorStorey(building_, start_storey_, start_z_.value_or(truth.translation().z()), truth.translation().z());
   const bool following = changed_at_ && t <= *changed_at_ + kFollowWindowS;
-  const bool wrong_storey = *step.storey != storey_ && !on_stairs && !following;
+  const bool wrong_storey = *step.storey != storey_ && !on_stairs_ && !following;
   if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg || wrong_storey) false_convergence_ = true;
   sum_sq_ += error * error;
   ++after_;

@@ -34,6 +34,7 @@ class RunScore {
   // Fills the result's scores from the last step.
   void finish(ScenarioResult& result) const;
   std::size_t trueStorey() const { return storey_; }  // at the last step
+  bool onStairs() const { return on_stairs_; }         // ... between floors
 
   // The storey whose floor a base at height z stands on, given the start storey and the
   // base's height there (base_link above its floor); none between floors (on the stairs).
@@ -45,6 +46,7 @@ class RunScore {
   const bim::Building& building_;
   std::size_t storey_, start_storey_;
   std::optional<double> start_z_;
+  bool on_stairs_ = false;
   std::optional<double> changed_at_;  // the base stepped onto storey_ then (the last change)
   bool change_followed_ = true;
   int storey_changes_ = 0, storey_changes_followed_ = 0;

@@ -99,7 +99,7 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
   for (const auto& w : step.warnings) r_.warnings.push_back("t=" + std::to_string(t) + ": " + w);
   if (poses) poses->push_back({t, truth, step.T_map_base, RunScore::scored(step)});
   r_.error_series.push_back({t, (step.T_map_base.translation() - truth.translation()).head<2>().norm(),
-                             yawErrorDeg(step.T_map_base, truth), step.state, step.storey, 0});
+                             yawErrorDeg(step.T_map_base, truth), step.state, 0, false, step.storey});
   if (step.filter) {
     const pf::StoreyBankReport& bank = *step.filter;
     if (r_.storey_auto && bank.decided && !(last_bank_ && last_bank_->decided)) r_.storey_margin = bank.storey_margin;
@@ -114,8 +114,8 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
     snapshotNow("clustering", t, truth, snapshot);
   map_error_.step(step, scenario_.sensor.T_base_lidar, points);
   const bool converged_now = score_.add(t, step, truth);
-  r_.error_series.back().storey = step.storey;
   r_.error_series.back().true_storey = score_.trueStorey();
+  r_.error_series.back().on_stairs = score_.onStairs();
   if (step.arrival && snapshot) snapshotNow("storey_change", t, truth, snapshot);
   if (converged_now) {
     if (step.filter) r_.convergence_margin = step.filter->filter.path_margin;

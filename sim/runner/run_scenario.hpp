@@ -98,8 +98,12 @@ struct ScenarioResult {
   struct ErrorSample {
     double time_s = 0, position_m = 0, yaw_deg = 0;
     LocalizationState state = LocalizationState::Searching;
+    // The truth's storey at this step (index into the plan's storeys; RunScore::trueStorey: on
+    // a flight, the one the base came from until it steps off) and whether the base is on a
+    // flight (issue 31).
+    std::size_t true_storey = 0;
+    bool on_stairs = false;
     std::optional<std::size_t> storey;  // the localizer's (LocalizationResult::storey)
-    std::size_t true_storey = 0;        // the base's (RunScore::trueStorey)
   };
   std::vector<ErrorSample> error_series;
   // Wall seconds the localizer's steps took in each simulated minute (the last one partial).
