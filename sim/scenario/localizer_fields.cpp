@@ -77,6 +77,7 @@ std::vector<Field> storeyFields(storeys::StoreyFollowConfig& c) {
           {"settled_window_s", &c.settled_window_s, positive(600)},
           {"settled_rise_m", &c.settled_rise_m, positive(10)},
           {"flight_margin_m", &c.flight_margin_m, closed(0, 10)},
+          {"max_climb_s", &c.max_climb_s, positive(1e5)},
           {"altitude_sigmas", &c.altitude_sigmas, positive(100)},
           {"altitude_tolerance_m", &c.altitude_tolerance_m, closed(0, 100)},
           {"arrival_sigma_m", &c.arrival_sigma_m, positive(1e4)},

@@ -111,6 +111,9 @@ std::optional<StoreyArrival> StoreyFollower::step(double stamp_s, std::size_t st
        std::abs(building_.storeys[*at].elevation_m - building_.storeys[storey].elevation_m) <= config_.floor_tolerance_m))
     at = storey;
   climbing_ = on >= 0 || !(at && *at == storey);
+  if (!climbing_) climbing_since_.reset();
+  else if (!climbing_since_) climbing_since_ = stamp_s;
+  if (climbing_ && stamp_s - *climbing_since_ > config_.max_climb_s) climbing_ = false;
   if (on >= 0) {
     last_flight_ = on, last_on_flight_ = base_map;
     return std::nullopt;

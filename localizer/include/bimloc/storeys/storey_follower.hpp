@@ -33,6 +33,10 @@ struct StoreyFollowConfig {
   // A flight's footprint (its run line, +- half its width) grown by this: the base on it is
   // on the stairs, not on a storey, whatever its height.
   double flight_margin_m = 0.3;
+  // Off the tracked floor for longer than this is no climb (a flight takes 10-30 s) but the
+  // odometry's height drifting (lidar odometry drifts in z on long runs): the localizer stops
+  // treating the robot as climbing (its search runs again).
+  double max_climb_s = 60.0;
   // An altitude rules a storey out when it is farther than altitude_sigmas * sigma +
   // altitude_tolerance_m from its floor + base height (the tolerance: floors off their
   // elevation by the finish, the barometer's drift since its reference).
@@ -105,6 +109,7 @@ class StoreyFollower {
   std::vector<std::size_t> all_;
   std::deque<std::pair<double, double>> heights_;  // (stamp, base z) over the settling window
   bool climbing_ = false;
+  std::optional<double> climbing_since_;
   int last_flight_ = -1;
   Eigen::Vector3d last_on_flight_ = Eigen::Vector3d::Zero();
 };
