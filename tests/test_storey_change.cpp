@@ -260,6 +260,7 @@ TEST(StoreyFollower, AltitudeRulesOutStoreysAndHalfLandingsLeadOn) {
   EXPECT_EQ(storeys::flightAt(b, {9, 7, 2.0}, kBaseHeight, 0.3), 0);
   EXPECT_EQ(storeys::flightAt(b, {9, 5, 2.0}, kBaseHeight, 0.3), -1) << "beside the flight";
   EXPECT_EQ(storeys::flightAt(b, {9, 7, 6.5}, kBaseHeight, 0.3), -1) << "above it, a storey up";
+  EXPECT_EQ(storeys::flightAt(b, {10, 7, kBaseHeight}, kBaseHeight, 0.3), -1) << "under it, on the ground floor";
   // Two flights with a half landing between them: leaving the first at its top leads on to the second's top.
   bim::StairFlight lower = flight(), upper = flight();
   lower.top = {11, 7, 1.5}, lower.top_storey = -1;

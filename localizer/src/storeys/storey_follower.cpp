@@ -1,5 +1,6 @@
 #include <bimloc/storeys/storey_follower.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -56,8 +57,10 @@ int flightAt(const bim::Building& building, const Eigen::Vector3d& base_map, dou
     const Eigen::Vector2d v = base_map.head<2>() - f.bottom.head<2>();
     const double along = v.dot(dir), across = std::abs(dir.x() * v.y() - dir.y() * v.x());
     if (along < -margin_m || along > run + margin_m || across > 0.5 * f.width_m + margin_m) continue;
-    const double z_lo = std::min(f.bottom.z(), f.top.z()), z_hi = std::max(f.bottom.z(), f.top.z());
-    if (foot_z < z_lo - margin_m || foot_z > z_hi + margin_m) continue;
+    // At the flight's height there (not under it: the space below a flight is the lower floor's).
+    constexpr double kOnStepsM = 0.5;  // a few risers: the odometry's height drift over a flight, and the nosing line
+    const double surface_z = f.bottom.z() + std::clamp(along / run, 0.0, 1.0) * f.rise_m();
+    if (std::abs(foot_z - surface_z) > std::max(kOnStepsM, margin_m)) continue;
     return static_cast<int>(i);
   }
   return -1;

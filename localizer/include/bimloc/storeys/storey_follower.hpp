@@ -63,7 +63,8 @@ std::vector<std::size_t> storeysAtAltitude(const bim::Building& building, const 
                                            const AltitudeReading& altitude, double base_height_m, const StoreyFollowConfig& config);
 
 // The flight (index into building.stairs) whose footprint, grown by margin_m, holds the base,
-// its z (less base_height_m) between the flight's ends' z, -+ margin_m; -1 when none.
+// its feet (its z less base_height_m) at the flight's height there, within 0.5 m (or margin_m);
+// -1 when none. Under a flight is not on it.
 int flightAt(const bim::Building& building, const Eigen::Vector3d& base_map, double base_height_m, double margin_m);
 
 // Where a flight puts the robot when it leaves it: the storey of the end it left by (for a
