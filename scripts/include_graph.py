@@ -36,6 +36,7 @@ import sys
 LAYERS = [
     ("method: planar poses, how much to print", ["localizer/geometry", "localizer/verbosity"]),
     ("method: the building model", ["localizer/bim"]),
+    ("method: storeys and stairs: which floor the robot stands on", ["localizer/storeys"]),
     ("method: wall planes from a scan", ["localizer/planes"]),
     ("method: the localizers (paper's PF, S-Graph, peers)",
      ["localizer/pf", "localizer/sgraph", "localizer/peers"]),

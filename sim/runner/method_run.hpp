@@ -9,6 +9,7 @@
 #include "sim/simulation/simulator.hpp"
 
 #include <optional>
+#include <random>
 #include <vector>
 
 namespace bimloc::sim {
@@ -45,11 +46,14 @@ class MethodRun {
   RunScore score_;
   MapErrorSampler map_error_;
   std::optional<Eigen::Isometry3d> estimate_;    // the last step's, for the snapshots
+  std::optional<std::size_t> storey_;            // ... and its storey
   std::optional<pf::UpdateReport> last_verdict_;  // the last update the path evidence spoke at
   std::size_t verdict_storey_ = 0;                // ... and the storey it spoke of
   std::optional<pf::StoreyBankReport> last_bank_;
   int updates_ = 0;
   bool searching_ = true;
+  double altitude_sigma_m_ = 0;  // > 0: the truth's altitude, with this noise, every turn
+  std::mt19937_64 altitude_rng_;
 };
 
 }  // namespace bimloc::sim

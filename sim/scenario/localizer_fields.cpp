@@ -81,6 +81,19 @@ std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
           {"prior_sigma_yaw_deg", &c.prior_sigma_yaw_deg, closed(0.01, 180)}};
 }
 
+std::vector<Field> storeyFields(storeys::StoreyFollowConfig& c) {
+  return {{"follow", &c.follow},
+          {"floor_tolerance_m", &c.floor_tolerance_m, positive(100)},
+          {"settled_window_s", &c.settled_window_s, positive(600)},
+          {"settled_rise_m", &c.settled_rise_m, positive(10)},
+          {"flight_margin_m", &c.flight_margin_m, closed(0, 10)},
+          {"max_climb_s", &c.max_climb_s, positive(1e5)},
+          {"altitude_sigmas", &c.altitude_sigmas, positive(100)},
+          {"altitude_tolerance_m", &c.altitude_tolerance_m, closed(0, 100)},
+          {"arrival_sigma_m", &c.arrival_sigma_m, positive(1e4)},
+          {"arrival_sigma_yaw_deg", &c.arrival_sigma_yaw_deg, positive(180)}};
+}
+
 std::vector<Field> sgraphFields(sgraph::SGraphConfig& c) {
   return {{"keyframe_spacing_m", &c.keyframe_spacing_m, positive(100)},
           {"keyframe_spacing_deg", &c.keyframe_spacing_deg, positive(360)},

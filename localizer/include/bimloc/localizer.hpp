@@ -19,6 +19,7 @@
 #include <bimloc/pf/storey_bank.hpp>
 #include <bimloc/planes/plane_extraction.hpp>
 #include <bimloc/sgraph/sgraph_tracker.hpp>
+#include <bimloc/storeys/storey_follower.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -60,6 +61,11 @@ struct LocalizerConfig {
   // said lost), the heading within relocalize_sigma_yaw_deg.
   double relocalize_sigma_m = 2.0;
   double relocalize_sigma_yaw_deg = 30.0;
+  // Following the robot across storeys (issue 31): its height (the odometry's z, an altitude
+  // when observeAltitude is given one) and the plan's stairs say when it arrived on another
+  // storey; the tracker goes on there. With an altitude, the first search leaves out the
+  // storeys it rules out (storey unknown).
+  storeys::StoreyFollowConfig storeys;
 };
 
 enum class LocalizationState {
@@ -69,6 +75,15 @@ enum class LocalizationState {
   Lost,       // the tracker lost the plan; the filter searches again around the last pose
 };
 const char* toString(LocalizationState state);
+
+// The robot arrived on another storey, and the localizer followed it: the link between the
+// storeys' graphs (the pose carried across, by the odometry along the flight).
+struct StoreyLink {
+  std::size_t from_storey = 0, to_storey = 0;
+  int flight = -1;  // the flight it came by (index into Building::stairs), -1 when the plan has none there
+  double stamp_s = 0;
+  Eigen::Isometry3d T_map_base = Eigen::Isometry3d::Identity();  // carried onto the new storey
+};
 
 struct LocalizationResult {
   LocalizationState state = LocalizationState::Searching;
@@ -91,6 +106,7 @@ struct LocalizationResult {
   std::optional<pf::StoreyBankReport> filter;
   std::optional<sgraph::SGraphResult> sgraph;
   std::optional<peers::PeerReport> peer;  // methods Amcl and Ndt: every step
+  std::optional<StoreyLink> arrival;   // this step moved the localizer to another storey
   std::vector<std::string> warnings;  // this step's, from every stage
 };
 
@@ -118,6 +134,15 @@ class Localizer {
   const LocalizerConfig& config() const;
   const pf::StoreyBank* filter() const;                  // the current (or last) search; null for the peers
   const sgraph::SGraphTracker* tracker() const;          // while (or since) the S-Graph tracks; null before
+  // One graph per storey: the S-Graph of each storey the robot left, with the link it left
+  // by, oldest first (the current storey's graph is tracker()).
+  struct StoreyGraph {
+    std::size_t storey = 0;
+    const sgraph::SGraphTracker* tracker = nullptr;
+    StoreyLink left_by;
+  };
+  std::vector<StoreyGraph> storeyGraphs() const;
+  const std::vector<StoreyLink>& storeyLinks() const;    // every arrival so far
   const std::vector<std::string>& warnings() const;      // from the construction (the plan, the config)
 
  private:
