@@ -12,8 +12,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
 #include <cmath>
 #include <map>
 #include <string>
@@ -158,26 +156,4 @@ TEST(RealFrames, TheCommittedPlanIsTheMeasuredRoom) {
     if (angleDeg(w.n, Eigen::Vector2d::UnitX()) < 5) shelf = std::max(shelf, w.d);
   EXPECT_NEAR(far + shelf, box.sizes().y(), kAgreeOffset_m);
   EXPECT_NEAR(plan.storeys[0].rooms[0].height_m, 3.5, 1e-6);
-}
-
-TEST(RealFramesDiag, WholeFrame) {
-  REQUIRE_FRAMES(f);
-  for (const Frame& frame : *f) {
-    for (double sh : {0.0, 0.3}) {
-      for (int mi : {60, 20}) {
-        planes::PlaneExtractionConfig c;
-        c.standing_height_m = sh;
-        c.min_inliers = mi;
-        const auto t0 = std::chrono::steady_clock::now();
-        const auto e = planes::extractPlanes(frame.points, c);
-        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        std::printf("%s standing %.1f min_inliers %d: %zu walls %zu horizontals %.2f s\n", frame.sensor.c_str(), sh, mi,
-                    e.walls.size(), e.horizontals.size(), s);
-        for (const auto& w : e.walls)
-          std::printf("   az %7.1f d %6.3f nz %6.3f vox %4d ext %5.2f h %4.2f\n",
-                      std::atan2(w.normal.y(), w.normal.x()) * 180 / M_PI, w.d, w.normal.z(), w.inliers, w.extent_m,
-                      w.height_extent_m);
-      }
-    }
-  }
 }
