@@ -20,7 +20,8 @@ std::vector<Field> planeFields(planes::PlaneExtractionConfig& c) {
           {"min_extent_m", &c.min_extent_m, closed(0, 100)},
           {"vertical_tolerance_deg", &c.vertical_tolerance_deg, closed(0, 45)},
           {"horizontal_tolerance_deg", &c.horizontal_tolerance_deg, closed(0, 45)},
-          {"max_planes", &c.max_planes, closed(1, 1000)}};
+          {"max_planes", &c.max_planes, closed(1, 1000)},
+          {"standing_height_m", &c.standing_height_m, closed(0, 100)}};
 }
 
 std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
