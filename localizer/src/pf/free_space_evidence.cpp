@@ -24,6 +24,12 @@ FreeSpaceParams FreeSpaceParams::of(const ParticleFilterConfig& c, double drift_
   FreeSpaceParams p;
   p.sigma_m = std::sqrt(c.free_space_sigma_m * c.free_space_sigma_m + drift_m * drift_m);
   p.gate_sigmas = c.free_space_gate_sigmas;
+  // A place's heading is fitted on the window's planes, each known to sigma_azimuth: a few
+  // dozen of them pin it to about sigma_azimuth / 5 (5 deg -> 1 deg).
+  // And the odometry's heading drift over half the window moves it as much again.
+  const double fitted = c.sigma_azimuth_deg / 5.0 * M_PI / 180.0;
+  const double drift = c.evidence_yaw_drift_rad_per_m * 0.5 * c.evidence_window_m;
+  p.sigma_yaw_rad = std::hypot(fitted, drift);
   p.face_worth = 0.5 * (c.gate_mahalanobis2 - 3.0);
   p.support_rays = std::max(1, c.free_space_support_rays);
   p.open_m = c.free_space_open_m;
@@ -97,7 +103,7 @@ int FreeSpaceMap::regionKey(const Eigen::Vector2d& p) const {
 }
 
 std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0,
-                                                                  double dz_per_m, double max_t) const {
+                                                                  double dz_per_m, double max_t, double lateral_per_m) const {
   std::optional<Crossing> best;
   if (faces_.empty() || !(max_t > 0.0)) return best;
   // Amanatides-Woo traversal of the cells along the ray; a crossing found in a cell may lie in
@@ -124,16 +130,26 @@ std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::V
         const double t = (w.x() * f.direction.y() - w.y() * f.direction.x()) / denom;
         const double s = (w.x() * u.y() - w.y() * u.x()) / denom;
         if (!(t > 1e-6) || t > max_t || (best && t >= best->t)) continue;
-        if (s < -kFreeSpaceCornerM || s > f.length_m + kFreeSpaceCornerM) continue;
+        // Where along the face the ray crosses is known to the place's heading: t sigma_yaw
+        // sideways (2 sigma below). A crossing that close to a face's end or an opening's edge
+        // could as well have missed the face or passed through the hole: no verdict.
+        const double corner_m = std::max(kFreeSpaceCornerM, 2.0 * lateral_per_m * t);
+        const double frame_m = std::max(kFreeSpaceOpeningMarginM, 2.0 * lateral_per_m * t);
+        if (s < -corner_m || s > f.length_m + corner_m) continue;
         const double z = z0 + dz_per_m * t;
         if (z < f.z_bottom || z > f.z_top) continue;  // above or below the wall's body
-        bool corner = s < kFreeSpaceCornerM || s > f.length_m - kFreeSpaceCornerM;
+        bool corner = s < corner_m || s > f.length_m - corner_m;
         // (A rectangle of no width lies inside any set of holes, even none: a centimetre.)
         const auto inHole = [&](double margin_m) {
           return f.openings && bim::insideOpening(*f.openings, s - 0.01, s + 0.01, z - 0.01, z + 0.01, margin_m);
         };
         if (!corner && inHole(0.0)) continue;  // through a door or a window: no wall there
-        corner |= inHole(kFreeSpaceOpeningMarginM);  // at its frame: a jamb or the hole, no verdict
+        // Near a hole: within frame_m of it along the face (the heading's sideways slip),
+        // within the drawing's margin in height.
+        if (f.openings)
+          for (const auto& o : *f.openings)
+            corner |= s >= o.along_min_m - frame_m && s <= o.along_max_m + frame_m && z >= o.z_min_m - kFreeSpaceOpeningMarginM &&
+                      z <= o.z_max_m + kFreeSpaceOpeningMarginM;  // at its frame: a jamb or the hole, no verdict
         Crossing c;
         c.t = t, c.wall = f.wall, c.cos_incidence = std::abs(u.dot(f.normal)), c.uncertain = corner;
         best = c;
@@ -163,14 +179,22 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
     if (!(r > 1e-3)) continue;
     const Eigen::Vector2d u = v / r;
     const double dz = (z_base + e.z() - z0) / r;
-    const auto x = map.firstCrossing(o, u, z0, dz, r + params.open_m);
+    const auto x = map.firstCrossing(o, u, z0, dz, r + params.open_m, params.sigma_yaw_rad);
     if (!x) {
       // Nothing solid along the ray up to open_m past its end: it ended in the place's open.
       hits.push_back({kOpenKeyBase + map.regionKey(end), static_cast<float>(params.open_wall_faces * params.face_worth)});
       continue;
     }
     if (x->uncertain) continue;
-    const double sigma = params.sigma_m / std::max(kFreeSpaceMinCos, x->cos_incidence);
+    // The range along the ray is uncertain by the range noise over the incidence, and by the
+    // place's heading: a candidate fitted on a few scans is known to sigma_yaw, which moves the
+    // ray sideways by r sigma_yaw at the wall and so along it by that times tan(incidence). At
+    // grazing incidence on a wall far away that is metres: a ray that ended on the hall's far
+    // corner must not count as through the side wall beside it (random hall, 1 deg off).
+    const double cos_i = std::max(kFreeSpaceMinCos, x->cos_incidence);
+    const double tan_i = std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / cos_i;
+    const double lateral = x->t * params.sigma_yaw_rad * tan_i;
+    const double sigma = std::hypot(params.sigma_m / cos_i, lateral);
     const double beyond = r - x->t;
     if (beyond > params.gate_sigmas * sigma)
       hits.push_back({x->wall, static_cast<float>(throughCost(beyond, sigma, params.face_worth))});

@@ -45,6 +45,7 @@ constexpr std::int32_t kOpenKeyBase = 1 << 28;
 struct FreeSpaceParams {
   double sigma_m = 0.15;           // a ray's range sigma at normal incidence (noise, drift, plan)
   double gate_sigmas = 3.0;
+  double sigma_yaw_rad = 0.0175;   // the place's heading, as fitted: moves a far ray sideways
   double face_worth = 4.17;        // one face of the planes' margin: 0.5 (gate - 3)
   int support_rays = 3;
   double open_m = 1.0;
@@ -71,7 +72,7 @@ class FreeSpaceMap {
   // The first solid crossing of the ray o + t u (u unit, map x y; its height goes from z0 at
   // t = 0 by dz_per_m), 0 < t <= max_t. Openings the ray passes through are not crossings.
   std::optional<Crossing> firstCrossing(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0, double dz_per_m,
-                                        double max_t) const;
+                                        double max_t, double lateral_per_m = 0.0) const;
   int regionKey(const Eigen::Vector2d& p) const;  // a 2 m cell of the floor
 
  private:
