@@ -50,17 +50,17 @@ void guideLRoom(bim::Storey& s, const Eigen::Vector2d& o, bool door) {
   addGuideWall(s, {0, 8}, {0, 0}, o);
 }
 
-// Whether the segment p -> q crosses no wall face (a ray caster of its own).
+// Whether the segment p -> q crosses no wall face: by each face's plane (p and q on opposite
+// sides) and where along the face the crossing falls; not the guide's ray caster.
 bool lineOfSight(const bim::Storey& s, const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
-  const Eigen::Vector2d d = q - p;
   for (const auto& w : s.walls)
     for (const auto& f : w.faces) {
-      const Eigen::Vector2d f0 = f.start.head<2>(), e = f.end.head<2>() - f0;
-      const double den = d.x() * e.y() - d.y() * e.x();
-      if (std::abs(den) < 1e-12) continue;
-      const Eigen::Vector2d w0 = f0 - p;
-      const double t = (w0.x() * e.y() - w0.y() * e.x()) / den, u = (w0.x() * d.y() - w0.y() * d.x()) / den;
-      if (u >= 0 && u <= 1 && t > 1e-9 && t < 1 - 1e-9) return false;
+      const double dp = f.plane.signedDistance({p.x(), p.y(), 0.5}), dq = f.plane.signedDistance({q.x(), q.y(), 0.5});
+      if ((dp > 0) == (dq > 0)) continue;
+      const Eigen::Vector2d x = p + dp / (dp - dq) * (q - p);
+      const Eigen::Vector2d along = (f.end - f.start).head<2>();
+      const double u = (x - f.start.head<2>()).dot(along) / along.squaredNorm();
+      if (u >= 0 && u <= 1) return false;
     }
   return true;
 }

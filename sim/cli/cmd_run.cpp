@@ -180,12 +180,7 @@ void addRunCommand(CLI::App& app) {
                   "folder for each scenario's trajectories in the TUM format, for `bimloc eval` or evo: truth.tum (every "
                   "step) and estimate.tum (the steps the ATE scores: converged, not lost) in DIR/<scenario>/");
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
-  cmd->add_option("--motion", args->motion,
-                  "how the base moves: tour (the scenarios' own motion; generated starts tour their rooms) or disambiguate "
-                  "(while the localizer searches, it walks where the localizer suggests looking, then tours; "
-                  "docs/disambiguate.md)")
-      ->check(CLI::IsMember({"tour", "disambiguate"}))
-      ->capture_default_str();
+  cmd->add_option("--motion", args->motion, bimloc::cli::kMotionHelp)->check(bimloc::cli::motionCheck())->capture_default_str();
   cmd->add_flag("--oracle", args->oracle,
                 "also each run's information limit (docs/oracle.md): decidable_at_s (from when the scans ruled out every "
                 "place but the true one), decision_lag_s and decision_ratio; slow (its cost is in the JSON)");

@@ -225,12 +225,7 @@ void addSweepCommand(CLI::App& app) {
                   "YAML file of localizer settings (a scenario's `localizer:` keys, e.g. `amcl: {...}`); each method reads "
                   "its own sections, the method is the sweep's")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--motion", args->motion,
-                  "how the base moves: tour (the scenarios' own motion; generated starts tour their rooms) or disambiguate "
-                  "(while the localizer searches, it walks where the localizer suggests looking, then tours; "
-                  "docs/disambiguate.md)")
-      ->check(CLI::IsMember({"tour", "disambiguate"}))
-      ->capture_default_str();
+  cmd->add_option("--motion", args->motion, bimloc::cli::kMotionHelp)->check(bimloc::cli::motionCheck())->capture_default_str();
   cmd->add_flag("--oracle", args->oracle,
                 "also each run's information limit (docs/oracle.md): from when the scans ruled out every place but the "
                 "true one (decidable_at_s), the localizer's lag and ratio beyond it, and the summary's quantiles; slow");
