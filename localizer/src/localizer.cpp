@@ -109,6 +109,20 @@ struct Localizer::Impl {
   std::vector<StoreyLink> links;
   std::vector<StoreyGraph> graphs;  // the graphs of the storeys left
   std::vector<std::unique_ptr<sgraph::SGraphTracker>> retired;  // ... owned here
+  // Where to look next (guide/): the places of the last weighing as map <- odom (which odometry
+  // leaves fixed), each with its margin; the planner of the storey they are on; the goal kept
+  // between plannings, in the odom frame.
+  struct KeptPlace {
+    PlanarPose T_map_odom = PlanarPose::Zero();
+    double margin = 0;
+  };
+  std::vector<KeptPlace> places;
+  std::size_t places_storey = 0;
+  std::unique_ptr<guide::GoalPlanner> planner;
+  std::size_t planner_storey = 0;
+  std::optional<guide::LookGoal> goal;
+  std::vector<KeptPlace> goal_places;  // the places the goal was planned for
+  double goal_stamp_s = -1e300;
 
   Impl(const bim::Building& b, const Eigen::Isometry3d& mount, const LocalizerConfig& c)
       : building(b), T_base_lidar(mount), config(seeded(c)), follower(b, c.storeys) {}
@@ -131,6 +145,9 @@ struct Localizer::Impl {
   void followSearch(double stamp_s, const Eigen::Isometry3d& odom, LocalizationResult& r);
   void arrive(const storeys::StoreyArrival& a, double stamp_s, const Eigen::Isometry3d& odom, LocalizationResult& r);
   void describe(LocalizationResult& r) const;
+  void keepPlaces(const Eigen::Isometry3d& T_odom_base, const LocalizationResult& r);
+  void suggestGoal(const Eigen::Isometry3d& T_odom_base, LocalizationResult& r);
+  static bool samePlaces(const std::vector<KeptPlace>& a, const std::vector<KeptPlace>& b);
   void placeInRoom(LocalizationResult& r) const;
   void stepPeer(const Eigen::Isometry3d& T_odom_base, const PointSource& points_lidar, LocalizationResult& r);
 };
@@ -200,6 +217,12 @@ LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_od
   if (m.filter_active && !m.follower.climbing()) m.search(walls, profile, r);
   if (m.usesTracker() && m.filter_active && m.bank->converged()) m.handOver(stamp_s, odom, walls, r);
   m.describe(r);
+  if (m.filter_active && r.state == LocalizationState::Searching) {
+    m.keepPlaces(T_odom_base, r);
+    m.suggestGoal(T_odom_base, r);
+  } else {
+    m.places.clear(), m.goal.reset();
+  }
   return r;
 }
 
@@ -444,6 +467,57 @@ void Localizer::Impl::stepPeer(const Eigen::Isometry3d& T_odom_base, const Point
     r.state = convergence_stamp ? LocalizationState::Lost : LocalizationState::Searching;
   r.peer = std::move(s.report);
   placeInRoom(r);
+}
+
+// The places of this step's weighing (if the filter weighed): its best and the rivals within
+// the evidence margin, kept as map <- odom so that later steps move them with the odometry.
+void Localizer::Impl::keepPlaces(const Eigen::Isometry3d& T_odom_base, const LocalizationResult& r) {
+  if (!r.filter || !r.filter->filter.weighed) return;
+  const pf::UpdateReport& u = r.filter->filter;
+  const PlanarPose odom_inv = inverse(planarPose(T_odom_base));
+  places.clear();
+  places_storey = r.filter->leader;
+  if (!u.path_best) return;
+  places.push_back({compose(*u.path_best, odom_inv), 0.0});
+  for (const auto& [pose, margin] : u.path_rivals) places.push_back({compose(pose, odom_inv), margin});
+}
+
+bool Localizer::Impl::samePlaces(const std::vector<KeptPlace>& a, const std::vector<KeptPlace>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if ((a[i].T_map_odom.head<2>() - b[i].T_map_odom.head<2>()).norm() > 0.5 ||
+        std::abs(wrapAngle(a[i].T_map_odom.z() - b[i].T_map_odom.z())) > 10.0 * kDeg)
+      return false;
+  return true;
+}
+
+// The places now and a goal: planned again when the places change, the goal is reached, or it
+// is config.guide.replan_interval_s old; kept in the odom frame in between.
+void Localizer::Impl::suggestGoal(const Eigen::Isometry3d& T_odom_base, LocalizationResult& r) {
+  const PlanarPose odom = planarPose(T_odom_base);
+  if (places.size() < 2) {
+    goal.reset();
+    return;
+  }
+  for (const auto& p : places) r.places.push_back({compose(p.T_map_odom, odom), p.margin});
+  if (!config.guide.enabled) return;
+  const bool reached = goal && (goal->T_odom_goal.head<2>() - odom.head<2>()).norm() < config.guide.goal_reached_m;
+  if (!samePlaces(places, goal_places) || reached || r.stamp_s - goal_stamp_s >= config.guide.replan_interval_s) {
+    if (!planner || planner_storey != places_storey) {
+      planner = std::make_unique<guide::GoalPlanner>(building.storeys.at(places_storey), config.guide);
+      planner_storey = places_storey;
+    }
+    goal = planner->suggest(r.places, odom);
+    goal_places = places;
+    goal_stamp_s = r.stamp_s;
+  }
+  if (!goal) return;
+  // The kept goal, seen from now: the motion from the base, and where it is in each place.
+  r.goal = *goal;
+  r.goal->motion = between(odom, goal->T_odom_goal);
+  r.goal->distance_m = r.goal->motion.head<2>().norm();
+  r.goal->T_map_goal.clear();
+  for (const auto& p : places) r.goal->T_map_goal.push_back(compose(p.T_map_odom, goal->T_odom_goal));
 }
 
 const LocalizerConfig& Localizer::config() const { return impl_->config; }

@@ -36,6 +36,7 @@ struct RunArgs {
   std::string shard;  // K/N: only the K-th of N slices of the scenario list (sim/cli/shards.hpp)
   std::string tum;    // folder for each scenario's truth.tum and estimate.tum
   bool oracle = false;  // --oracle: each run's information limit (docs/oracle.md)
+  std::string motion = "tour";  // --motion tour|disambiguate (docs/disambiguate.md)
 };
 
 void run(const RunArgs& args) {
@@ -63,6 +64,7 @@ void run(const RunArgs& args) {
   }
   if (!args.site.empty())
     for (auto& s : scenarios) s.site = sitePreset(args.site);
+  bimloc::cli::applyMotion(scenarios, args.motion);
 
   std::vector<bool> generated(scenarios.size());
   for (std::size_t i = args.scenarios.size(); i < scenarios.size(); ++i) generated[i] = generate;
@@ -178,6 +180,7 @@ void addRunCommand(CLI::App& app) {
                   "folder for each scenario's trajectories in the TUM format, for `bimloc eval` or evo: truth.tum (every "
                   "step) and estimate.tum (the steps the ATE scores: converged, not lost) in DIR/<scenario>/");
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
+  cmd->add_option("--motion", args->motion, bimloc::cli::kMotionHelp)->check(bimloc::cli::motionCheck())->capture_default_str();
   cmd->add_flag("--oracle", args->oracle,
                 "also each run's information limit (docs/oracle.md): decidable_at_s (from when the scans ruled out every "
                 "place but the true one), decision_lag_s and decision_ratio; slow (its cost is in the JSON)");

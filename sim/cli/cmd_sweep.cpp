@@ -42,6 +42,7 @@ struct SweepArgs {
   std::string prior_pose;
   std::string config;  // --config FILE.yaml: localizer settings (each method reads its own sections)
   bool oracle = false;  // --oracle: each run's information limit (docs/oracle.md)
+  std::string motion = "tour";  // --motion tour|disambiguate (docs/disambiguate.md)
 };
 
 // One row: a group of runs (a plan's storey, or all of them).
@@ -89,6 +90,7 @@ void run(const SweepArgs& args) {
   bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
   if (!args.config.empty()) bimloc::cli::applyConfig(scenarios, args.config);
   for (auto& s : scenarios) s.localizer["method"] = args.method;  // the sweep's, over a config file's
+  bimloc::cli::applyMotion(scenarios, args.motion);
   if (!args.sites.empty() || !args.methods.empty() || !args.plot.empty()) {
     bimloc::cli::RobustnessOptions o;
     o.sites = args.sites.empty() ? std::vector<std::string>{args.site.empty() ? "exact" : args.site} : args.sites;
@@ -223,6 +225,7 @@ void addSweepCommand(CLI::App& app) {
                   "YAML file of localizer settings (a scenario's `localizer:` keys, e.g. `amcl: {...}`); each method reads "
                   "its own sections, the method is the sweep's")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--motion", args->motion, bimloc::cli::kMotionHelp)->check(bimloc::cli::motionCheck())->capture_default_str();
   cmd->add_flag("--oracle", args->oracle,
                 "also each run's information limit (docs/oracle.md): from when the scans ruled out every place but the "
                 "true one (decidable_at_s), the localizer's lag and ratio beyond it, and the summary's quantiles; slow");

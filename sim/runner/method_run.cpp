@@ -92,6 +92,7 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
   const LocalizationResult step = localizer_->step(t, T_odom_base, points);
   estimate_ = step.T_map_base;
   storey_ = step.storey;
+  last_state_ = step.state, last_goal_ = step.goal;
   const auto minute = static_cast<std::size_t>(t / 60.0);
   if (r_.localizer_seconds_by_minute.size() <= minute) r_.localizer_seconds_by_minute.resize(minute + 1, 0.0);
   r_.localizer_seconds_by_minute[minute] += std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();

@@ -30,6 +30,9 @@ class MethodRun {
 
   // Whether the localizer is still searching (not converged) after its last step; true before.
   bool searching() const { return searching_; }
+  // The last step's state and suggested goal: what a steered base follows (GuidedWalk).
+  LocalizationState lastState() const { return last_state_; }
+  const std::optional<guide::LookGoal>& lastGoal() const { return last_goal_; }
 
   // The snapshot of `phase` now (initialization before the first step).
   void snapshotNow(const char* phase, double t, const Eigen::Isometry3d& truth, const SnapshotHook& snapshot) const;
@@ -45,6 +48,8 @@ class MethodRun {
   std::optional<Localizer> localizer_;
   RunScore score_;
   MapErrorSampler map_error_;
+  LocalizationState last_state_ = LocalizationState::Searching;
+  std::optional<guide::LookGoal> last_goal_;
   std::optional<Eigen::Isometry3d> estimate_;    // the last step's, for the snapshots
   std::optional<std::size_t> storey_;            // ... and its storey
   std::optional<pf::UpdateReport> last_verdict_;  // the last update the path evidence spoke at

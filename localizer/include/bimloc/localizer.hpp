@@ -13,6 +13,7 @@
 #pragma once
 
 #include <bimloc/bim/building.hpp>
+#include <bimloc/guide/look_goal.hpp>
 #include <bimloc/peers/amcl_config.hpp>
 #include <bimloc/peers/ndt_config.hpp>
 #include <bimloc/peers/peer_report.hpp>
@@ -56,6 +57,8 @@ struct LocalizerConfig {
   sgraph::SGraphConfig sgraph;
   peers::AmclConfig amcl;  // method Amcl only
   peers::NdtConfig ndt;    // method Ndt only
+  // While searching with several places left: where to look next (LocalizationResult::goal).
+  guide::GuideConfig guide;
   // Search again after a loss of track: the filter's particles start within this of the last
   // tracked pose (1 sigma; the tracker drifted at most a few keyframes of odometry before it
   // said lost), the heading within relocalize_sigma_yaw_deg.
@@ -108,6 +111,13 @@ struct LocalizationResult {
   std::optional<peers::PeerReport> peer;  // methods Amcl and Ndt: every step
   std::optional<StoreyLink> arrival;   // this step moved the localizer to another storey
   std::vector<std::string> warnings;  // this step's, from every stage
+  // While searching (the paper's method and its ablations, on the leading storey), when the path
+  // evidence fits two or more places: the places (map pose of the base now, best first, with the
+  // evidence margin of the best over each: 0 for the best), as of the last weighing, and, with
+  // config.guide.enabled, a goal from which their scans would differ most (guide/look_goal.hpp;
+  // unset when nothing within reach tells them apart). Empty and unset otherwise.
+  std::vector<guide::Place> places;
+  std::optional<guide::LookGoal> goal;
 };
 
 class Localizer {
