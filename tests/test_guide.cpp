@@ -159,9 +159,11 @@ TEST(GuideScenario, TheSteeredBaseWalksTowardsTheGoal) {
   const PlanarPose odom = planarPose(T_odom_base);
   // Towards the middle of the start room, whichever way the base faces.
   const PlanarPose T_world_odom = compose(planarPose(start), inverse(odom));
-  const Eigen::Vector2d centre = world.building().storeys[sim.storey()].findRoom("R101")->centre;
+  // Halfway to a corner of the start room (the base may start at its very centre).
+  const Eigen::Vector2d corner = world.building().storeys[sim.storey()].findRoom("R101")->footprint.front();
   const Eigen::Vector2d here = start.translation().head<2>();
-  const Eigen::Vector2d target = here + std::min(1.5, (centre - here).norm()) * (centre - here).normalized();
+  const Eigen::Vector2d target = here + std::min(1.5, 0.5 * (corner - here).norm()) * (corner - here).normalized();
+  ASSERT_GT((target - here).norm(), 0.5);
   goal.T_odom_goal = compose(inverse(T_world_odom), PlanarPose(target.x(), target.y(), 0.0));
   walk.follow(LocalizationState::Searching, goal, T_odom_base, start, 0.1);
   ASSERT_EQ(walk.goalsTaken(), 1);
