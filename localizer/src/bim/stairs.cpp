@@ -167,7 +167,7 @@ std::optional<BodyFlight> flightFromFaces(const TriangleMesh& body, const std::v
     widths.push_back(hi - lo);
   }
   flight.width_m = stepMedian(widths);
-  const auto middle = [](const TreadLevel& t, const Eigen::Vector2d& d) {
+  const auto middle = [](const TreadLevel& t, const Eigen::Vector2d& d) -> Eigen::Vector2d {  // a value: an Eigen expression would refer to `across`, gone on return
     const auto [lo, hi] = acrossExtent(t.corners, d);
     const Eigen::Vector2d across(-d.y(), d.x());
     return t.centroid + across * ((lo + hi) / 2.0 - t.centroid.dot(across));
