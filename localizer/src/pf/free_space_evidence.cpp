@@ -139,11 +139,9 @@ std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::V
         const double z = z0 + dz_per_m * t;
         if (z < f.z_bottom || z > f.z_top) continue;  // above or below the wall's body
         bool corner = s < corner_m || s > f.length_m - corner_m;
-        // (A rectangle of no width lies inside any set of holes, even none: a centimetre.)
-        const auto inHole = [&](double margin_m) {
-          return f.openings && bim::insideOpening(*f.openings, s - 0.01, s + 0.01, z - 0.01, z + 0.01, margin_m);
-        };
-        if (!corner && inHole(0.0)) continue;  // through a door or a window: no wall there
+        // Through a door or a window: no wall there. (A rectangle of no width lies inside any
+        // set of holes, even none: a centimetre.)
+        if (!corner && f.openings && bim::insideOpening(*f.openings, s - 0.01, s + 0.01, z - 0.01, z + 0.01, 0.0)) continue;
         // Near a hole: within frame_m of it along the face (the heading's sideways slip),
         // within the drawing's margin in height.
         if (f.openings)
