@@ -164,6 +164,46 @@ TEST(FreeSpace, EachWallCountsOnceAndAtMostOneFace) {
   EXPECT_NEAR(freeSpacePenalty({&two}, params), 8.0, 1e-5);
 }
 
+TEST(FreeSpace, ATurnNotDeSkewedIsJudgedWithItsOwnSkew) {
+  // A wall 20 m away (face at x = 19.9) with a door y -1..1; a ray through the wall 0.3 m past
+  // the door's edge. With the heading known to 0.1 deg, it went through the wall.
+  bim::Storey far;
+  far.walls.push_back(test::boxWall("Far", {20, -15}, {20, 15}, 0.2));
+  for (auto& f : far.walls[0].faces) {
+    const Eigen::Vector2d d = (f.end - f.start).head<2>().normalized();
+    const double a = (Eigen::Vector2d(20, -1) - f.start.head<2>()).dot(d), b = (Eigen::Vector2d(20, 1) - f.start.head<2>()).dot(d);
+    f.openings.push_back({std::min(a, b), std::max(a, b), 0.0, 2.1});
+  }
+  FreeSpaceParams params = defaultParams();
+  params.sigma_yaw_rad = 0.1 * M_PI / 180.0;
+  const FreeSpaceMap map(far);
+  const Eigen::Vector2d end = Eigen::Vector2d(19.9, 1.3) * (25.0 / 19.9);
+  pf::RangeProfile turn = profileOf({end});
+  EXPECT_EQ(freeSpaceHits(map, params, Eigen::Vector3d::Zero(), 0.0, turn).size(), 1u);
+  // The same turn taken while turning at 60 deg/s (6 deg over the turn): its rays are up to
+  // 3 deg, 1 m at 20 m, off the mid-turn pose; this one may have passed through the door.
+  turn.skew_yaw_rad = 3.0 * M_PI / 180.0;
+  EXPECT_TRUE(freeSpaceHits(map, params, Eigen::Vector3d::Zero(), 0.0, turn).empty());
+  // A ray 5 m past the door's edge went through the wall either way.
+  turn.ends_base.emplace_back(25.0f, 6.0f * 25.0f / 19.9f, 1.4f);
+  EXPECT_EQ(freeSpaceHits(map, params, Eigen::Vector3d::Zero(), 0.0, turn).size(), 1u);
+}
+
+TEST(FreeSpace, ARayGrazingAWallFromItsDoorwayCrossesItWhereThePositionAllows) {
+  // The robot in the doorway (y -1..1) of the wall whose face is at x = 4.9, 0.1 m in front of
+  // it; a ray at 9 deg to the wall crosses the face 0.15 m past the door's edge. Its position,
+  // known to sigma_m (5 cm), moves that crossing by sigma_m / cos(incidence) along the wall:
+  // it may have left through the doorway. No verdict.
+  const FreeSpaceParams params = defaultParams();
+  const FreeSpaceMap map(oneWall(std::make_pair(-1.0, 1.0)));
+  const Eigen::Vector3d in_doorway(4.8, 0.5, 0.0);
+  const Eigen::Vector2d u = Eigen::Vector2d(0.1, 0.65).normalized();
+  const auto grazing = freeSpaceHits(map, params, in_doorway, 0.0, profileOf({(0.66 + 3.0) * u}));
+  EXPECT_TRUE(grazing.empty());
+  // Head-on through the wall 1.5 m past the door's edge, from in front of it: through it.
+  EXPECT_EQ(freeSpaceHits(map, params, Eigen::Vector3d(4.8, 2.5, 0.0), 0.0, profileOf({{2.1, 0.0}})).size(), 1u);
+}
+
 namespace {
 
 // Two identical offices [0, 6] x [0, 4] (faces 0.1 m inside the axes), a corridor wall 2.5 m

@@ -104,6 +104,7 @@ struct Localizer::Impl {
   storeys::StoreyFollower follower;
   std::optional<double> base_height_m;  // the odometry's z at the first step: base_link above the floor
   double z_shift_m = 0;
+  std::optional<PlanarPose> last_odom;  // the last step's odometry: how far a turn may be skewed
   bool pending_search = false;      // the tracker lost the plan on the stairs: search once off them
   bool arrival_unconfirmed = false;  // the tracker started by an arrival has not matched the new storey's walls yet
   std::vector<StoreyLink> links;
@@ -208,10 +209,19 @@ LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_od
   if (m.wantsPoints(odom)) {
     const std::vector<Eigen::Vector3f> points = points_lidar();
     walls = planes::extractPlanes(points, m.config.planes).walls;
-    if (m.filter_active && m.config.pf.free_space_evidence) profile = pf::rangeProfile(points, m.T_base_lidar, pf::profileConfig(m.config.pf));
+    if (m.filter_active && m.config.pf.free_space_evidence) {
+      profile = pf::rangeProfile(points, m.T_base_lidar, pf::profileConfig(m.config.pf));
+      // The turn spans the interval since the last step, stamped at its middle: its rays are off
+      // the stamp's pose by up to half the motion over it (range_profile.hpp).
+      if (m.last_odom) {
+        const PlanarPose moved = between(*m.last_odom, planarPose(odom));
+        profile.skew_yaw_rad = 0.5 * std::abs(moved.z()), profile.skew_m = 0.5 * moved.head<2>().norm();
+      }
+    }
     r.used_points = true;
     r.walls_observed = static_cast<int>(walls.size());
   }
+  m.last_odom = planarPose(odom);
   if (m.tracker) m.track(stamp_s, odom, walls, r);
   // Off the floor (on the stairs), the storey's walls are not where the filter looks for them.
   if (m.filter_active && !m.follower.climbing()) m.search(walls, profile, r);

@@ -103,7 +103,8 @@ int FreeSpaceMap::regionKey(const Eigen::Vector2d& p) const {
 }
 
 std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0,
-                                                                  double dz_per_m, double max_t, double lateral_per_m) const {
+                                                                  double dz_per_m, double max_t, double lateral_per_m,
+                                                                  double position_sigma_m) const {
   std::optional<Crossing> best;
   if (faces_.empty() || !(max_t > 0.0)) return best;
   // Amanatides-Woo traversal of the cells along the ray; a crossing found in a cell may lie in
@@ -130,11 +131,18 @@ std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::V
         const double t = (w.x() * f.direction.y() - w.y() * f.direction.x()) / denom;
         const double s = (w.x() * u.y() - w.y() * u.x()) / denom;
         if (!(t > 1e-6) || t > max_t || (best && t >= best->t)) continue;
-        // Where along the face the ray crosses is known to the place's heading: t sigma_yaw
-        // sideways (2 sigma below). A crossing that close to a face's end or an opening's edge
-        // could as well have missed the face or passed through the hole: no verdict.
-        const double corner_m = std::max(kFreeSpaceCornerM, 2.0 * lateral_per_m * t);
-        const double frame_m = std::max(kFreeSpaceOpeningMarginM, 2.0 * lateral_per_m * t);
+        // Where along the face the ray crosses is known to the place's pose: its heading moves
+        // the ray t sigma_yaw sideways, which is that over cos(incidence) along the face; its
+        // position moves the crossing by sigma_pos along the face and, across it, by sigma_pos
+        // tan(incidence) along it (a ray at 17 deg to a wall, from a robot in its doorway,
+        // crosses 3 cm off the plan 10 cm farther along). A crossing within 2 sigma of a face's
+        // end or an opening's edge could as well have missed the face or passed through the
+        // hole: no verdict.
+        const double cos_i = std::max(kFreeSpaceMinCos, std::abs(u.dot(f.normal)));
+        const double tan_i = std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / cos_i;
+        const double along_sigma = std::sqrt(std::pow(lateral_per_m * t / cos_i, 2) + std::pow(position_sigma_m, 2) * (1.0 + tan_i * tan_i));
+        const double corner_m = std::max(kFreeSpaceCornerM, 2.0 * along_sigma);
+        const double frame_m = std::max(kFreeSpaceOpeningMarginM, 2.0 * along_sigma);
         if (s < -corner_m || s > f.length_m + corner_m) continue;
         const double z = z0 + dz_per_m * t;
         if (z < f.z_bottom || z > f.z_top) continue;  // above or below the wall's body
@@ -170,6 +178,10 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
   const auto toMap = [&](double x, double y) { return Eigen::Vector2d(pose.x() + c * x - s * y, pose.y() + s * x + c * y); };
   const Eigen::Vector2d o = toMap(profile.origin_base.x(), profile.origin_base.y());
   const double z0 = z_base + profile.origin_base.z();
+  // This turn's own skew (range_profile.hpp) adds to the place's uncertainty, as a sigma: a
+  // bound taken for a sigma is the safe side of a uniform error's (bound / sqrt 3).
+  const double sigma_yaw = std::hypot(params.sigma_yaw_rad, profile.skew_yaw_rad);
+  const double sigma_m = std::hypot(params.sigma_m, profile.skew_m);
   for (const auto& e : profile.ends_base) {
     const Eigen::Vector2d end = toMap(e.x(), e.y());
     const Eigen::Vector2d v = end - o;
@@ -177,7 +189,7 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
     if (!(r > 1e-3)) continue;
     const Eigen::Vector2d u = v / r;
     const double dz = (z_base + e.z() - z0) / r;
-    const auto x = map.firstCrossing(o, u, z0, dz, r + params.open_m, params.sigma_yaw_rad);
+    const auto x = map.firstCrossing(o, u, z0, dz, r + params.open_m, sigma_yaw, sigma_m);
     if (!x) {
       // Nothing solid along the ray up to open_m past its end: it ended in the place's open.
       hits.push_back({kOpenKeyBase + map.regionKey(end), static_cast<float>(params.open_wall_faces * params.face_worth)});
@@ -191,8 +203,8 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
     // corner must not count as through the side wall beside it (random hall, 1 deg off).
     const double cos_i = std::max(kFreeSpaceMinCos, x->cos_incidence);
     const double tan_i = std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / cos_i;
-    const double lateral = x->t * params.sigma_yaw_rad * tan_i;
-    const double sigma = std::hypot(params.sigma_m / cos_i, lateral);
+    const double lateral = x->t * sigma_yaw * tan_i;
+    const double sigma = std::hypot(sigma_m / cos_i, lateral);
     const double beyond = r - x->t;
     if (beyond > params.gate_sigmas * sigma)
       hits.push_back({x->wall, static_cast<float>(throughCost(beyond, sigma, params.face_worth))});

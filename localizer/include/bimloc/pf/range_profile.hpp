@@ -27,6 +27,13 @@ struct RangeProfile {
   Eigen::Vector3d origin_base = Eigen::Vector3d::Zero();  // the lidar's position, base frame
   // One end per non-empty bin: the farthest return's x y (base frame) and height above the floor.
   std::vector<Eigen::Vector3f> ends_base;
+  // How far the turn's rays may be off the pose it is stamped with: a spinning lidar's turn
+  // spans the interval between steps, and a robot turning at 60 deg/s turns 6 deg in it, so a
+  // turn not de-skewed puts its first and last rays up to 3 deg (1 m at 20 m) off the
+  // mid-turn pose. Half the odometry's heading and position change since the last step
+  // (Localizer::step); 0 for a de-skewed turn or a standing robot.
+  double skew_yaw_rad = 0.0;
+  double skew_m = 0.0;
   bool empty() const { return ends_base.empty(); }
 };
 
