@@ -45,6 +45,17 @@ std::optional<Eigen::Matrix3d> newestCovariance(ceres::Problem& problem, const s
   return Eigen::Matrix3d(0.5 * (covariance + covariance.transpose()));
 }
 
+// A plan wall's rotation about its centre (alpha) moves its ends by alpha L / 2. An as-built
+// tolerance is on where a wall stands, at its ends as at its middle, so a long wall's angle is
+// known to sigma_m over half its length, and never worse than wall_prior_sigma_deg. Without the
+// bound, a 57 m wall seen near one end turned 1.4 deg to fit one grazing plane and carried the
+// robot 0.55 m along the corridor with it (random school 98006, construction site, R007).
+double wallAngleSigma(const WallNode& node, const SGraphConfig& c) {
+  const double half_length_m = 0.5 * std::max(node.length(0), node.length(1));
+  const double by_angle = c.wall_prior_sigma_deg * kDeg;
+  return half_length_m > 0.0 ? std::min(by_angle, c.wall_prior_sigma_m / half_length_m) : by_angle;
+}
+
 }  // namespace
 
 Eigen::Vector3d odometrySigma(const Keyframe& a, const Keyframe& b, const SGraphConfig& c) {
@@ -137,7 +148,7 @@ SolveReport optimizeWindow(Graph& g, const SGraphConfig& c) {
   for (int n : nodes) {
     WallNode& node = g.nodes[static_cast<std::size_t>(n)];
     if (node.kind == WallNode::Kind::Plan) {
-      problem.AddResidualBlock(WallPrior::create(c.wall_prior_sigma_m, c.wall_prior_sigma_deg * kDeg), cauchy_wall, node.params.data());
+      problem.AddResidualBlock(WallPrior::create(c.wall_prior_sigma_m, wallAngleSigma(node, c)), cauchy_wall, node.params.data());
       problem.AddResidualBlock(ThicknessPrior::create(c.wall_thickness_sigma_m), nullptr, node.params.data());
     } else {
       problem.SetManifold(node.params.data(), new ceres::SubsetManifold(3, {2}));

@@ -76,7 +76,7 @@ struct SGraphConfig {
   // (shift along its normal, rotation about its centre), so a wall built off the plan is
   // estimated instead of dragging the robot.
   double wall_prior_sigma_m = 0.05;
-  double wall_prior_sigma_deg = 1.0;
+  double wall_prior_sigma_deg = 1.0;  // at most; a long wall's is wall_prior_sigma_m over half its length
   double wall_thickness_sigma_m = 0.02;  // thickness vs the plan (seen only from both sides)
   // A room node sits where the mid-planes of its opposite walls cross (room factor); its plan
   // centre is only a loose prior: the walls already carry the plan's tolerance, and a room
