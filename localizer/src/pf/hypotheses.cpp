@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <cstring>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace bimloc::pf::detail {
 namespace {
@@ -60,12 +62,6 @@ void scorePose(const Particle& p, const std::vector<Observation>& obs, double z,
   bound.best = std::max(bound.best, m.log_likelihood);
 }
 
-void tryPair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a, const Landmark& b,
-             double z, int room, const RoomIndex& rooms, const ParticleFilterConfig& c, Bound& bound,
-             std::vector<Hypothesis>& out) {
-  if (const auto p = solvePair(obs, i, j, a, b, z, room, rooms)) scorePose(*p, obs, z, rooms, c, room != kAnywhere, bound, out);
-}
-
 // With a floor, the order poses are scored in decides how early the best is known, and so how
 // much of every other pose's scan is matched before it falls below the floor; the result does
 // not depend on it. The true pose and its look-alikes are what many pairs of faces agree on:
@@ -94,15 +90,53 @@ bool pairable(const std::vector<Observation>& obs, std::size_t i, std::size_t j)
   return std::abs(turn) >= kMinPairAngle && std::abs(turn) <= M_PI - kMinPairAngle;
 }
 
-// Hypotheses from one room's landmarks: every pair of observations against every pair.
+// The same pose solved from several pairs (collinear pieces of one wall fix the same lines;
+// one pair of faces matched by several pairs of observations along them) is scored once: the
+// first of each bit-identical (x, y, yaw) is kept, in order. A pose's score depends on the pose
+// alone, and a repeat adds to `out` an entry equal to one already there, which the merge of
+// near-duplicates drops: the hypotheses are the same, at a fraction of the scoring.
+void dropRepeatedPoses(std::vector<Particle>& poses) {
+  const auto bits = [](double v) {
+    std::uint64_t u = 0;
+    std::memcpy(&u, &v, sizeof u);
+    return u;
+  };
+  struct Key {
+    std::uint64_t x, y, yaw;
+    bool operator==(const Key& o) const { return x == o.x && y == o.y && yaw == o.yaw; }
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+      return static_cast<std::size_t>(k.x * 0x9E3779B97F4A7C15ull ^ (k.y + 0x632BE59BD9B4E019ull) * 0xC2B2AE3D27D4EB4Full ^ k.yaw);
+    }
+  };
+  std::unordered_set<Key, KeyHash> seen;
+  seen.reserve(poses.size());
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < poses.size(); ++k)
+    if (seen.insert({bits(poses[k].x), bits(poses[k].y), bits(poses[k].yaw)}).second) poses[kept++] = poses[k];
+  poses.resize(kept);
+}
+
+// Each distinct pose scored (dropRepeatedPoses), against the floor when there is one, the
+// poses most pairs agree on first (mostAgreedFirst).
+void scorePoses(std::vector<Particle>& poses, const std::vector<Observation>& obs, double z, const RoomIndex& rooms,
+                const ParticleFilterConfig& c, bool penalise_outside, Bound& bound, std::vector<Hypothesis>& out) {
+  if (std::isfinite(bound.within)) mostAgreedFirst(poses);
+  dropRepeatedPoses(poses);
+  for (const auto& p : poses) scorePose(p, obs, z, rooms, c, penalise_outside, bound, out);
+}
+
+// The poses from one room's landmarks: every pair of observations against every pair.
 void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
-                   const RoomIndex& rooms, const ParticleFilterConfig& c, Bound& bound, std::vector<Hypothesis>& out) {
+                   const RoomIndex& rooms, std::vector<Particle>& poses) {
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (!pairable(obs, i, j)) continue;
       for (std::size_t a = 0; a < marks.size(); ++a)
         for (std::size_t b = 0; b < marks.size(); ++b)
-          if (a != b) tryPair(obs, i, j, marks[a], marks[b], z, room, rooms, c, bound, out);
+          if (a != b)
+            if (const auto p = solvePair(obs, i, j, marks[a], marks[b], z, room, rooms)) poses.push_back(*p);
     }
 }
 
@@ -111,14 +145,13 @@ void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vec
 // so face b can only be one that passes near there. Pairs of faces the robot could not see
 // together are never tried: the cost is the faces times the faces near each, not its square.
 void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& index, const RoomIndex& rooms,
-               const ParticleFilterConfig& c, int room, Bound& bound, std::vector<Hypothesis>& out) {
+               const ParticleFilterConfig& c, int room, std::vector<Particle>& poses) {
   const auto& faces = index.faces();
   const double angle = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
   std::vector<double> reach(obs.size());
   for (std::size_t k = 0; k < obs.size(); ++k)
     reach[k] = matchRadius(obs[k].range_m, c.sigma_d_m, angle, c.gate_mahalanobis2, c.segment_margin_m);
   std::vector<std::size_t> near;
-  std::vector<Particle> poses;  // solved first, scored after: see mostAgreedFirst
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (!pairable(obs, i, j)) continue;
@@ -141,8 +174,6 @@ void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& i
             if (const auto p = solvePair(obs, i, j, fa, faces[b], z, room, rooms)) poses.push_back(*p);
       }
     }
-  if (std::isfinite(bound.within)) mostAgreedFirst(poses);
-  for (const auto& p : poses) scorePose(p, obs, z, rooms, c, room != kAnywhere, bound, out);
 }
 
 }  // namespace
@@ -154,16 +185,20 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observati
   if (observations.size() < 2 || rooms.roomCount() == 0) return all;
   Bound bound;
   bound.within = wanted_within;
+  // Every pose solved first, scored after (see mostAgreedFirst): over every room, the poses of
+  // all rooms in one order, so that the floor is high from the first rooms on.
+  std::vector<Particle> poses;
+  const int room = config.use_rooms ? 0 : outside_rooms ? kAnywhere : -1;
   if (config.use_rooms) {
-    for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r)
-      fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, config, bound, all);
+    for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r) fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, poses);
   } else {
     // The ablation: every room holds every face; one pass over them is enough.
     if (const FaceIndex* index = rooms.fineIndex())
-      fromIndex(observations, z_base, *index, rooms, config, outside_rooms ? kAnywhere : -1, bound, all);
+      fromIndex(observations, z_base, *index, rooms, config, room, poses);
     else
-      fromLandmarks(observations, z_base, rooms.landmarks(0), outside_rooms ? kAnywhere : -1, rooms, config, bound, all);
+      fromLandmarks(observations, z_base, rooms.landmarks(0), room, rooms, poses);
   }
+  scorePoses(poses, observations, z_base, rooms, config, room != kAnywhere, bound, all);
   // Those below the floor are out before they are sorted: the ones the caller wants, best
   // first, come before any of them whatever their number, so merging them changes nothing.
   if (std::isfinite(wanted_within))
