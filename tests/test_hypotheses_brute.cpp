@@ -1,6 +1,6 @@
 // The pose hypotheses against brute force: every ordered pair of observations against every
 // ordered pair of faces (no face index, no floor, each solved pose scored, repeats and all),
-// written out here from the definitions in hypotheses.hpp. poseHypotheses skips pairs of faces
+// written out here from the definitions in hypotheses.cpp. poseHypotheses skips pairs of faces
 // the robot cannot see together (the face index), stops scoring below a floor, and scores a
 // pose solved by several pairs once (dropRepeatedPoses); none of that may change a hypothesis
 // the callers use: the global search's fits within its margin (proposeEveryFit), and the
@@ -31,9 +31,10 @@ constexpr double kBruteTolRad = 5.0 * M_PI / 180.0;
 constexpr double kBruteMinTurnRad = 30.0 * M_PI / 180.0;
 
 // Observation i on face a and j on face b: the pose, when the relative angles agree, the two
-// planes are not near parallel and the pose is in a room (`room`, or any when -1).
+// planes are not near parallel, each plane's points lie along its face and the pose is in a
+// room (`room`, or any when -1).
 bool bruteSolve(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a, const Landmark& b,
-                double z, int room, const RoomIndex& rooms, Particle& p) {
+                double z, int room, const RoomIndex& rooms, double margin_m, Particle& p) {
   const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
   if (std::abs(turn) < kBruteMinTurnRad || std::abs(turn) > M_PI - kBruteMinTurnRad) return false;
   if (std::abs(wrapAngle(b.azimuth - a.azimuth - turn)) > kBruteTolRad) return false;
@@ -43,6 +44,15 @@ bool bruteSolve(const std::vector<Observation>& obs, std::size_t i, std::size_t 
   if (std::abs(A.determinant()) < 0.3) return false;
   const Eigen::Vector2d rhs(obs[i].d_offset - a.d - a.normal.z() * z, obs[j].d_offset - b.d - b.normal.z() * z);
   const Eigen::Vector2d xy = A.inverse() * rhs;
+  // Each plane's centroid along its face (within the segment margin).
+  const double yaw = wrapAngle(a.azimuth - obs[i].azimuth_base);
+  const double cy = std::cos(yaw), sy = std::sin(yaw);
+  for (const auto& [o, f] : {std::pair<const Observation*, const Landmark*>{&obs[i], &a}, {&obs[j], &b}}) {
+    const Eigen::Vector2d q = o->centroid_base;
+    const Eigen::Vector2d at(xy.x() + cy * q.x() - sy * q.y(), xy.y() + sy * q.x() + cy * q.y());
+    const double u = (at - f->start).dot(f->direction);
+    if (u < -margin_m || u > f->length_m + margin_m) return false;
+  }
   p = Particle{};
   p.x = xy.x(), p.y = xy.y(), p.yaw = wrapAngle(a.azimuth - obs[i].azimuth_base), p.room = rooms.roomAt(xy.x(), xy.y());
   return p.room >= 0 && (room < 0 || p.room == room);
@@ -62,7 +72,7 @@ std::vector<Hypothesis> bruteHypotheses(const std::vector<Observation>& obs, dou
         for (std::size_t a = 0; a < faces.size(); ++a)
           for (std::size_t b = 0; b < faces.size(); ++b) {
             Particle p;
-            if (i == j || a == b || !bruteSolve(obs, i, j, faces[a], faces[b], z, c.use_rooms ? r : -1, rooms, p)) continue;
+            if (i == j || a == b || !bruteSolve(obs, i, j, faces[a], faces[b], z, c.use_rooms ? r : -1, rooms, c.segment_margin_m, p)) continue;
             const MatchResult m = matchObservations(p, z, obs, rooms, c);
             if (m.associated >= 3) all.push_back({p.x, p.y, p.yaw, p.room, m.log_likelihood, m.associated});
           }
