@@ -110,22 +110,31 @@ struct BruteCase {
 };
 constexpr BruteCase kBruteCases[] = {{"R102", 0.3, -0.2, 0.7}, {"R105", -0.4, 0.5, 2.2}, {"C100", 0.6, 0.1, -1.3}};
 
+// The default world tiled 2 x 2: every view has a look-alike in each tile.
+const bim::Storey& bruteFloor() {
+  static const bim::Storey big = tiled(test::officeWorld().building().storeys[0], 2);
+  return big;
+}
+
+// The planes seen from the case's pose (in the first tile), as the filter observes them.
+std::vector<Observation> bruteView(const BruteCase& c) {
+  const bim::Room* room = test::officeWorld().building().storeys[0].findRoom(c.room);
+  const Eigen::Isometry3d mount = sim::Vlp16Config{}.T_base_lidar;
+  return observations(test::wallsSeenFrom(test::pose(room->centre.x() + c.dx, room->centre.y() + c.dy, c.yaw), mount), mount);
+}
+
 }  // namespace
 
 TEST(HypothesesBrute, GlobalSearchFitsWithinTheMarginAreThoseOfBruteForce) {
   // proposeEveryFit's search: every face of a 2 x 2 tiling of the default world (look-alikes in
   // every tile), the fits within 1.5 gates of the best.
-  const auto& office = test::officeWorld().building().storeys[0];
-  const bim::Storey big = tiled(office, 2);
-  const RoomIndex indexed(big, false);
-  const RoomIndex brute(big, false, true, 0.5, /*index_faces=*/false);
-  const Eigen::Isometry3d mount = sim::Vlp16Config{}.T_base_lidar;
+  const RoomIndex indexed(bruteFloor(), false);
+  const RoomIndex brute(bruteFloor(), false, true, 0.5, /*index_faces=*/false);
   pf::ParticleFilterConfig config;
   config.use_rooms = false;
   const double wanted = 1.5 * config.gate_mahalanobis2;
   for (const auto& c : kBruteCases) {
-    const bim::Room* room = office.findRoom(c.room);
-    const auto obs = observations(test::wallsSeenFrom(test::pose(room->centre.x() + c.dx, room->centre.y() + c.dy, c.yaw), mount), mount);
+    const auto obs = bruteView(c);
     const auto want = bruteHypotheses(obs, 0.5, indexed, config, brute.landmarks(0), std::numeric_limits<std::size_t>::max());
     ASSERT_FALSE(want.empty()) << c.room;
     std::size_t n = 0;
@@ -140,14 +149,10 @@ TEST(HypothesesBrute, GlobalSearchFitsWithinTheMarginAreThoseOfBruteForce) {
 TEST(HypothesesBrute, SeedsOverEveryRoomAreThoseOfBruteForce) {
   // seedHypotheses: each room's faces (and its neighbours'), every hypothesis kept, up to the
   // filter's 1000.
-  const auto& office = test::officeWorld().building().storeys[0];
-  const bim::Storey big = tiled(office, 2);
-  const RoomIndex rooms(big, true);
-  const Eigen::Isometry3d mount = sim::Vlp16Config{}.T_base_lidar;
+  const RoomIndex rooms(bruteFloor(), true);
   pf::ParticleFilterConfig config;
   for (const auto& c : kBruteCases) {
-    const bim::Room* room = office.findRoom(c.room);
-    const auto obs = observations(test::wallsSeenFrom(test::pose(room->centre.x() + c.dx, room->centre.y() + c.dy, c.yaw), mount), mount);
+    const auto obs = bruteView(c);
     const auto max_count = static_cast<std::size_t>(config.max_hypotheses);
     const auto want = bruteHypotheses(obs, 0.5, rooms, config, {}, max_count);
     const auto got = poseHypotheses(obs, 0.5, rooms, config, max_count);
