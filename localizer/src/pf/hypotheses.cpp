@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace bimloc::pf::detail {
 namespace {
@@ -27,11 +29,15 @@ constexpr int kMinAssociated = 3;
 
 // The pose at which observation i lies on landmark a and observation j on landmark b (the
 // heading from a's normal, the position from the two planes' offsets), when it is inside
-// `room` (or any room when room == -1, anywhere when room == kAnywhere).
+// `room` (or any room when room == -1, anywhere when room == kAnywhere) and each plane's
+// centroid lies along its face to within along_m (none when negative). Without that rule,
+// most poses solved over a storey put the planes beside their faces (two lines crossing
+// anywhere), and their number grows with the building: on a 100-room floor the global
+// search's and the seeds' scoring took half the time with it (docs/results/2026-11-26-h28speed2.md).
 constexpr int kAnywhere = -2;
 
 std::optional<Particle> solvePair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a,
-                                  const Landmark& b, double z, int room, const RoomIndex& rooms) {
+                                  const Landmark& b, double z, int room, const RoomIndex& rooms, double along_m) {
   const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
   if (std::abs(wrapAngle(b.azimuth - a.azimuth - turn)) > kAngleTolerance) return std::nullopt;
   if (!atFaceHeight(obs[i], a, z) || !atFaceHeight(obs[j], b, z)) return std::nullopt;
@@ -42,6 +48,17 @@ std::optional<Particle> solvePair(const std::vector<Observation>& obs, std::size
   if (std::abs(A.determinant()) < 0.3) return std::nullopt;
   const Eigen::Vector2d rhs(obs[i].d_offset - a.d - a.normal.z() * z, obs[j].d_offset - b.d - b.normal.z() * z);
   const Eigen::Vector2d xy = A.inverse() * rhs;
+  if (along_m >= 0.0) {
+    // Each plane's points along its face (matchObservations' rule): elsewhere the pair of
+    // faces explains neither plane, and the pose is a coincidence of two lines.
+    const double c = std::cos(yaw), s = std::sin(yaw);
+    const auto along = [&](const Observation& o, const Landmark& l) {
+      const Eigen::Vector2d m(xy.x() + c * o.centroid_base.x() - s * o.centroid_base.y(), xy.y() + s * o.centroid_base.x() + c * o.centroid_base.y());
+      const double u = (m - l.start).dot(l.direction);
+      return u >= -along_m && u <= l.length_m + along_m;
+    };
+    if (!along(obs[i], a) || !along(obs[j], b)) return std::nullopt;
+  }
   if (room >= 0 && !rooms.mayBeIn(room, xy.x(), xy.y())) return std::nullopt;  // roomAt would say so, slower
   Particle p;
   p.x = xy.x(), p.y = xy.y(), p.yaw = yaw, p.room = rooms.roomAt(xy.x(), xy.y());
@@ -58,12 +75,6 @@ void scorePose(const Particle& p, const std::vector<Observation>& obs, double z,
   if (m.below_floor || m.associated < kMinAssociated) return;
   out.push_back({p.x, p.y, p.yaw, p.room, m.log_likelihood, m.associated});
   bound.best = std::max(bound.best, m.log_likelihood);
-}
-
-void tryPair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a, const Landmark& b,
-             double z, int room, const RoomIndex& rooms, const ParticleFilterConfig& c, Bound& bound,
-             std::vector<Hypothesis>& out) {
-  if (const auto p = solvePair(obs, i, j, a, b, z, room, rooms)) scorePose(*p, obs, z, rooms, c, room != kAnywhere, bound, out);
 }
 
 // With a floor, the order poses are scored in decides how early the best is known, and so how
@@ -94,15 +105,53 @@ bool pairable(const std::vector<Observation>& obs, std::size_t i, std::size_t j)
   return std::abs(turn) >= kMinPairAngle && std::abs(turn) <= M_PI - kMinPairAngle;
 }
 
-// Hypotheses from one room's landmarks: every pair of observations against every pair.
+// The same pose solved from several pairs (collinear pieces of one wall fix the same lines;
+// one pair of faces matched by several pairs of observations along them) is scored once: the
+// first of each bit-identical (x, y, yaw) is kept, in order. A pose's score depends on the pose
+// alone, and a repeat adds to `out` an entry equal to one already there, which the merge of
+// near-duplicates drops: the hypotheses are the same, at a fraction of the scoring.
+void dropRepeatedPoses(std::vector<Particle>& poses) {
+  const auto bits = [](double v) {
+    std::uint64_t u = 0;
+    std::memcpy(&u, &v, sizeof u);
+    return u;
+  };
+  struct Key {
+    std::uint64_t x, y, yaw;
+    bool operator==(const Key& o) const { return x == o.x && y == o.y && yaw == o.yaw; }
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+      return static_cast<std::size_t>(k.x * 0x9E3779B97F4A7C15ull ^ (k.y + 0x632BE59BD9B4E019ull) * 0xC2B2AE3D27D4EB4Full ^ k.yaw);
+    }
+  };
+  std::unordered_set<Key, KeyHash> seen;
+  seen.reserve(poses.size());
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < poses.size(); ++k)
+    if (seen.insert({bits(poses[k].x), bits(poses[k].y), bits(poses[k].yaw)}).second) poses[kept++] = poses[k];
+  poses.resize(kept);
+}
+
+// Each distinct pose scored (dropRepeatedPoses), against the floor when there is one, the
+// poses most pairs agree on first (mostAgreedFirst).
+void scorePoses(std::vector<Particle>& poses, const std::vector<Observation>& obs, double z, const RoomIndex& rooms,
+                const ParticleFilterConfig& c, bool penalise_outside, Bound& bound, std::vector<Hypothesis>& out) {
+  if (std::isfinite(bound.within)) mostAgreedFirst(poses);
+  dropRepeatedPoses(poses);
+  for (const auto& p : poses) scorePose(p, obs, z, rooms, c, penalise_outside, bound, out);
+}
+
+// The poses from one room's landmarks: every pair of observations against every pair.
 void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
-                   const RoomIndex& rooms, const ParticleFilterConfig& c, Bound& bound, std::vector<Hypothesis>& out) {
+                   const RoomIndex& rooms, double along_m, std::vector<Particle>& poses) {
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (!pairable(obs, i, j)) continue;
       for (std::size_t a = 0; a < marks.size(); ++a)
         for (std::size_t b = 0; b < marks.size(); ++b)
-          if (a != b) tryPair(obs, i, j, marks[a], marks[b], z, room, rooms, c, bound, out);
+          if (a != b)
+            if (const auto p = solvePair(obs, i, j, marks[a], marks[b], z, room, rooms, along_m)) poses.push_back(*p);
     }
 }
 
@@ -111,14 +160,13 @@ void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vec
 // so face b can only be one that passes near there. Pairs of faces the robot could not see
 // together are never tried: the cost is the faces times the faces near each, not its square.
 void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& index, const RoomIndex& rooms,
-               const ParticleFilterConfig& c, int room, Bound& bound, std::vector<Hypothesis>& out) {
+               const ParticleFilterConfig& c, int room, double along_m, std::vector<Particle>& poses) {
   const auto& faces = index.faces();
   const double angle = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
   std::vector<double> reach(obs.size());
   for (std::size_t k = 0; k < obs.size(); ++k)
     reach[k] = matchRadius(obs[k].range_m, c.sigma_d_m, angle, c.gate_mahalanobis2, c.segment_margin_m);
   std::vector<std::size_t> near;
-  std::vector<Particle> poses;  // solved first, scored after: see mostAgreedFirst
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (!pairable(obs, i, j)) continue;
@@ -138,11 +186,9 @@ void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& i
         std::sort(near.begin(), near.end());  // the same order whatever the cells' order
         for (const std::size_t b : near)
           if (b != a)
-            if (const auto p = solvePair(obs, i, j, fa, faces[b], z, room, rooms)) poses.push_back(*p);
+            if (const auto p = solvePair(obs, i, j, fa, faces[b], z, room, rooms, along_m)) poses.push_back(*p);
       }
     }
-  if (std::isfinite(bound.within)) mostAgreedFirst(poses);
-  for (const auto& p : poses) scorePose(p, obs, z, rooms, c, room != kAnywhere, bound, out);
 }
 
 }  // namespace
@@ -154,16 +200,21 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observati
   if (observations.size() < 2 || rooms.roomCount() == 0) return all;
   Bound bound;
   bound.within = wanted_within;
+  // Every pose solved first, scored after (see mostAgreedFirst): over every room, the poses of
+  // all rooms in one order, so that the floor is high from the first rooms on.
+  std::vector<Particle> poses;
+  const int room = config.use_rooms ? 0 : outside_rooms ? kAnywhere : -1;
+  const double along_m = config.segment_margin_m;
   if (config.use_rooms) {
-    for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r)
-      fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, config, bound, all);
+    for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r) fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, along_m, poses);
   } else {
     // The ablation: every room holds every face; one pass over them is enough.
     if (const FaceIndex* index = rooms.fineIndex())
-      fromIndex(observations, z_base, *index, rooms, config, outside_rooms ? kAnywhere : -1, bound, all);
+      fromIndex(observations, z_base, *index, rooms, config, room, along_m, poses);
     else
-      fromLandmarks(observations, z_base, rooms.landmarks(0), outside_rooms ? kAnywhere : -1, rooms, config, bound, all);
+      fromLandmarks(observations, z_base, rooms.landmarks(0), room, rooms, along_m, poses);
   }
+  scorePoses(poses, observations, z_base, rooms, config, room != kAnywhere, bound, all);
   // Those below the floor are out before they are sorted: the ones the caller wants, best
   // first, come before any of them whatever their number, so merging them changes nothing.
   if (std::isfinite(wanted_within))
