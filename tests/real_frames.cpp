@@ -203,7 +203,7 @@ planes::PlaneExtractionConfig realFrameConfig() {
 
 planes::PlaneExtractionConfig wholeFrameConfig() {
   planes::PlaneExtractionConfig c = realFrameConfig();
-  c.standing_height_m = planes::PlaneExtractionConfig{}.standing_height_m;
+  c.standing_height_m = 0.3;  // 10 cm columns whose returns span 0.3 m, as standingPoints()
   return c;
 }
 

@@ -30,8 +30,8 @@ std::vector<Eigen::Vector3f> standingPoints(const std::vector<Eigen::Vector3f>& 
 // few percent of the cloud: three points on it in 500 draws is a coin toss), 20 voxels minimum
 // (a wall seen between shelves), up to 60 planes.
 planes::PlaneExtractionConfig realFrameConfig();
-// The same on a whole frame: realFrameConfig() with the extractor's own standing stage (its
-// default standing_height_m) in place of standingPoints().
+// The same on a whole frame: realFrameConfig() with the extractor's own standing stage
+// (standing_height_m 0.3) in place of standingPoints().
 planes::PlaneExtractionConfig wholeFrameConfig();
 
 // extractPlanes(standingPoints(points), realFrameConfig()).walls: the walls the room was measured
@@ -70,7 +70,7 @@ struct RealFrame {
   std::vector<Eigen::Vector3f> standing;  // standingPoints(points)
   std::vector<planes::ObservedPlane> walls;  // realFrameWalls(points)
   // extractPlanes(points, wholeFrameConfig()).walls: the whole frame, the extractor's own
-  // standing stage (on by default) choosing where walls are searched.
+  // standing stage choosing where walls are searched.
   std::vector<planes::ObservedPlane> whole_walls;
   WallAlignment in_vlp;  // the sensor's pose in the VLP-16's frame (zero for the VLP-16)
 };

@@ -174,6 +174,10 @@ TEST(RealFrames, WholeFrameWallsOfTheRoomAgreeBetweenSensors) {
                               {Eigen::Vector2d::UnitX(), 4.367},    // shelf front (north)
                               {-Eigen::Vector2d::UnitX(), 2.189}};  // south wall
   const char* names[4] = {"west", "east", "shelf front", "south"};
+  for (const Frame& frame : *f) {
+    std::cout << "[ real ] " << frame.sensor << ": " << frame.whole_walls.size() << " walls on the whole frame\n";
+    EXPECT_GE(frame.whole_walls.size(), 4u) << frame.sensor;
+  }
   int compared = 0;
   double worst_angle = 0, worst_offset = 0;
   for (int s = 0; s < 4; ++s) {

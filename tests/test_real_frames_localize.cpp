@@ -68,12 +68,12 @@ TEST(RealFramesLocalize, AStandingRobotGetsTheRectanglesTwoPlaces) {
   // The extractor's settings of the plane tests (tests/real_frames.hpp), as a user would give them.
   const std::string work = test::tempDir("real-frames-localize");
   const std::string config = work + "/real_frames.yaml";
-  std::ofstream(config) << "planes: {ransac_iterations: 5000, min_inliers: 20, max_planes: 60}\n";
+  std::ofstream(config) << "planes: {ransac_iterations: 5000, min_inliers: 20, max_planes: 60, standing_height_m: 0.3}\n";
   for (const test::RealFrame& frame : *frames) {
     SCOPED_TRACE(frame.sensor);
     const std::string dir = work + "/" + frame.sensor;
-    // The whole frame, as the PCD has it: the localizer's own extraction (its standing stage on
-    // by default) finds the walls.
+    // The whole frame, as the PCD has it: the localizer's own extraction (its standing stage,
+    // set in the YAML) finds the walls.
     writeStandingRobot(dir, frame.points, frame.sensor);
     const auto r = test::runBimloc("localize '" + dir + "' --plan '" + plan + "' --json --config '" + config + "'", 120);
     ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1) << r.err;
