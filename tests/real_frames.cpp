@@ -197,6 +197,13 @@ planes::PlaneExtractionConfig realFrameConfig() {
   c.ransac_iterations = 5000;
   c.min_inliers = 20;
   c.max_planes = 60;
+  c.standing_height_m = 0;  // the points are standing already (standingPoints)
+  return c;
+}
+
+planes::PlaneExtractionConfig wholeFrameConfig() {
+  planes::PlaneExtractionConfig c = realFrameConfig();
+  c.standing_height_m = 0.3;  // 10 cm columns whose returns span 0.3 m, as standingPoints()
   return c;
 }
 
@@ -286,6 +293,7 @@ const std::vector<RealFrame>* nebulaFrames() {
       f.points = sim::readPcdPoints(pcd);
       f.standing = standingPoints(f.points);
       f.walls = realFrameWalls(f.points);
+      f.whole_walls = planes::extractPlanes(f.points, wholeFrameConfig()).walls;
       out.push_back(std::move(f));
     }
     for (std::size_t k = 1; k < out.size(); ++k) out[k].in_vlp = alignWalls(out[0].walls, out[0].standing, out[k].walls, out[k].standing);

@@ -30,8 +30,14 @@ std::vector<Eigen::Vector3f> standingPoints(const std::vector<Eigen::Vector3f>& 
 // few percent of the cloud: three points on it in 500 draws is a coin toss), 20 voxels minimum
 // (a wall seen between shelves), up to 60 planes.
 planes::PlaneExtractionConfig realFrameConfig();
+// The same on a whole frame: realFrameConfig() with the extractor's own standing stage
+// (standing_height_m 0.3) in place of standingPoints().
+planes::PlaneExtractionConfig wholeFrameConfig();
 
-// extractPlanes(standingPoints(points), realFrameConfig()).walls
+// extractPlanes(standingPoints(points), realFrameConfig()).walls: the walls the room was measured
+// by (docs/realdata_room.md), with the selection of the first measurement kept, so that the pose
+// each frame's walls give stays the one the plan was made from.
+
 std::vector<planes::ObservedPlane> realFrameWalls(const std::vector<Eigen::Vector3f>& points);
 
 // The pose (x, y, yaw) of sensor B in sensor A's frame that lays most of B's walls on A's:
@@ -63,6 +69,9 @@ struct RealFrame {
   std::vector<Eigen::Vector3f> points;    // the whole frame, as the PCD has it
   std::vector<Eigen::Vector3f> standing;  // standingPoints(points)
   std::vector<planes::ObservedPlane> walls;  // realFrameWalls(points)
+  // extractPlanes(points, wholeFrameConfig()).walls: the whole frame, the extractor's own
+  // standing stage choosing where walls are searched.
+  std::vector<planes::ObservedPlane> whole_walls;
   WallAlignment in_vlp;  // the sensor's pose in the VLP-16's frame (zero for the VLP-16)
 };
 // The five frames in kNebulaSensors' order, read, extracted and aligned once per process; null

@@ -119,7 +119,12 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
     // Walls: one run along the wall. Floor and ceiling are kept whole: a storey has one of
     // each, and a floor's scan rings are metres apart, so any gap would cut it up.
     const bool wall_band = std::abs(candidate.normal.z()) < sin_vertical;
-    const Support support = findSupport(cloud, raw, search, candidate, wall_band, config.distance_threshold_m, voxel_m);
+    // The support comes from every voxel still free (`also`, the whole scan's pool, in the
+    // standing stage), not only the standing ones the candidate was drawn from: the standing
+    // test chooses where walls are searched, not what a wall's band holds, so a wall found
+    // either way has the same support (its foot's strip of floor included, as RANSAC counts it).
+    const Support support = findSupport(cloud, raw, also ? *also : search, candidate, wall_band,
+                                        config.distance_threshold_m, voxel_m);
     ObservedPlane plane = detail::describePlane(cloud, support.voxels, support.fit);
     const double nz = std::abs(plane.normal.z());
     plane.vertical = nz < sin_vertical;

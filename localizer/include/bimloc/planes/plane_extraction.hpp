@@ -32,11 +32,12 @@ struct PlaneExtractionConfig {
   double horizontal_tolerance_deg = 10; // |n_z| > cos(tol) -> horizontal (floor/ceiling), reported apart
   int max_planes = 20;                  // walls + horizontals
   // Walls first, from the voxels of x-y columns (voxel_size_m square) whose returns span at least
-  // this in height, by a vertical-plane RANSAC; then the horizontals from the rest. 0: one
-  // sequential RANSAC over the whole scan for both (the dense slabs of a dense lidar's rings
-  // then cut the walls of a cluttered room apart: docs/realdata_room.md). Off by default: with
-  // 0.3 it finds 2-13 walls in the real frames instead of 1-6, but fails three of the simulated
-  // plane tests (tests/test_planes.cpp), not yet understood (docs/results/2026-11-26-h29frames.md).
+  // this in height, by a vertical-plane RANSAC (a wall's support is still every free voxel in its
+  // band); then the horizontals from the rest. 0: one sequential RANSAC over the whole scan for
+  // both (the dense slabs of a dense lidar's rings then cut the walls of a cluttered room apart:
+  // docs/realdata_room.md). With 0.3 every Planes test passes and whole real frames give their
+  // walls (13-60 with min_inliers 20), but it is off by default: the extra clutter planes make one
+  // filter test (DuplexFaces) score the truth below a wrong pose (docs/results/2026-11-26-h29real.md).
   double standing_height_m = 0.0;
   std::uint64_t seed = 0;               // RANSAC is seeded: same scan + seed -> same planes
 };
