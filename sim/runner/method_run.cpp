@@ -55,6 +55,7 @@ MethodRun::MethodRun(const Scenario& s, const World& plan, const Simulator& sim,
   r_.storey_auto = settings.storey_auto;
   r_.method = toString(config.method);
   if (!r_.storey_auto) config.storey = storeyKey(building, sim.storey());
+  if (s.barometer.enabled) barometer_.emplace(s.barometer, s.seed);
   try {
     localizer_.emplace(building, s.sensor.T_base_lidar, config);
   } catch (const std::invalid_argument& e) {
@@ -73,6 +74,8 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
                      std::vector<PoseRow>* poses) {
   const bim::Building& building = building_;
   const auto step_start = std::chrono::steady_clock::now();
+  // The barometer's altitude first (issue 31): every method reads the same (its own stream of the seed).
+  if (barometer_) localizer_->observeAltitude(t, barometer_->read(t, truth.translation().z()), barometer_->sigma_m());
   const LocalizationResult step = localizer_->step(t, T_odom_base, points);
   estimate_ = step.T_map_base;
   const auto minute = static_cast<std::size_t>(t / 60.0);
@@ -80,9 +83,11 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
   r_.localizer_seconds_by_minute[minute] += std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
   ++updates_;
   for (const auto& w : step.warnings) r_.warnings.push_back("t=" + std::to_string(t) + ": " + w);
-  if (poses) poses->push_back({t, truth, step.T_map_base, RunScore::scored(step)});
+  const std::size_t true_storey = sim_.trajectory().storey(t);
+  const bool on_stairs = sim_.trajectory().onStairs(t);
+  if (poses) poses->push_back({t, truth, step.T_map_base, RunScore::scored(step), true_storey, on_stairs});
   r_.error_series.push_back({t, (step.T_map_base.translation() - truth.translation()).head<2>().norm(),
-                             yawErrorDeg(step.T_map_base, truth), step.state});
+                             yawErrorDeg(step.T_map_base, truth), step.state, true_storey, on_stairs});
   if (step.filter) {
     const pf::StoreyBankReport& bank = *step.filter;
     if (r_.storey_auto && bank.decided && !(last_bank_ && last_bank_->decided)) r_.storey_margin = bank.storey_margin;

@@ -39,6 +39,7 @@ class MethodRun {
   const Simulator& sim_;
   ScenarioResult r_;
   std::optional<Localizer> localizer_;
+  std::optional<Barometer> barometer_;  // with `--altitude`
   RunScore score_;
   MapErrorSampler map_error_;
   std::optional<Eigen::Isometry3d> estimate_;    // the last step's, for the snapshots

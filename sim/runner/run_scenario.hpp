@@ -95,6 +95,10 @@ struct ScenarioResult {
   struct ErrorSample {
     double time_s = 0, position_m = 0, yaw_deg = 0;
     LocalizationState state = LocalizationState::Searching;
+    // The truth's storey at this step (index into the plan's storeys; on a flight, the one the
+    // base came from until it steps off) and whether the base is on a flight (issue 31).
+    std::size_t true_storey = 0;
+    bool on_stairs = false;
   };
   std::vector<ErrorSample> error_series;
   // Wall seconds the localizer's steps took in each simulated minute (the last one partial).
@@ -136,6 +140,8 @@ struct PoseRow {
   double time_s = 0;
   Eigen::Isometry3d truth = Eigen::Isometry3d::Identity(), estimate = Eigen::Isometry3d::Identity();
   bool scored = false;
+  std::size_t true_storey = 0;  // as ScenarioResult::ErrorSample's
+  bool on_stairs = false;
 };
 
 // `trace`, when given, receives a row per weighing; `poses` a row per step. With `with_oracle`,
