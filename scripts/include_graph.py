@@ -36,9 +36,10 @@ import sys
 LAYERS = [
     ("method: planar poses, how much to print", ["localizer/geometry", "localizer/verbosity"]),
     ("method: the building model", ["localizer/bim"]),
+    ("method: storeys and stairs: which floor the robot stands on", ["localizer/storeys"]),
     ("method: wall planes from a scan", ["localizer/planes"]),
-    ("method: the localizers (paper's PF, S-Graph, peers)",
-     ["localizer/pf", "localizer/sgraph", "localizer/peers"]),
+    ("method: the localizers (paper's PF, S-Graph, peers), where to look next",
+     ["localizer/pf", "localizer/sgraph", "localizer/peers", "localizer/guide"]),
     ("method: the entry point", ["localizer"]),
     ("bench: output plumbing", ["sim/common"]),
     ("bench: world, odometry, plan generation, pictures, ROS 2 bags",

@@ -92,8 +92,10 @@ TEST(DatasetValidation, StampsMustBeFiniteAndIncreasing) {
                 "clouds/index.csv:3", "stamp is not a finite number");
   expectRefused(damaged("clouds/index.csv", [](const std::string& t) { return replaceRegex(t, ",1000\\.2[0-9]*,", ",999,"); }),
                 "clouds/index.csv:4", "does not follow the previous one");
-  expectRefused(damaged("odometry.tum", [](const std::string& t) { return replaceRegex(t, "\n1000\\.0[0-9]* ", "\nnan "); }),
+  expectRefused(damaged("odometry.tum", [](const std::string& t) { return replaceRegex(t, "\n1000\\.0[0-9]* ", "\nabc "); }),
                 "odometry.tum:2", "expected 'timestamp tx ty tz qx qy qz qw'");
+  expectRefused(damaged("odometry.tum", [](const std::string& t) { return replaceRegex(t, "\n1000\\.0[0-9]* ", "\n1000.9 "); }),
+                "odometry.tum:3", "does not follow the previous one");
 }
 
 TEST(DatasetValidation, CloudsAndOdometryMustOverlapInTime) {
@@ -120,11 +122,47 @@ TEST(DatasetValidation, CloudsAndOdometryMustOverlapInTime) {
   }
 }
 
-TEST(DatasetValidation, QuaternionsMustHaveUnitNorm) {
+// A sample of odometry.tum (or ground_truth.tum) that is no pose is dropped and counted, as
+// the bag readers do (issue 29 §5): a value "nan" or "inf" (stamp or pose), a zero quaternion,
+// one off unit norm. The truth: the lines this test damaged. A file of nothing else is refused.
+TEST(DatasetValidation, OdometrySamplesThatAreNoPoseAreDroppedAndCounted) {
+  const auto clean = sim::readDataset(cleanDataset());
+  const std::string dir = damaged("odometry.tum", [](const std::string& t) {
+    std::string out = replaceRegex(t, "\n(1000\\.0[0-9]* \\S+) \\S+ ", "\n$1 nan ");      // line 2: y
+    out = replaceRegex(out, "\n1000\\.06[0-9]* ", "\nnan ");                                // a stamp
+    out = replaceRegex(out, "\n(1000\\.1[0-9]* \\S+ \\S+ \\S+) \\S+ \\S+ \\S+ \\S+\n", "\n$1 0 0 0 0\n");
+    out = replaceRegex(out, "\n(1000\\.2[0-9]* \\S+ \\S+ \\S+) \\S+ \\S+ \\S+ \\S+\n", "\n$1 0 0 0 2\n");
+    return replaceRegex(out, "\n(1000\\.3[0-9]* \\S+ \\S+) \\S+ ", "\n$1 -inf ");        // z
+  });
+  const auto d = sim::readDataset(dir);
+  EXPECT_EQ(d.odometry_drops.read, clean.odometry.size());
+  EXPECT_EQ(d.odometry_drops.non_finite, 3u);
+  EXPECT_EQ(d.odometry_drops.zero_quaternion, 1u);
+  EXPECT_EQ(d.odometry_drops.not_unit_quaternion, 1u);
+  EXPECT_EQ(d.odometry.size(), clean.odometry.size() - 5);
+  for (const auto& p : d.odometry) EXPECT_TRUE(p.pose.matrix().allFinite());
+  EXPECT_EQ(clean.odometry_drops.dropped(), 0u);
+  EXPECT_EQ(clean.odometry_drops.read, clean.odometry.size());
+
+  // `bimloc localize` runs, and says what it dropped.
+  const auto r = runBimloc("localize '" + dir + "' --plan '" + std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc' --json");
+  EXPECT_NE(r.exit_code, 2) << r.err;
+  const auto s = nlohmann::json::parse(r.out).at("scenarios").at(0).at("recording").at("odometry");
+  EXPECT_EQ(s.at("read"), clean.odometry.size());
+  EXPECT_EQ(s.at("non_finite"), 3);
+  EXPECT_EQ(s.at("dropped"), 5);
+  EXPECT_NE(r.err.find("odometry: 5 of " + std::to_string(clean.odometry.size()) + " samples dropped (3 not finite"),
+            std::string::npos) << r.err;
+
+  // Nothing but such samples: no odometry at all, refused.
   expectRefused(damaged("odometry.tum", [](const std::string& t) {
-                  return replaceRegex(t, "\n(1000\\.0[0-9]* \\S+ \\S+ \\S+) \\S+ \\S+ \\S+ \\S+\n", "\n$1 0 0 0 0\n");
+                  return std::regex_replace(t, std::regex("\n(\\S+) \\S+ "), "\n$1 nan ");
                 }),
-                "odometry.tum:2", "quaternion (0, 0, 0, 0) does not have unit norm");
+                "odometry.tum", "no poses: all " + std::to_string(clean.odometry.size()) + " samples are no pose (" +
+                                    std::to_string(clean.odometry.size()) + " not finite");
+}
+
+TEST(DatasetValidation, QuaternionsMustHaveUnitNorm) {
   expectRefused(damaged("metadata.json", [](const std::string& t) {
                   auto doc = nlohmann::json::parse(t);
                   doc["T_base_lidar"]["quaternion_xyzw"] = {0, 0, 0, 0};

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 using namespace bimloc;
 
 namespace {
@@ -62,4 +64,39 @@ TEST(Evaluation, LostStepsAreNotScoredAndSearchingIsNotConverged) {
   EXPECT_NEAR(*r.ate_m, 0.1, 1e-9);
   EXPECT_EQ(r.losses, 1);
   EXPECT_FALSE(r.rpe_m_per_m.has_value()) << "less than 1 m walked";
+}
+
+TEST(Evaluation, TheTrueStoreyFollowsTheBaseUpTheStairsAndTheLocalizerHasFiveSeconds) {
+  // Two storeys 3 m apart (a plan's storeys copied, the second raised): the base climbs from
+  // t = 1 s to 4 s. A localizer on the new storey 2 s after it stepped off follows the change;
+  // one that stays on the old storey past 5 s is on the wrong storey: a false convergence.
+  bim::Building building = test::officeWorld().building();
+  building.storeys.resize(1);
+  building.storeys.push_back(building.storeys[0]);
+  building.storeys[1].elevation_m = building.storeys[0].elevation_m + 3.0;
+  const auto truthAt = [](double t) {
+    const double z = 0.5 + std::clamp(t - 1.0, 0.0, 3.0);  // 1 m a second up the flight
+    return test::pose(2.0 + 0.1 * t, 6.0, 0.0, z);
+  };
+  const auto walk = [&](double switch_s) {
+    sim::RunScore score(building, 0);
+    for (int k = 0; k <= 150; ++k) {
+      const double t = 0.1 * k;
+      LocalizationResult r = tracking(truthAt(t));
+      r.storey = t >= switch_s ? 1 : 0;
+      score.add(t, r, truthAt(t));
+    }
+    sim::ScenarioResult out;
+    score.finish(out);
+    EXPECT_EQ(score.trueStorey(), 1u);
+    return out;
+  };
+  const sim::ScenarioResult followed = walk(6.0), missed = walk(10.0);
+  EXPECT_EQ(followed.storey_changes, 1);
+  EXPECT_EQ(followed.storey_changes_followed, 1);
+  EXPECT_FALSE(followed.false_convergence) << "the old storey on the stairs and for 2 s after is no error";
+  EXPECT_EQ(missed.storey_changes, 1);
+  EXPECT_EQ(missed.storey_changes_followed, 0);
+  EXPECT_TRUE(missed.false_convergence);
+  EXPECT_EQ(sim::RunScore::floorStorey(building, 0, 0.5, 2.0), std::nullopt) << "half way up: on no floor";
 }

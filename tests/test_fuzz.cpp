@@ -202,8 +202,12 @@ TEST(Fuzz, DamagedDatasetsNeverCrashAndAreRefusedByName) {
     const std::size_t line = m.where.rfind("line ", 0) == 0 ? std::stoul(m.where.substr(5)) : 0;
     const bool comment = line > 0 && lineOf(text, line).rfind("#", 0) == 0;
     const bool data_row = line > 1 && !comment;
+    // A TUM line that is no pose (a number not finite) is dropped and counted, not refused
+    // (issue 29 §5: odometry problems are warned with counts): the warning names the dataset.
+    const bool tum = file.size() > 4 && file.compare(file.size() - 4, 4, ".tum") == 0;
+    const bool must_warn = m.damage == Damage::kNonFinite && !comment && tum;
     const bool must_fail =
-        (m.damage == Damage::kNonFinite && !comment) ||
+        (m.damage == Damage::kNonFinite && !comment && !tum) ||
         (m.damage == Damage::kDuplication && !pcd && file != "metadata.json" && data_row) ||
         (m.damage == Damage::kTruncation && (pcd || file == "metadata.json") && m.text.size() + 1 < text.size());
     if (checkRun(r, dir + "/", trace, 2)) {
@@ -214,6 +218,10 @@ TEST(Fuzz, DamagedDatasetsNeverCrashAndAreRefusedByName) {
     }
     if (must_fail) {
       EXPECT_NE(r.err.find(dir + "/"), std::string::npos) << trace << ": " << r.err;
+    }
+    if (must_warn && r.exit_code != 2) {
+      EXPECT_NE(r.err.find(dir), std::string::npos) << trace << ": " << r.err;
+      EXPECT_NE(r.err.find("dropped"), std::string::npos) << trace << ": " << r.err;
     }
     fs::remove_all(dir);
   }

@@ -214,7 +214,7 @@ TEST(Scenario, ErrorsNameTheFileAndLine) {
   expectError(head() + "motion: {max_speed_mps: -0.5}\n", 3, "motion.max_speed_mps must be in (0, 3]");
   expectError(head() + "motion:\n  gait:\n    body_height_m: 0.2\n", 5, "body_radius_m must be below motion.gait.body_height_m");
   // Choices.
-  expectError(head() + "motion:\n  type: tuor\n", 4, "must be one of stand, waypoints, tour, random_walk, got 'tuor' (did you mean 'tour'?)");
+  expectError(head() + "motion:\n  type: tuor\n", 4, "must be one of stand, waypoints, tour, random_walk, disambiguate, got 'tuor' (did you mean 'tour'?)");
   expectError(head() + "odometry: {preset: wheeled}\n", 3, "odometry.preset must be one of legged, lidar, perfect, custom");
   expectError(head() + "motion:\n  type: tour\n  rooms: [R105]\n  waypoints: [[1, 2]]\n", 6,
               "'motion.waypoints' is only used with type: waypoints");

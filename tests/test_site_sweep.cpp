@@ -41,5 +41,25 @@ TEST(SiteSweep, OneRowPerPresetAndMethodAndAPlot) {
   EXPECT_NE(bad.err.find("did you mean 'construction'?"), std::string::npos) << bad.err;
 }
 
+// --oracle reaches the robustness sweep's runs: each row and each run carry the oracle's fields,
+// and the table its columns (it was ignored there before).
+TEST(SiteSweep, OracleFieldsInEveryRowAndRun) {
+  const std::string office = std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc";
+  const std::string sweep = "sweep '" + office + "' --rooms-per-storey 1 --seeds 1 --duration 3 --sites exact --methods pf --oracle";
+  const auto r = test::runBimloc(sweep + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto out = nlohmann::json::parse(r.out);
+  ASSERT_EQ(out["rows"].size(), 1u);
+  for (const char* key : {"decidable", "decidable_localized", "median_decision_lag_s", "median_oracle_seconds"})
+    EXPECT_TRUE(out["rows"][0].contains(key)) << key;
+  ASSERT_EQ(out["scenarios"].size(), 1u);
+  EXPECT_TRUE(out["scenarios"][0].contains("decidable_at_s"));
+  EXPECT_TRUE(out["scenarios"][0].contains("oracle"));
+  const auto table = test::runBimloc(sweep);
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_NE(table.out.find("dec. localized"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("oracle [s/run]"), std::string::npos) << table.out;
+}
+
 }  // namespace
 }  // namespace bimloc::sim

@@ -4,6 +4,7 @@
 
 #include "peers/peer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -84,10 +85,7 @@ struct Localizer::Impl {
   Eigen::Isometry3d T_base_lidar;
   LocalizerConfig config;
   std::vector<std::size_t> storeys;  // the candidates of the first search
-  struct AltitudeReading {
-    double stamp_s = 0, altitude_m = 0, sigma_m = 0;
-  };
-  std::optional<AltitudeReading> altitude;  // the latest observeAltitude(), if any
+  std::optional<storeys::AltitudeReading> altitude;  // the latest observeAltitude(), if any
   std::unique_ptr<pf::StoreyBank> bank;            // the current (or last) search (not for peers)
   std::unique_ptr<peers::PeerLocalizer> peer;      // methods Amcl, Ndt
   std::optional<Eigen::Isometry3d> peer_T_map_odom;  // the peer's, since it converged
@@ -100,18 +98,57 @@ struct Localizer::Impl {
   std::optional<std::size_t> tracked_storey;
   int losses = 0;
   std::vector<std::string> warnings;
+  // Storeys (issue 31). The stages see the odometry levelled: its z less z_shift_m, so that on
+  // the storey the robot stands on it reads base_height_m, as on the start storey (the filter
+  // puts the base at the storey's elevation + the odometry's z).
+  storeys::StoreyFollower follower;
+  std::optional<double> base_height_m;  // the odometry's z at the first step: base_link above the floor
+  double z_shift_m = 0;
+  std::optional<PlanarPose> last_odom;  // the last step's odometry: how far a turn may be skewed
+  bool pending_search = false;      // the tracker lost the plan on the stairs: search once off them
+  bool arrival_unconfirmed = false;  // the tracker started by an arrival has not matched the new storey's walls yet
+  std::vector<StoreyLink> links;
+  std::vector<StoreyGraph> graphs;  // the graphs of the storeys left
+  std::vector<std::unique_ptr<sgraph::SGraphTracker>> retired;  // ... owned here
+  // Where to look next (guide/): the places of the last weighing as map <- odom (which odometry
+  // leaves fixed), each with its margin; the planner of the storey they are on; the goal kept
+  // between plannings, in the odom frame.
+  struct KeptPlace {
+    PlanarPose T_map_odom = PlanarPose::Zero();
+    double margin = 0;
+  };
+  std::vector<KeptPlace> places;
+  std::size_t places_storey = 0;
+  std::unique_ptr<guide::GoalPlanner> planner;
+  std::size_t planner_storey = 0;
+  std::optional<guide::LookGoal> goal;
+  std::vector<KeptPlace> goal_places;  // the places the goal was planned for
+  double goal_stamp_s = -1e300;
 
-  Impl(const bim::Building& b, const Eigen::Isometry3d& mount, const LocalizerConfig& c) : building(b), T_base_lidar(mount), config(seeded(c)) {}
+  Impl(const bim::Building& b, const Eigen::Isometry3d& mount, const LocalizerConfig& c)
+      : building(b), T_base_lidar(mount), config(seeded(c)), follower(b, c.storeys) {}
 
   bool usesTracker() const { return config.method == LocalizerMethod::SGraph; }
   bool lost() const { return tracker && tracker->state() == sgraph::TrackingState::Lost; }
   // Steps of Localizer::step, in order.
   bool wantsPoints(const Eigen::Isometry3d& T_odom_base) const;
   void track(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
-  void search(const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
+  void search(const std::vector<planes::ObservedPlane>& walls, const pf::RangeProfile& profile, LocalizationResult& r);
   void handOver(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
   void searchAgain(LocalizationResult& r);
+  Eigen::Isometry3d levelled(const Eigen::Isometry3d& T_odom_base) const {
+    Eigen::Isometry3d T = T_odom_base;
+    T.translation().z() -= z_shift_m;
+    return T;
+  }
+  void firstStep(const Eigen::Isometry3d& T_odom_base, LocalizationResult& r);
+  void follow(double stamp_s, const Eigen::Isometry3d& odom, LocalizationResult& r);
+  void followSearch(double stamp_s, const Eigen::Isometry3d& odom, LocalizationResult& r);
+  void arrive(const storeys::StoreyArrival& a, double stamp_s, const Eigen::Isometry3d& odom, LocalizationResult& r);
   void describe(LocalizationResult& r) const;
+  void keepPlaces(const Eigen::Isometry3d& T_odom_base, const LocalizationResult& r);
+  void suggestGoal(const Eigen::Isometry3d& T_odom_base, LocalizationResult& r);
+  static bool samePlaces(const std::vector<KeptPlace>& a, const std::vector<KeptPlace>& b);
   void placeInRoom(LocalizationResult& r) const;
   void stepPeer(const Eigen::Isometry3d& T_odom_base, const PointSource& points_lidar, LocalizationResult& r);
 };
@@ -144,7 +181,8 @@ Localizer::~Localizer() = default;
 Localizer::Localizer(Localizer&&) noexcept = default;
 
 void Localizer::observeAltitude(double stamp_s, double altitude_m, double sigma_m) {
-  impl_->altitude = Impl::AltitudeReading{stamp_s, altitude_m, sigma_m};
+  if (!std::isfinite(stamp_s) || !std::isfinite(altitude_m) || !std::isfinite(sigma_m) || sigma_m < 0) return;  // no reading
+  impl_->altitude = storeys::AltitudeReading{stamp_s, altitude_m, sigma_m};
 }
 
 LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<Eigen::Vector3f>& points_lidar) {
@@ -159,18 +197,42 @@ LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_od
     m.stepPeer(T_odom_base, points_lidar, r);
     return r;
   }
-  // predict -> observe (only what a stage will look at) -> track -> search -> hand over or lose -> describe
-  if (m.filter_active) m.bank->predict(T_odom_base);
+  if (!m.base_height_m) m.firstStep(T_odom_base, r);
+  // predict -> follow the storey -> observe (only what a stage will look at) -> track ->
+  // search -> hand over or lose -> describe
+  Eigen::Isometry3d odom = m.levelled(T_odom_base);
+  if (m.filter_active) m.bank->predict(odom);
+  m.follow(stamp_s, odom, r);
+  odom = m.levelled(T_odom_base);  // an arrival levels it anew
   std::vector<planes::ObservedPlane> walls;
-  if (m.wantsPoints(T_odom_base)) {
-    walls = planes::extractPlanes(points_lidar(), m.config.planes).walls;
+  pf::RangeProfile profile;  // for the filter's free-space evidence (pf/range_profile.hpp)
+  if (m.wantsPoints(odom)) {
+    const std::vector<Eigen::Vector3f> points = points_lidar();
+    walls = planes::extractPlanes(points, m.config.planes).walls;
+    if (m.filter_active && m.config.pf.free_space_evidence) {
+      profile = pf::rangeProfile(points, m.T_base_lidar, pf::profileConfig(m.config.pf));
+      // The turn spans the interval since the last step, stamped at its middle: its rays are off
+      // the stamp's pose by up to half the motion over it (range_profile.hpp).
+      if (m.last_odom) {
+        const PlanarPose moved = between(*m.last_odom, planarPose(odom));
+        profile.skew_yaw_rad = 0.5 * std::abs(moved.z()), profile.skew_m = 0.5 * moved.head<2>().norm();
+      }
+    }
     r.used_points = true;
     r.walls_observed = static_cast<int>(walls.size());
   }
-  if (m.tracker) m.track(stamp_s, T_odom_base, walls, r);
-  if (m.filter_active) m.search(walls, r);
-  if (m.usesTracker() && m.filter_active && m.bank->converged()) m.handOver(stamp_s, T_odom_base, walls, r);
+  m.last_odom = planarPose(odom);
+  if (m.tracker) m.track(stamp_s, odom, walls, r);
+  // Off the floor (on the stairs), the storey's walls are not where the filter looks for them.
+  if (m.filter_active && !m.follower.climbing()) m.search(walls, profile, r);
+  if (m.usesTracker() && m.filter_active && m.bank->converged()) m.handOver(stamp_s, odom, walls, r);
   m.describe(r);
+  if (m.filter_active && r.state == LocalizationState::Searching) {
+    m.keepPlaces(T_odom_base, r);
+    m.suggestGoal(T_odom_base, r);
+  } else {
+    m.places.clear(), m.goal.reset();
+  }
   return r;
 }
 
@@ -186,16 +248,23 @@ void Localizer::Impl::track(double stamp_s, const Eigen::Isometry3d& T_odom_base
   for (const auto& w : last_track->warnings) r.warnings.push_back("sgraph: " + w);
   r.sgraph = last_track;
   if (last_track->covariance) track_covariance = *last_track->covariance;
+  if (last_track->keyframe_added && last_track->plan_walls_matched >= config.sgraph.min_plan_associations && !lost())
+    arrival_unconfirmed = false;
   if (!was_lost && lost()) {
     ++losses;
-    searchAgain(r);
+    if (follower.climbing()) {
+      pending_search = true;  // on the stairs: search once on a floor
+    } else {
+      searchAgain(r);
+    }
   } else if (was_lost && !lost()) {
     filter_active = false;  // the tracker found the plan again by itself: the search is moot
+    pending_search = false;
   }
 }
 
-void Localizer::Impl::search(const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r) {
-  pf::StoreyBankReport report = bank->update(walls);
+void Localizer::Impl::search(const std::vector<planes::ObservedPlane>& walls, const pf::RangeProfile& profile, LocalizationResult& r) {
+  pf::StoreyBankReport report = bank->update(walls, &profile);
   for (const auto& w : report.filter.warnings) r.warnings.push_back("pf: " + w);
   r.filter = std::move(report);
   if (bank->converged() && !convergence_stamp) convergence_stamp = r.stamp_s;
@@ -223,8 +292,11 @@ void Localizer::Impl::searchAgain(LocalizationResult& r) {
   pf::ParticleFilterConfig c = config.pf;
   c.prior_rooms.clear();
   c.prior_pose = planarPose(last_track->T_map_base);
-  c.prior_sigma_m = config.relocalize_sigma_m;
-  c.prior_sigma_yaw_deg = config.relocalize_sigma_yaw_deg;
+  // Just arrived by the stairs and the new storey's walls never confirmed: the landing is the
+  // prior (the pose carried across, a flight's odometry off it).
+  c.prior_sigma_m = arrival_unconfirmed ? config.storeys.arrival_sigma_m : config.relocalize_sigma_m;
+  c.prior_sigma_yaw_deg = arrival_unconfirmed ? config.storeys.arrival_sigma_yaw_deg : config.relocalize_sigma_yaw_deg;
+  pending_search = false;
   c.seed += static_cast<std::uint64_t>(losses);  // a fresh draw per search
   // The place is known to within the prior: what is left to settle is the pose within it, and
   // that takes waiting for walls, not a sharper test between places. The wall-line rule (a
@@ -234,7 +306,112 @@ void Localizer::Impl::searchAgain(LocalizationResult& r) {
   c.match_wall_lines = false;
   bank = std::make_unique<pf::StoreyBank>(building, std::vector<std::size_t>{*tracked_storey}, T_base_lidar, c);
   filter_active = true;
-  r.warnings.push_back("tracking lost: searching again within " + std::to_string(config.relocalize_sigma_m) + " m of the last pose");
+  r.warnings.push_back("tracking lost: searching again within " + std::to_string(c.prior_sigma_m) + " m of the last pose" +
+                       (arrival_unconfirmed ? " (the new storey's walls not confirmed after the stairs)" : ""));
+}
+
+// The first step: the base's height above its floor (the odometry starts on the floor), and
+// with an altitude and no storey given, the storeys it rules out are not searched.
+void Localizer::Impl::firstStep(const Eigen::Isometry3d& T_odom_base, LocalizationResult& r) {
+  const double z = T_odom_base.translation().z();
+  base_height_m = std::isfinite(z) ? z : 0.0;
+  if (!altitude || !config.storey.empty() || storeys.size() < 2) return;
+  const std::vector<std::size_t> kept = storeys::storeysAtAltitude(building, storeys, *altitude, *base_height_m, config.storeys);
+  if (kept.empty()) {
+    r.warnings.push_back("altitude " + std::to_string(altitude->altitude_m) + " m fits no storey's floor: not used to choose the storey");
+  } else if (kept.size() < storeys.size()) {
+    storeys = kept;
+    bank = std::make_unique<pf::StoreyBank>(building, storeys, T_base_lidar, config.pf);
+  }
+}
+
+// Whether the robot arrived on another storey: its height on the tracked storey (the levelled
+// odometry's, or the altitude when that rules the tracked storey out: an odometry without
+// height) and the plan's stairs (storeys::StoreyFollower).
+void Localizer::Impl::follow(double stamp_s, const Eigen::Isometry3d& odom, LocalizationResult& r) {
+  if (!config.storeys.follow) return;
+  std::optional<Eigen::Isometry3d> T_map_odom;
+  std::size_t storey = 0;
+  if (tracker && tracked_storey) {
+    T_map_odom = tracker->T_map_odom(), storey = *tracked_storey;
+  } else if (!usesTracker() && bank->converged()) {
+    T_map_odom = bank->T_map_odom(), storey = *bank->storey();
+  }
+  if (!T_map_odom) return followSearch(stamp_s, odom, r);
+  Eigen::Vector3d base = (*T_map_odom * odom).translation();
+  if (altitude && storeys::storeysAtAltitude(building, {storey}, *altitude, *base_height_m, config.storeys).empty())
+    base.z() = altitude->altitude_m;
+  if (const auto arrival = follower.step(stamp_s, storey, base, *base_height_m, altitude)) {
+    arrive(*arrival, stamp_s, odom, r);
+  } else if (pending_search && !follower.climbing()) {
+    searchAgain(r);  // lost on the stairs, back on the floor it left
+  }
+}
+
+// Searching (no pose yet) while the robot climbs: the filter's storeys are at the wrong height
+// until it stands again; then the search starts over on the storeys that far above (or below)
+// the ones it considered.
+void Localizer::Impl::followSearch(double stamp_s, const Eigen::Isometry3d& odom, LocalizationResult& r) {
+  const double rise = odom.translation().z() - *base_height_m;
+  follower.noteHeight(stamp_s, odom.translation().z());  // no storey tracked: only the height's history
+  if (!(std::abs(rise) > config.storeys.floor_tolerance_m) || !follower.settled()) return;
+  std::vector<std::size_t> next;
+  for (const std::size_t s : bank->storeys()) {
+    const auto above = storeys::storeyAtHeight(building, pf::StoreyBank::candidateStoreys(building),
+                                               building.storeys[s].elevation_m + *base_height_m + rise, *base_height_m,
+                                               config.storeys.floor_tolerance_m);
+    if (above && std::find(next.begin(), next.end(), *above) == next.end()) next.push_back(*above);
+  }
+  if (altitude) {
+    const auto kept = storeys::storeysAtAltitude(building, next, *altitude, *base_height_m, config.storeys);
+    if (!kept.empty()) next = kept;
+  }
+  if (next.empty()) return;  // no floor that far up: wait
+  z_shift_m += rise;
+  bank = std::make_unique<pf::StoreyBank>(building, next, T_base_lidar, config.pf);
+  Eigen::Isometry3d now = odom;
+  now.translation().z() -= rise;
+  bank->predict(now);
+  r.warnings.push_back("the base climbed " + std::to_string(rise) + " m while searching: the search starts again " +
+                       std::to_string(next.size()) + " storey(s) " + (rise > 0 ? "up" : "down"));
+}
+
+// Onto the new storey: the pose carried across (map <- odom kept in x, y, yaw; z on the new
+// floor), the odometry levelled there, the old storey's graph kept and a new graph started.
+void Localizer::Impl::arrive(const storeys::StoreyArrival& a, double stamp_s, const Eigen::Isometry3d& odom, LocalizationResult& r) {
+  Eigen::Isometry3d T_map_odom = tracker && tracked_storey ? tracker->T_map_odom() : *bank->T_map_odom();
+  const double rise = odom.translation().z() - *base_height_m;  // the odometry's height over the floor it left
+  z_shift_m += rise;
+  Eigen::Isometry3d now = odom;
+  now.translation().z() -= rise;
+  T_map_odom.translation().z() = building.storeys[a.to].elevation_m;
+  StoreyLink link;
+  link.from_storey = a.from, link.to_storey = a.to, link.flight = a.flight, link.stamp_s = stamp_s;
+  link.T_map_base = T_map_odom * now;
+  links.push_back(link);
+  r.arrival = link;
+  const std::string by = a.flight >= 0 ? " by " + building.stairs[static_cast<std::size_t>(a.flight)].name : std::string();
+  r.warnings.push_back("arrived on storey '" + building.storeys[a.to].name + "' from '" + building.storeys[a.from].name + "'" + by);
+  arrival_unconfirmed = true;
+  pending_search = false;
+  if (usesTracker()) {
+    graphs.push_back({a.from, tracker.get(), link});
+    retired.push_back(std::move(tracker));
+    tracker = std::make_unique<sgraph::SGraphTracker>(building.storeys[a.to], T_base_lidar, config.sgraph, T_map_odom);
+    tracked_storey = a.to;
+    filter_active = false;  // a search on the storey left is moot
+    return;
+  }
+  // The filter methods track with their particles: a search on the new storey, the landing its prior.
+  pf::ParticleFilterConfig c = config.pf;
+  c.prior_rooms.clear();
+  c.prior_pose = planarPose(link.T_map_base);
+  c.prior_sigma_m = config.storeys.arrival_sigma_m;
+  c.prior_sigma_yaw_deg = config.storeys.arrival_sigma_yaw_deg;
+  c.seed += static_cast<std::uint64_t>(links.size()) * 7919u;
+  bank = std::make_unique<pf::StoreyBank>(building, std::vector<std::size_t>{a.to}, T_base_lidar, c);
+  bank->predict(now);
+  filter_active = true;
 }
 
 void Localizer::Impl::describe(LocalizationResult& r) const {
@@ -244,7 +421,7 @@ void Localizer::Impl::describe(LocalizationResult& r) const {
   if (tracker && last_track) {
     r.state = lost() ? LocalizationState::Lost : LocalizationState::Tracking;
     r.T_map_base = last_track->T_map_base;
-    r.T_map_odom = last_track->T_map_odom;
+    r.T_map_odom = last_track->T_map_odom * Eigen::Translation3d(0, 0, -z_shift_m);
     r.storey = tracked_storey;
     r.leading_storey = *tracked_storey;
     r.covariance = track_covariance;
@@ -252,6 +429,7 @@ void Localizer::Impl::describe(LocalizationResult& r) const {
     r.state = bank->converged() ? LocalizationState::Tracking : LocalizationState::Searching;
     r.T_map_base = bank->T_map_base();
     r.T_map_odom = bank->T_map_odom();
+    if (r.T_map_odom) *r.T_map_odom = *r.T_map_odom * Eigen::Translation3d(0, 0, -z_shift_m);
     r.storey = bank->storey();
     r.leading_storey = bank->leader();
     r.covariance = particleCovariance(bank->filter());
@@ -301,9 +479,62 @@ void Localizer::Impl::stepPeer(const Eigen::Isometry3d& T_odom_base, const Point
   placeInRoom(r);
 }
 
+// The places of this step's weighing (if the filter weighed): its best and the rivals within
+// the evidence margin, kept as map <- odom so that later steps move them with the odometry.
+void Localizer::Impl::keepPlaces(const Eigen::Isometry3d& T_odom_base, const LocalizationResult& r) {
+  if (!r.filter || !r.filter->filter.weighed) return;
+  const pf::UpdateReport& u = r.filter->filter;
+  const PlanarPose odom_inv = inverse(planarPose(T_odom_base));
+  places.clear();
+  places_storey = r.filter->leader;
+  if (!u.path_best) return;
+  places.push_back({compose(*u.path_best, odom_inv), 0.0});
+  for (const auto& [pose, margin] : u.path_rivals) places.push_back({compose(pose, odom_inv), margin});
+}
+
+bool Localizer::Impl::samePlaces(const std::vector<KeptPlace>& a, const std::vector<KeptPlace>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if ((a[i].T_map_odom.head<2>() - b[i].T_map_odom.head<2>()).norm() > 0.5 ||
+        std::abs(wrapAngle(a[i].T_map_odom.z() - b[i].T_map_odom.z())) > 10.0 * kDeg)
+      return false;
+  return true;
+}
+
+// The places now and a goal: planned again when the places change, the goal is reached, or it
+// is config.guide.replan_interval_s old; kept in the odom frame in between.
+void Localizer::Impl::suggestGoal(const Eigen::Isometry3d& T_odom_base, LocalizationResult& r) {
+  const PlanarPose odom = planarPose(T_odom_base);
+  if (places.size() < 2) {
+    goal.reset();
+    return;
+  }
+  for (const auto& p : places) r.places.push_back({compose(p.T_map_odom, odom), p.margin});
+  if (!config.guide.enabled) return;
+  const bool reached = goal && (goal->T_odom_goal.head<2>() - odom.head<2>()).norm() < config.guide.goal_reached_m;
+  if (!samePlaces(places, goal_places) || reached || r.stamp_s - goal_stamp_s >= config.guide.replan_interval_s) {
+    if (!planner || planner_storey != places_storey) {
+      planner = std::make_unique<guide::GoalPlanner>(building.storeys.at(places_storey), config.guide);
+      planner_storey = places_storey;
+    }
+    goal = planner->suggest(r.places, odom);
+    goal_places = places;
+    goal_stamp_s = r.stamp_s;
+  }
+  if (!goal) return;
+  // The kept goal, seen from now: the motion from the base, and where it is in each place.
+  r.goal = *goal;
+  r.goal->motion = between(odom, goal->T_odom_goal);
+  r.goal->distance_m = r.goal->motion.head<2>().norm();
+  r.goal->T_map_goal.clear();
+  for (const auto& p : places) r.goal->T_map_goal.push_back(compose(p.T_map_odom, goal->T_odom_goal));
+}
+
 const LocalizerConfig& Localizer::config() const { return impl_->config; }
 const pf::StoreyBank* Localizer::filter() const { return impl_->bank.get(); }
 const sgraph::SGraphTracker* Localizer::tracker() const { return impl_->tracker.get(); }
+std::vector<Localizer::StoreyGraph> Localizer::storeyGraphs() const { return impl_->graphs; }
+const std::vector<StoreyLink>& Localizer::storeyLinks() const { return impl_->links; }
 const std::vector<std::string>& Localizer::warnings() const { return impl_->warnings; }
 
 }  // namespace bimloc

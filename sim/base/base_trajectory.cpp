@@ -296,6 +296,8 @@ double BaseTrajectory::distance_m(double t_s) const {
   return impl_->timeline.at(std::clamp(t_s, 0.0, impl_->duration_s)).distance;
 }
 
+double BaseTrajectory::restAfter(double t_s) const { return impl_->timeline.restAfter(t_s); }
+
 double BaseTrajectory::floor_z(double t_s) const {
   return impl_->timeline.at(std::clamp(t_s, 0.0, impl_->duration_s)).floor_z;
 }

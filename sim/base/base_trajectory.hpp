@@ -65,6 +65,9 @@ class BaseTrajectory {
   bool multiStorey() const { return storeys().size() > 1; }
   // Distance walked by time t (metres).
   double distance_m(double t_s) const;
+  // The first moment at or after t when the base is at rest (the end of its turn or straight
+  // move under way): where a new plan can take over without a jump in speed.
+  double restAfter(double t_s) const;
 
   BaseTrajectory(BaseTrajectory&&) noexcept;
   BaseTrajectory& operator=(BaseTrajectory&&) noexcept;

@@ -43,6 +43,10 @@ struct MotionConfig {
   // round of its rooms, and only when it can reach none, it wanders where it is) instead of
   // standing: a robot localizing keeps moving. Generated tours set it.
   bool explore_after_tour = false;
+  // The base walks where the localizer suggests looking (LocalizationResult::goal) while it
+  // searches, and follows the script (a tour) when there is no goal and after convergence
+  // (sim/runner/guided_walk.hpp). Scenario `type: disambiguate`, `--motion disambiguate`.
+  bool disambiguate = false;
   double max_speed_mps = 0.8;
   double max_turn_rate_dps = 60.0;
   double max_accel_mps2 = 0.5;

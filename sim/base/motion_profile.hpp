@@ -64,6 +64,12 @@ class Timeline {
   const Eigen::Vector2d& position() const { return position_; }
   double yaw() const { return yaw_; }
   PlanarState at(double t_s) const;  // holds the last state after end_s()
+  // The first moment at or after t_s when the body is at rest: the end of the phase under way
+  // (every phase is rest to rest), or t_s itself when none is.
+  double restAfter(double t_s) const {
+    const Phase* p = find(t_s);
+    return p ? p->t1 : t_s;
+  }
 
  private:
   struct Phase {

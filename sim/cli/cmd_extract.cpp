@@ -18,6 +18,32 @@ struct ExtractArgs {
   bool infer_rooms = false;
 };
 
+// A storey's name for the stairs table, cut to keep the table within 100 columns; "landing"
+// for a flight's end between storeys.
+std::string storeyLabel(const bimloc::bim::Building& b, int s) {
+  if (s < 0 || s >= static_cast<int>(b.storeys.size())) return "landing";
+  const std::string& name = b.storeys[static_cast<std::size_t>(s)].name;
+  return name.size() <= 16 ? name : name.substr(0, 15) + "~";
+}
+
+// One row per flight: where it goes, its steps and where the numbers came from.
+void printStairs(const bimloc::bim::Building& b) {
+  using bimloc::cli::fixed;
+  if (b.stairs.empty()) {
+    std::cout << "\nno stairs or ramps read\n";
+    return;
+  }
+  std::cout << "\n" << b.stairs.size() << " stair flight(s):\n";
+  bimloc::cli::Table table({"#", "class", "from", "to", "risers", "riser [m]", "going [m]", "width [m]", "source"});
+  for (std::size_t i = 0; i < b.stairs.size(); ++i) {
+    const auto& f = b.stairs[i];
+    table.add({std::to_string(i + 1), f.ifc_type, storeyLabel(b, f.bottom_storey), storeyLabel(b, f.top_storey),
+               std::to_string(f.risers), fixed(f.riser_height_m, 3), fixed(f.going_m, 3), fixed(f.width_m, 2),
+               f.source});
+  }
+  table.print(std::cout, 100);
+}
+
 void printReport(const bimloc::bim::Building& b, double seconds, const std::vector<std::string>& files,
                  const std::string& out) {
   using bimloc::cli::fixed;
@@ -27,6 +53,7 @@ void printReport(const bimloc::bim::Building& b, double seconds, const std::vect
     table.add({s.name, fixed(s.elevation_m, 2), std::to_string(s.rooms.size()), std::to_string(s.walls.size()),
                std::to_string(s.wallPlaneCount()), std::to_string(s.mesh.triangles.size())});
   table.print(std::cout);
+  printStairs(b);
   if (!b.warnings.empty()) {
     std::cout << "\n" << b.warnings.size() << " warning(s):\n";
     for (const auto& w : b.warnings) std::cout << "  - " << w << "\n";

@@ -91,8 +91,9 @@ Recording openDataset(const std::string& dir, const SensorRange& range) {
   rec.storey = data.storey;
   rec.ground_truth = data.ground_truth;
   rec.start_s = data.scans.front().stamp_s;
-  // The TUM reader refuses a sample that is no pose; jumps are the checks' to count.
-  rec.checks.odometry.read = data.odometry.size();
+  // The TUM reader drops (and counts) the samples that are no pose, as the bag readers do.
+  rec.checks.odometry = data.odometry_drops;
+  rec.checks.ground_truth = data.ground_truth_drops;
   rec.checks.odometry_jumps = findJumps(data.odometry);
   rec.turns = [d = rec.dataset, range](const std::function<void(const RecordedTurn&)>& visit) {
     for (const auto& scan : d->scans) {

@@ -38,6 +38,7 @@ struct RunArgs {
   bool oracle = false;  // --oracle: each run's information limit (docs/oracle.md)
   bool multi_storey = false;  // --multi-storey: every storey the stairs reach (docs/multi_storey.md)
   bool altitude = false;      // --altitude: the localizer is given a barometer's altitude
+  std::string motion = "tour";  // --motion tour|disambiguate (docs/disambiguate.md)
 };
 
 void run(const RunArgs& args) {
@@ -69,6 +70,7 @@ void run(const RunArgs& args) {
     if (args.multi_storey) s = multiStoreyTour(std::move(s));
     s.barometer.enabled = s.barometer.enabled || args.altitude;
   }
+  bimloc::cli::applyMotion(scenarios, args.motion);
 
   std::vector<bool> generated(scenarios.size());
   for (std::size_t i = args.scenarios.size(); i < scenarios.size(); ++i) generated[i] = generate;
@@ -190,6 +192,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_flag("--altitude", args->altitude,
                 "the localizer is given the base's altitude as a barometer reads it (noise, offset, drift: "
                 "docs/multi_storey.md)");
+  cmd->add_option("--motion", args->motion, bimloc::cli::kMotionHelp)->check(bimloc::cli::motionCheck())->capture_default_str();
   cmd->add_flag("--oracle", args->oracle,
                 "also each run's information limit (docs/oracle.md): decidable_at_s (from when the scans ruled out every "
                 "place but the true one), decision_lag_s and decision_ratio; slow (its cost is in the JSON)");

@@ -44,6 +44,7 @@ struct SweepArgs {
   bool oracle = false;  // --oracle: each run's information limit (docs/oracle.md)
   bool multi_storey = false;  // --multi-storey: every storey the stairs reach (docs/multi_storey.md)
   bool altitude = false;      // --altitude: the localizer is given a barometer's altitude
+  std::string motion = "tour";  // --motion tour|disambiguate (docs/disambiguate.md)
 };
 
 // One row: a group of runs (a plan's storey, or all of them).
@@ -95,11 +96,12 @@ void run(const SweepArgs& args) {
     if (args.multi_storey) s = multiStoreyTour(std::move(s));
     s.barometer.enabled = s.barometer.enabled || args.altitude;
   }
+  bimloc::cli::applyMotion(scenarios, args.motion);
   if (!args.sites.empty() || !args.methods.empty() || !args.plot.empty()) {
     bimloc::cli::RobustnessOptions o;
     o.sites = args.sites.empty() ? std::vector<std::string>{args.site.empty() ? "exact" : args.site} : args.sites;
     o.methods = args.methods.empty() ? std::vector<std::string>{args.method} : args.methods;
-    o.plot = args.plot, o.json = args.json, o.jobs = args.jobs;
+    o.plot = args.plot, o.json = args.json, o.jobs = args.jobs, o.oracle = args.oracle;
     std::string plans;
     for (const auto& p : args.plans) plans += (plans.empty() ? "" : ", ") + std::filesystem::path(p).filename().string();
     o.title = "robustness: " + plans + ", " + std::to_string(scenarios.size()) + (scenarios.size() == 1 ? " start, " : " starts, ") +
@@ -234,6 +236,7 @@ void addSweepCommand(CLI::App& app) {
                 "on each (docs/multi_storey.md)");
   cmd->add_flag("--altitude", args->altitude,
                 "the localizer is given the base's altitude as a barometer reads it (docs/multi_storey.md)");
+  cmd->add_option("--motion", args->motion, bimloc::cli::kMotionHelp)->check(bimloc::cli::motionCheck())->capture_default_str();
   cmd->add_flag("--oracle", args->oracle,
                 "also each run's information limit (docs/oracle.md): from when the scans ruled out every place but the "
                 "true one (decidable_at_s), the localizer's lag and ratio beyond it, and the summary's quantiles; slow");

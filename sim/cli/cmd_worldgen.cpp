@@ -1,5 +1,5 @@
 // bimloc worldgen NAME [--out PATH] | --all [--out DIR] | --list
-//                 | --random SEED [--style S] [--rooms N] [--random-count K] [--out PATH]
+//                 | --random SEED [--style S] [--rooms N] [--storeys N] [--random-count K] [--out PATH]
 #include "sim/cli/commands.hpp"
 #include "sim/common/atomic_file.hpp"
 #include "sim/worldgen/ifc4_writer.hpp"
@@ -25,6 +25,7 @@ struct WorldgenArgs {
   std::optional<std::uint64_t> random_seed;
   std::string style;  // empty: office, or cycling through the styles with --random-count
   int rooms = 0;
+  int storeys = 1;
   int random_count = 0;
 };
 
@@ -41,14 +42,17 @@ std::string joinedNames() {
 }
 
 std::string summary(const WorldSpec& spec) {
-  std::size_t walls = 0, rooms = 0, doors = 0;
+  std::size_t walls = 0, rooms = 0, doors = 0, stairs = 0, flights = 0;
   for (const StoreySpec& s : spec.storeys) {
     walls += s.walls.size();
     rooms += s.rooms.size();
     doors += s.doors.size();
+    stairs += s.stairs.size();
+    for (const StairSpec& stair : s.stairs) flights += stair.flights.size();
   }
   return std::to_string(spec.storeys.size()) + " storey(s), " + std::to_string(rooms) + " rooms, " +
          std::to_string(walls) + " walls, " + std::to_string(doors) + " doors" +
+         (stairs > 0 ? ", " + std::to_string(stairs) + " stairs (" + std::to_string(flights) + " flights)" : "") +
          (spec.space_boundaries ? ", space boundaries" : ", no space boundaries");
 }
 
@@ -79,12 +83,15 @@ void runRandom(const WorldgenArgs& args) {
   }
   const std::uint64_t first = *args.random_seed;
   const std::size_t first_style = args.style.empty() ? 0 : static_cast<std::size_t>(randomStyle(args.style));
+  if (args.storeys > 1 && (args.style.empty() || !randomStyleStacks(static_cast<RandomStyle>(first_style))))
+    throw std::invalid_argument("--storeys " + std::to_string(args.storeys) + " goes with --style office or apartment_block");
   std::vector<Generated> worlds;
   for (int k = 0; k < count; ++k) {
     RandomWorldOptions options;
-    options.style = static_cast<RandomStyle>(args.style.empty() ? static_cast<std::size_t>(k) % randomStyleNames().size()
+    options.style = static_cast<RandomStyle>(args.style.empty() ? static_cast<std::size_t>(k) % kCycledRandomStyles
                                                                 : first_style);
     options.rooms = args.rooms;
+    options.storeys = args.storeys;
     RandomWorldInfo info;
     WorldSpec spec = randomWorld(first + static_cast<std::uint64_t>(k), options, &info);
     const std::string path = into_directory ? (fs::path(args.out) / (spec.name + ".ifc")).string() : args.out;
@@ -99,8 +106,8 @@ void runRandom(const WorldgenArgs& args) {
 
 void run(const WorldgenArgs& args) {
   if (args.random_seed) return runRandom(args);
-  if (!args.style.empty() || args.rooms > 0 || args.random_count > 0) {
-    throw std::invalid_argument("--style, --rooms and --random-count go with --random SEED");
+  if (!args.style.empty() || args.rooms > 0 || args.random_count > 0 || args.storeys > 1) {
+    throw std::invalid_argument("--style, --rooms, --storeys and --random-count go with --random SEED");
   }
   if (args.list) {
     for (const std::string& n : worldNames()) {
@@ -143,17 +150,29 @@ void addWorldgenCommand(CLI::App& app) {
           ".\n"
           "The committed plans in worlds/ are regenerated with: bimloc worldgen --all --out worlds\n"
           "Random floors, for sweeps of the localizer (sim/worldgen/random_world.hpp):\n"
-          "  bimloc worldgen --random SEED [--style S] [--rooms N] [--out FILE|DIR]\n"
-          "      one floor, DIR/random_STYLE_SEED.ifc in a directory (default: ./)\n"
+          "  bimloc worldgen --random SEED [--style S] [--rooms N] [--storeys N] [--out FILE|DIR]\n"
+          "      one floor (or building), DIR/random_STYLE_SEED.ifc in a directory (default: ./);\n"
+          "      with --storeys N > 1, random_STYLE_SEED_Nstoreys.ifc\n"
           "  bimloc worldgen --random SEED --random-count K [--style S] [--rooms N] --out DIR\n"
           "      K floors, seeds SEED..SEED+K-1, cycling office, residential, school, hall unless --style\n"
           "  Styles: office (rows of identical offices on a straight, L or T corridor), residential\n"
           "  (identical apartments, every other mirrored), school (classrooms, assembly hall), hall (open\n"
-          "  hall with free-standing walls, rooms opening into it). About half the floors are drawn\n"
-          "  symmetric (rows turned 180 deg or mirrored, mirrored wings) and then changed in one small\n"
-          "  place (a door moved or missing, a wall moved, a short free-standing wall): the case where a\n"
-          "  filter converges in the twin room. Some rooms have no door (shafts, stores). Each line\n"
-          "  printed names the floor's rooms, walls, doors and hard features. Same SEED, same bytes.");
+          "  hall with free-standing walls, rooms opening into it), apartment_block (a stair core - lobby\n"
+          "  and stairwell - with a flat on either side, the two flats mirror images: hall, living room,\n"
+          "  kitchen, bathroom, one or two bedrooms; 12-14 rooms, --rooms is ignored). About half the\n"
+          "  floors are drawn symmetric (rows turned 180 deg or mirrored, mirrored wings, mirrored flats)\n"
+          "  and then changed in one small place (a door moved or missing, a wall moved, a short\n"
+          "  free-standing wall): the case where a filter converges in the twin room; the other\n"
+          "  apartment blocks keep twin flats and differ only in the core's doors. Some rooms have no\n"
+          "  door (shafts, stores). Each line printed names the floor's rooms, walls, doors and hard\n"
+          "  features. Same SEED, same bytes.\n"
+          "  --storeys N (office, apartment_block): N identical floors 'storey height' apart (the same\n"
+          "  walls, rooms and doors; the doors in the facade on the ground floor only; rooms and walls of\n"
+          "  floor k named Sk-...), slabs between them, and a half-turn stair in the stair core from each\n"
+          "  floor to the next: IfcStair decomposed into two IfcStairFlights (NumberOfRisers,\n"
+          "  NumberOfTreads, RiserHeight, TreadLength, walking line, swept body of the steps) and an\n"
+          "  IfcSlab .LANDING., the floor slab above voided (IfcOpeningElement) where the flights rise\n"
+          "  through it. An office's stair takes the first office room deep enough for it.");
   cmd->add_option("name", args->name, "world to generate: " + joinedNames());
   cmd->add_flag("--all", args->all, "generate every world, as NAME.ifc in the --out directory");
   cmd->add_option("--out", args->out,
@@ -162,11 +181,15 @@ void addWorldgenCommand(CLI::App& app) {
                   "Default: '.'");
   cmd->add_flag("--list", args->list, "list the worlds with a one-line description and exit");
   cmd->add_option("--random", args->random_seed, "generate a random floor from this seed (see above)");
-  cmd->add_option("--style", args->style, "with --random: office, residential, school or hall (default: office;\n"
-                                          "with --random-count, cycling through all four)")
+  cmd->add_option("--style", args->style, "with --random: office, residential, school, hall or apartment_block\n"
+                                          "(default: office; with --random-count, cycling through the first four)")
       ->check(CLI::IsMember(randomStyleNames()));
   cmd->add_option("--rooms", args->rooms, "with --random: about this many rooms (default: the style's usual size)")
       ->check(CLI::Range(1, 1000));
+  cmd->add_option("--storeys", args->storeys,
+                  "with --random and --style office or apartment_block: this many storeys joined by stairs\n"
+                  "(default: 1, no stairs)")
+      ->check(CLI::Range(1, kMaxRandomStoreys));
   cmd->add_option("--random-count", args->random_count, "with --random: this many floors, seeds SEED, SEED+1, ...")
       ->check(CLI::Range(1, 100000));
   cmd->callback([args] { run(*args); });

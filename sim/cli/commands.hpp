@@ -26,6 +26,12 @@ inline constexpr const char* kMethodHelp =
     "amcl (peer: ROS-style AMCL on a 2D slice of the plan) or ndt (peer: HDL-style branch-and-bound, then NDT)";
 inline CLI::IsMember methodCheck() { return CLI::IsMember({"sgraph", "pf", "pf-no-rooms", "amcl", "ndt"}); }
 
+// `--motion tour|disambiguate`, the same on run and sweep (docs/disambiguate.md).
+inline constexpr const char* kMotionHelp =
+    "how the base moves: tour (the scenarios' own motion; generated starts tour their rooms) or disambiguate (while "
+    "the localizer searches, it walks where the localizer suggests looking, then tours; docs/disambiguate.md)";
+inline CLI::IsMember motionCheck() { return CLI::IsMember({"tour", "disambiguate"}); }
+
 // `--site PRESET`: one of sim/world/site_config.hpp's presets; a typo gets the nearest one.
 CLI::Validator siteCheck();
 

@@ -80,6 +80,16 @@ ScenarioResult runOne(const Scenario& s, WorldCache& worlds, const RunPoolOption
 
 }  // namespace
 
+void applyMotion(std::vector<Scenario>& scenarios, const std::string& motion) {
+  if (motion == "tour") return;
+  if (motion != "disambiguate") throw std::invalid_argument("--motion must be tour or disambiguate, got '" + motion + "'");
+  for (auto& s : scenarios) {
+    s.motion.disambiguate = true;
+    if (s.motion.kind != sim::MotionConfig::Kind::Tour) s.motion.kind = sim::MotionConfig::Kind::Tour, s.motion.rooms.clear();
+    s.motion.skip_unreachable_rooms = s.motion.explore_after_tour = true;
+  }
+}
+
 void applyPrior(std::vector<Scenario>& scenarios, const std::vector<std::string>& rooms, const std::string& pose) {
   std::vector<double> v;
   if (!pose.empty()) {

@@ -62,6 +62,10 @@ struct PooledRun {
 // --config FILE.yaml: its localizer keys over every scenario's own (sections merged key by key).
 void applyConfig(std::vector<sim::Scenario>& scenarios, const std::string& config_file);
 void applyPrior(std::vector<sim::Scenario>& scenarios, const std::vector<std::string>& rooms, const std::string& pose);
+// --motion: "tour" leaves every scenario's motion as it is (generated starts tour their rooms);
+// "disambiguate" makes each base walk where its localizer suggests looking while it searches
+// (motion.disambiguate), its script a tour (a scenario standing or wandering explores instead).
+void applyMotion(std::vector<sim::Scenario>& scenarios, const std::string& motion);
 
 // Keeps the scenarios whose start room is one of `rooms` (all when empty); throws naming an
 // unknown room.

@@ -86,6 +86,7 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
           {"true_room", r.true_room}, {"position_error_m", r.position_error_m},
           {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", valueOrNull(r.ate_m)},
           {"rpe_m_per_m", valueOrNull(r.rpe_m_per_m)}, {"map_rmse_m", valueOrNull(r.map_rmse_m)}, {"losses", r.losses},
+          {"storey_changes", r.storey_changes}, {"storey_changes_followed", r.storey_changes_followed},
           {"path_length_m", r.path_length_m}, {"wall_deviations", wallsJson(r.wall_deviations)}, {"site", r.site},
           {"wall_offset_error_m", valueOrNull(r.wall_offset_error_m)},
           {"false_convergence", r.false_convergence}, {"convergence_margin", valueOrNull(r.convergence_margin)},
@@ -99,7 +100,7 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
 }
 
 nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) {
-  int localized = 0, false_convergences = 0, losses = 0;
+  int localized = 0, false_convergences = 0, losses = 0, storey_changes = 0, storey_changes_followed = 0;
   double sim_seconds = 0;
   std::vector<double> times, ates;
   for (const auto& s : scenarios) {
@@ -108,6 +109,8 @@ nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) 
     false_convergences += false_convergence;
     sim_seconds += s.at("sim_seconds").get<double>();
     losses += s.at("losses").get<int>();
+    storey_changes += s.value("storey_changes", 0);
+    storey_changes_followed += s.value("storey_changes_followed", 0);
     if (!s.at("convergence_time_s").is_null()) times.push_back(s["convergence_time_s"].get<double>());
     if (!s.at("ate_m").is_null() && !false_convergence) ates.push_back(s["ate_m"].get<double>());
   }
@@ -115,6 +118,7 @@ nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) 
   const nlohmann::json median_ate = ates.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(ates));
   nlohmann::json summary = {{"runs", scenarios.size()}, {"localized", localized}, {"false_convergences", false_convergences},
                             {"median_convergence_s", median_time}, {"median_ate_m", median_ate}, {"losses", losses},
+                            {"storey_changes", storey_changes}, {"storey_changes_followed", storey_changes_followed},
                             {"sim_seconds", sim_seconds}, {"wall_seconds", wall_seconds}};
   if (nlohmann::json dropped = recordingTotal(scenarios); !dropped.is_null()) summary["recording"] = std::move(dropped);
   if (hasOracle(scenarios)) summary.update(oracleSummary(scenarios));
@@ -188,7 +192,10 @@ void printRunTable(const nlohmann::json& report, std::ostream& out) {
       << s["false_convergences"].get<int>() << " false convergences, median convergence "
       << (s["median_convergence_s"].is_null() ? std::string("-") : fixed(s["median_convergence_s"].get<double>(), 1) + " s")
       << ", median ATE " << (s["median_ate_m"].is_null() ? std::string("-") : fixed(s["median_ate_m"].get<double>(), 3) + " m")
-      << ", " << s["losses"].get<int>() << " losses of track; " << fixed(s["sim_seconds"].get<double>(), 0) << " s simulated in " << fixed(s["wall_seconds"].get<double>(), 1)
+      << ", " << s["losses"].get<int>() << " losses of track; "
+      << (s.value("storey_changes", 0) > 0 ? std::to_string(s.value("storey_changes_followed", 0)) + " of " +
+                                                  std::to_string(s.value("storey_changes", 0)) + " storey changes followed; "
+                                            : std::string()) << fixed(s["sim_seconds"].get<double>(), 0) << " s simulated in " << fixed(s["wall_seconds"].get<double>(), 1)
       << " s\n";
   if (oracle) printOracleSummary(s, out);
   for (const auto& r : results)

@@ -113,6 +113,7 @@ void writeErrorPlot(const std::string& out_dir, const std::string& scenario_name
                        : e.state == S::Lost    ? sim::ErrorPlotState::Lost
                                                : sim::ErrorPlotState::Tracking;
     data.samples.push_back({e.time_s, e.position_m, e.yaw_deg, state});
+    if (&e != &result.error_series.front() && e.true_storey != (&e - 1)->true_storey) data.storey_change_times_s.push_back(e.time_s);
   }
   const std::string dir = (std::filesystem::path(out_dir) / fileSafe(scenario_name)).string();
   std::filesystem::create_directories(dir);

@@ -32,6 +32,7 @@ int runRobustness(const std::vector<sim::Scenario>& base, WorldCache& worlds, co
   const auto start = std::chrono::steady_clock::now();
   RunPoolOptions pool;
   pool.jobs = o.jobs, pool.progress_label = "sweeping " + std::to_string(scenarios.size()) + " runs";
+  pool.oracle = o.oracle;
   const auto runs = runPool(scenarios, std::vector<bool>(scenarios.size(), true), worlds, pool);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -66,14 +67,28 @@ int runRobustness(const std::vector<sim::Scenario>& base, WorldCache& worlds, co
                      .dump()
               << "\n";
   } else {
-    Table table({"site", "deviation [m]", "method", "runs", "localized", "rate", "false", "median [s]", "p90 [s]",
-                 "median ATE [m]", "lost"});
-    for (const auto& r : rows)
-      table.add({r["site"], fixed(r["deviation_m"].get<double>(), 2), r["method"], std::to_string(runsThatRan(r)),
-                 std::to_string(r["localized"].get<int>()), fixed(r["rate"].get<double>(), 2),
-                 r["false_convergences"].get<int>() ? "FALSE " + std::to_string(r["false_convergences"].get<int>()) : "0",
-                 cell(r["median_convergence_s"], 1), cell(r["p90_convergence_s"], 1), cell(r["median_ate_m"], 3),
-                 std::to_string(r["losses"].get<int>())});
+    std::vector<std::string> header{"site", "deviation [m]", "method", "runs", "localized", "rate", "false", "median [s]",
+                                    "p90 [s]", "median ATE [m]", "lost"};
+    // With --oracle: the same columns as the plain sweep's (decidable starts, the lag and the ratio).
+    if (o.oracle) header.insert(header.end(), {"decidable", "dec. localized", "lag [s]", "ratio", "oracle [s/run]"});
+    Table table(header);
+    for (const auto& r : rows) {
+      std::vector<std::string> row{r["site"], fixed(r["deviation_m"].get<double>(), 2), r["method"],
+                                   std::to_string(runsThatRan(r)), std::to_string(r["localized"].get<int>()),
+                                   fixed(r["rate"].get<double>(), 2),
+                                   r["false_convergences"].get<int>() ? "FALSE " + std::to_string(r["false_convergences"].get<int>()) : "0",
+                                   cell(r["median_convergence_s"], 1), cell(r["p90_convergence_s"], 1), cell(r["median_ate_m"], 3),
+                                   std::to_string(r["losses"].get<int>())};
+      if (o.oracle) {
+        const bool any = r.contains("decidable");  // no run of the row had an oracle (none ran)
+        row.insert(row.end(), {any ? std::to_string(r["decidable"].get<int>()) : "-",
+                               any ? std::to_string(r["decidable_localized"].get<int>()) : "-",
+                               any ? cell(r["median_decision_lag_s"], 1) + " / " + cell(r["p90_decision_lag_s"], 1) : "-",
+                               any ? cell(r["median_decision_ratio"], 2) + " / " + cell(r["p90_decision_ratio"], 2) : "-",
+                               any ? cell(r["median_oracle_seconds"], 1) : "-"});
+      }
+      table.add(row);
+    }
     table.print(std::cout);
     std::size_t not_run = 0;
     for (const auto& r : runs) not_run += !r.error.empty();

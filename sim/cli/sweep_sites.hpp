@@ -18,6 +18,7 @@ struct RobustnessOptions {
   std::string title;
   bool json = false;
   int jobs = 1;
+  bool oracle = false;  // --oracle: each run's information limit, and its columns per row
 };
 
 // Runs every (site, method) over `base` (the start scenarios); prints; writes the plot.

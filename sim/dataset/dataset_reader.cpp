@@ -2,6 +2,7 @@
 
 #include "sim/dataset/dataset_metadata.hpp"
 #include "sim/dataset/pcd_header.hpp"
+#include "sim/dataset/recording_checks.hpp"
 #include "sim/common/json_errors.hpp"
 
 #include <nlohmann/json.hpp>
@@ -45,7 +46,21 @@ void requireIncreasing(double stamp, const double* previous, const std::string& 
     fail(where, "stamp " + seconds(stamp) + " does not follow the previous one (" + seconds(*previous) + ")");
 }
 
-std::vector<StampedPose> readTum(const std::string& path, bool required) {
+// One number of a TUM line: "nan" and "inf" parse (as the samples they make are counted, not
+// refused); anything else that is no number is an error.
+bool tumNumber(std::istringstream& ss, double& value) {
+  std::string token;
+  if (!(ss >> token)) return false;
+  const char* begin = token.c_str();
+  char* end = nullptr;
+  value = std::strtod(begin, &end);
+  return end != begin && *end == '\0';
+}
+
+// The samples of a TUM file. A sample that is no pose (a value not finite, a quaternion zero
+// or off unit norm) is dropped and counted in `drops`, as the bag readers do; a line that is
+// no sample, or a stamp that goes back, is an error.
+std::vector<StampedPose> readTum(const std::string& path, bool required, PoseSampleDrops& drops) {
   std::ifstream in(path);
   if (!in) {
     if (required) fail(path, "cannot open");
@@ -56,17 +71,25 @@ std::vector<StampedPose> readTum(const std::string& path, bool required) {
   for (int n = 1; std::getline(in, line); ++n) {
     if (line.empty() || line[0] == '#') continue;
     std::istringstream ss(line);
-    double t, x, y, z, qx, qy, qz, qw;
-    if (!(ss >> t >> x >> y >> z >> qx >> qy >> qz >> qw)) fail(at(path, n), "expected 'timestamp tx ty tz qx qy qz qw'");
+    double v[8];
+    for (double& x : v)
+      if (!tumNumber(ss, x)) fail(at(path, n), "expected 'timestamp tx ty tz qx qy qz qw'");
+    const double t = v[0];
+    if (!std::isfinite(t)) {  // no time to put it at: dropped with the non-finite poses
+      ++drops.read, ++drops.non_finite;
+      continue;
+    }
     requireIncreasing(t, out.empty() ? nullptr : &out.back().stamp_s, at(path, n));
-    StampedPose p;
-    p.stamp_s = t;
-    p.pose.linear() = unitQuaternion(qx, qy, qz, qw, at(path, n)).toRotationMatrix();
-    p.pose.translation() = Eigen::Vector3d(x, y, z);
-    if (!p.pose.matrix().allFinite()) fail(at(path, n), "non-finite pose");
-    out.push_back(p);
+    const auto pose = checkedPose(v[1], v[2], v[3], v[4], v[5], v[6], v[7], drops);
+    if (!pose) continue;
+    out.push_back({t, *pose});
   }
   return out;
+}
+
+std::string noPoseCounts(const PoseSampleDrops& drops) {
+  return std::to_string(drops.non_finite) + " not finite, " + std::to_string(drops.zero_quaternion) +
+         " with a zero quaternion, " + std::to_string(drops.not_unit_quaternion) + " with a quaternion not of unit norm";
 }
 
 // The value at `key` of an object, or an error naming the key's path in the file.
@@ -180,9 +203,16 @@ RecordedDataset readDataset(const std::string& dir) {
   readMetadata((fs::path(dir) / "metadata.json").string(), d);
   d.scans = readIndex(dir);
   const std::string odometry = (fs::path(dir) / "odometry.tum").string();
-  d.odometry = readTum(odometry, true);
+  d.odometry = readTum(odometry, true, d.odometry_drops);
+  if (d.odometry.empty() && d.odometry_drops.read > 0)
+    fail(odometry, "no poses: all " + std::to_string(d.odometry_drops.read) + " samples are no pose (" +
+                       noPoseCounts(d.odometry_drops) + ")");
   if (d.odometry.empty()) fail(odometry, "no poses");
-  d.ground_truth = readTum((fs::path(dir) / "ground_truth.tum").string(), false);
+  const std::string ground_truth = (fs::path(dir) / "ground_truth.tum").string();
+  d.ground_truth = readTum(ground_truth, false, d.ground_truth_drops);
+  if (d.ground_truth.empty() && d.ground_truth_drops.read > 0)
+    fail(ground_truth, "no poses: all " + std::to_string(d.ground_truth_drops.read) + " samples are no pose (" +
+                           noPoseCounts(d.ground_truth_drops) + ")");
   const double s0 = d.scans.front().stamp_s, s1 = d.scans.back().stamp_s;
   requireOverlap(s0, s1, "the clouds", d.odometry.front().stamp_s, d.odometry.back().stamp_s, "odometry.tum", dir);
   if (!d.ground_truth.empty())

@@ -38,12 +38,7 @@ struct PointDrops {
 PointDrops keepUsablePoints(std::vector<Eigen::Vector3f>& xyz, std::vector<double>* time_s, const SensorRange& range,
                             std::size_t already_non_finite = 0);
 
-// Odometry (or ground-truth) samples that are no pose: dropped, by reason.
-struct PoseSampleDrops {
-  std::size_t read = 0;
-  std::size_t non_finite = 0, zero_quaternion = 0, not_unit_quaternion = 0;
-  std::size_t dropped() const { return non_finite + zero_quaternion + not_unit_quaternion; }
-};
+// PoseSampleDrops (dataset_reader.hpp): odometry (or ground-truth) samples that are no pose.
 
 // The pose of a sample, or nothing (counted in `drops`) when it is not finite or its
 // quaternion is zero or off unit norm by more than 1e-3.

@@ -61,6 +61,18 @@ void convergenceLine(const ErrorPlotData& data, const ErrorPlotPanel& p, double 
   render::segment({x, p.y0}, {x, p.y1}, 1.5 * s, hex(kErrorPlotConvergenceRgb));
 }
 
+// A dashed vertical line at each change of storey.
+void storeyChangeLines(const ErrorPlotData& data, const ErrorPlotPanel& p, double s) {
+  for (const double t : data.storey_change_times_s) {
+    if (!std::isfinite(t)) continue;
+    const double x = p.toPixel(t, 1).x();
+    if (x < p.x0 || x > p.x1) continue;
+    const double dash = 6 * s;
+    for (double y = p.y0; y < p.y1; y += 2 * dash)
+      render::segment({x, y}, {x, std::min(p.y1, y + dash)}, 1.5 * s, hex(kErrorPlotStoreyChangeRgb));
+  }
+}
+
 // The title, and under it what the vertical line and the shading mean (a row of their own: a
 // long scenario name would run into them).
 void header(const ErrorPlotData& data, const ErrorPlotLayout& l) {
@@ -82,6 +94,12 @@ void header(const ErrorPlotData& data, const ErrorPlotLayout& l) {
       render::strokeRect(r, 1, kGrid);
     };
   };
+  if (!data.storey_change_times_s.empty())
+    items.push_back({"storey change", [&](const render::Rect& r) {
+                       const double x = 0.5 * (r.x0 + r.x1), mid = 0.5 * (r.y0 + r.y1);
+                       render::segment({x, r.y0}, {x, mid - 1}, 1.5 * s, hex(kErrorPlotStoreyChangeRgb));
+                       render::segment({x, mid + 2}, {x, r.y1}, 1.5 * s, hex(kErrorPlotStoreyChangeRgb));
+                     }});
   items.push_back({"searching", swatch(ErrorPlotState::Searching)});
   items.push_back({"tracking", swatch(ErrorPlotState::Tracking)});
   items.push_back({"lost", swatch(ErrorPlotState::Lost)});
@@ -99,6 +117,7 @@ Image renderErrorPlotImage(const ErrorPlotData& data, const ErrorPlotOptions& op
       if (data.show_states) shadeStates(data, *p);
       render::panelGrid(*p, l.time_ticks, s);
       convergenceLine(data, *p, s);
+      storeyChangeLines(data, *p, s);
     }
     // At least two pixels: the pixel under a point of the curve is wholly its colour.
     const double width = std::max(2.0, 1.4 * s);

@@ -24,6 +24,8 @@ struct ErrorPlotData {
   std::string title;
   std::vector<ErrorPlotSample> samples;  // by time
   std::optional<double> convergence_time_s;
+  // When the base stepped onto another storey (issue 31): a dashed vertical line each, keyed.
+  std::vector<double> storey_change_times_s;
   // The panels' names (", log scale" is added), and whether the states are shaded and keyed
   // (a run's plot) or not (`bimloc eval`: an estimate's error, no localizer state).
   std::string position_label = "position error [m]", yaw_label = "yaw error [deg]";
@@ -39,6 +41,7 @@ struct ErrorPlotOptions {
 constexpr std::uint32_t kErrorPlotPositionRgb = 0x2166ac;
 constexpr std::uint32_t kErrorPlotYawRgb = 0xc2410c;
 constexpr std::uint32_t kErrorPlotConvergenceRgb = 0x1b1b1b;
+constexpr std::uint32_t kErrorPlotStoreyChangeRgb = 0x7b3294;
 constexpr std::uint32_t kErrorPlotSearchingRgb = 0xfbefd0;
 constexpr std::uint32_t kErrorPlotTrackingRgb = 0xe2f1de;
 constexpr std::uint32_t kErrorPlotLostRgb = 0xf9d6d6;

@@ -24,7 +24,37 @@ double yawErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::abs(wrapAngle(yawOf(a.linear()) - yawOf(b.linear()))) * 180.0 / M_PI;
 }
 
+std::optional<std::size_t> RunScore::floorStorey(const bim::Building& building, std::size_t start_storey, double start_z, double z) {
+  constexpr double kOnFloorM = 0.3;  // a riser is 0.15-0.2 m: within this, the base stands on the floor
+  const double start_floor = building.storeys.at(start_storey).elevation_m;
+  std::optional<std::size_t> best;
+  double best_d = kOnFloorM;
+  for (std::size_t s = 0; s < building.storeys.size(); ++s) {
+    const double d = std::abs(z - start_z - (building.storeys[s].elevation_m - start_floor));
+    if (d < best_d || (s == start_storey && d <= best_d)) best_d = d, best = s;
+  }
+  return best;
+}
+
+// The true storey by the base's height; the changes and whether the localizer followed them.
+void RunScore::followStorey(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth) {
+  if (!start_z_) start_z_ = truth.translation().z();
+  const std::optional<std::size_t> on = floorStorey(building_, start_storey_, *start_z_, truth.translation().z());
+  on_stairs_ = !on;
+  if (on && *on != storey_) {
+    storey_ = *on;
+    changed_at_ = t;
+    change_followed_ = false;
+    ++storey_changes_;
+  }
+  if (!change_followed_ && changed_at_ && t <= *changed_at_ + kFollowWindowS && step.storey == storey_) {
+    change_followed_ = true;
+    ++storey_changes_followed_;
+  }
+}
+
 bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth) {
+  followStorey(t, step, truth);
   truth_ = truth;
   estimate_ = step.T_map_base;
   losses_ = step.losses;
@@ -41,7 +71,10 @@ bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isomet
   if (!scored(step)) return first;  // lost: it says it does not know
   // Right place, wrong storey is a false convergence too: the plan's x, y repeat on every storey.
   const double error = (estimate_.translation() - truth.translation()).head<2>().norm();
-  if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg || *step.storey != storey_) false_convergence_ = true;
+  // The storey it left counts as wrong once the localizer had its window to follow.
+  const bool following = changed_at_ && t <= *changed_at_ + kFollowWindowS;
+  const bool wrong_storey = *step.storey != storey_ && !on_stairs_ && !following;
+  if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg || wrong_storey) false_convergence_ = true;
   sum_sq_ += error * error;
   ++after_;
   track_.emplace_back(planarPose(truth), planarPose(estimate_));
@@ -78,6 +111,8 @@ void RunScore::finish(ScenarioResult& r) const {
   r.converged = converged_;
   r.false_convergence = false_convergence_;
   r.losses = losses_;
+  r.storey_changes = storey_changes_;
+  r.storey_changes_followed = storey_changes_followed_;
   if (converged_) {
     r.convergence_time_s = convergence_time_;
     r.found_room = found_room_;

@@ -3,7 +3,11 @@
 // errors, ATE (RMSE of position after convergence, in the plan's frame, no alignment) and
 // false convergence (declared converged, or tracking, while more than 0.5 m or 10 degrees
 // off, or on another storey than the truth's, at any time; a localizer that says it is lost
-// is not wrong with confidence), RPE and losses of track.
+// is not wrong with confidence), RPE and losses of track. The true storey follows the base
+// (issue 31): the storey whose floor its z stands on, from the start storey's floor and the
+// truth's height change; a change of storey is followed when the localizer is on the new
+// storey within kFollowWindowS of the base leaving the flight, and until then (and while the
+// base is on the stairs) the old storey is not a false convergence.
 #pragma once
 
 #include "sim/runner/run_scenario.hpp"
@@ -15,8 +19,9 @@ namespace bimloc::sim {
 
 class RunScore {
  public:
-  // `storey`: the true storey (an index into building.storeys).
-  RunScore(const bim::Building& building, std::size_t storey) : building_(building), storey_(storey) {}
+  // `storey`: the true storey at the start (an index into building.storeys).
+  RunScore(const bim::Building& building, std::size_t storey) : building_(building), storey_(storey), start_storey_(storey) {}
+  static constexpr double kFollowWindowS = 5.0;
 
   // After each localizer step at time t, with the true pose at that time. Returns true on
   // the step where the localizer declared convergence.
@@ -28,10 +33,23 @@ class RunScore {
   }
   // Fills the result's scores from the last step.
   void finish(ScenarioResult& result) const;
+  std::size_t trueStorey() const { return storey_; }  // at the last step
+  bool onStairs() const { return on_stairs_; }         // ... between floors
+
+  // The storey whose floor a base at height z stands on, given the start storey and the
+  // base's height there (base_link above its floor); none between floors (on the stairs).
+  static std::optional<std::size_t> floorStorey(const bim::Building& building, std::size_t start_storey, double start_z, double z);
 
  private:
+  void followStorey(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth);
+
   const bim::Building& building_;
-  std::size_t storey_;
+  std::size_t storey_, start_storey_;
+  std::optional<double> start_z_;
+  bool on_stairs_ = false;
+  std::optional<double> changed_at_;  // the base stepped onto storey_ then (the last change)
+  bool change_followed_ = true;
+  int storey_changes_ = 0, storey_changes_followed_ = 0;
   Eigen::Isometry3d truth_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d estimate_ = Eigen::Isometry3d::Identity();
   bool converged_ = false, false_convergence_ = false;

@@ -56,7 +56,7 @@ RecordingRun localizeRecording(const bim::Building& building, std::size_t truth_
       const double t = turn.stamp_s - start_s;
       score.add(t, *last, T);
       r.error_series.push_back({t, (last->T_map_base.translation() - T.translation()).head<2>().norm(),
-                                yawErrorDeg(last->T_map_base, T), last->state, truth_storey});
+                                yawErrorDeg(last->T_map_base, T), last->state, score.trueStorey(), score.onStairs(), last->storey});
     }
     if (observe) observe(turn, *last);
   });

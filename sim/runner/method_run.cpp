@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 
 namespace bimloc::sim {
 namespace {
@@ -65,8 +66,10 @@ MethodRun::MethodRun(const Scenario& s, const World& plan, const Simulator& sim,
 
 void MethodRun::snapshotNow(const char* phase, double t, const Eigen::Isometry3d& truth, const SnapshotHook& snapshot) const {
   const pf::StoreyBank* bank = localizer_->filter();  // null for the peers (AMCL, NDT)
-  snapshot({phase, t, bank ? &bank->filter() : nullptr, bank ? bank->leader() : sim_.storey(), truth, localizer_->tracker(),
-            estimate_});
+  // The storey being tracked (it follows the robot up and down the stairs), else the filter's leading one.
+  const std::size_t storey = storey_ ? *storey_ : bank ? bank->leader() : sim_.storey();
+  const bool filter_there = bank && bank->leader() == storey;
+  snapshot({phase, t, filter_there ? &bank->filter() : nullptr, storey, truth, localizer_->tracker(), estimate_});
 }
 
 void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Localizer::PointSource& points,
@@ -78,16 +81,17 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
   if (barometer_) localizer_->observeAltitude(t, barometer_->read(t, truth.translation().z()), barometer_->sigma_m());
   const LocalizationResult step = localizer_->step(t, T_odom_base, points);
   estimate_ = step.T_map_base;
+  storey_ = step.storey;
+  last_state_ = step.state, last_goal_ = step.goal;
   const auto minute = static_cast<std::size_t>(t / 60.0);
   if (r_.localizer_seconds_by_minute.size() <= minute) r_.localizer_seconds_by_minute.resize(minute + 1, 0.0);
   r_.localizer_seconds_by_minute[minute] += std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
   ++updates_;
+  searching_ = step.state == LocalizationState::Searching;
   for (const auto& w : step.warnings) r_.warnings.push_back("t=" + std::to_string(t) + ": " + w);
-  const std::size_t true_storey = sim_.trajectory().storey(t);
-  const bool on_stairs = sim_.trajectory().onStairs(t);
-  if (poses) poses->push_back({t, truth, step.T_map_base, RunScore::scored(step), true_storey, on_stairs});
+  if (poses) poses->push_back({t, truth, step.T_map_base, RunScore::scored(step)});
   r_.error_series.push_back({t, (step.T_map_base.translation() - truth.translation()).head<2>().norm(),
-                             yawErrorDeg(step.T_map_base, truth), step.state, true_storey, on_stairs});
+                             yawErrorDeg(step.T_map_base, truth), step.state, 0, false, step.storey});
   if (step.filter) {
     const pf::StoreyBankReport& bank = *step.filter;
     if (r_.storey_auto && bank.decided && !(last_bank_ && last_bank_->decided)) r_.storey_margin = bank.storey_margin;
@@ -101,7 +105,12 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
   if (snapshot && updates_ == kClusteringUpdate && step.state == LocalizationState::Searching)
     snapshotNow("clustering", t, truth, snapshot);
   map_error_.step(step, scenario_.sensor.T_base_lidar, points);
-  if (score_.add(t, step, truth)) {
+  const bool converged_now = score_.add(t, step, truth);
+  r_.error_series.back().true_storey = score_.trueStorey();
+  r_.error_series.back().on_stairs = score_.onStairs();
+  if (poses) poses->back().true_storey = score_.trueStorey(), poses->back().on_stairs = score_.onStairs();
+  if (step.arrival && snapshot) snapshotNow("storey_change", t, truth, snapshot);
+  if (converged_now) {
     if (step.filter) r_.convergence_margin = step.filter->filter.path_margin;
     if (snapshot) snapshotNow("convergence", t, truth, snapshot);
   }

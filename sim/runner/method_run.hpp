@@ -9,6 +9,7 @@
 #include "sim/simulation/simulator.hpp"
 
 #include <optional>
+#include <random>
 #include <vector>
 
 namespace bimloc::sim {
@@ -27,6 +28,12 @@ class MethodRun {
             const Eigen::Isometry3d& truth, const SnapshotHook& snapshot, std::vector<TraceRow>* trace,
             std::vector<PoseRow>* poses = nullptr);
 
+  // Whether the localizer is still searching (not converged) after its last step; true before.
+  bool searching() const { return searching_; }
+  // The last step's state and suggested goal: what a steered base follows (GuidedWalk).
+  LocalizationState lastState() const { return last_state_; }
+  const std::optional<guide::LookGoal>& lastGoal() const { return last_goal_; }
+
   // The snapshot of `phase` now (initialization before the first step).
   void snapshotNow(const char* phase, double t, const Eigen::Isometry3d& truth, const SnapshotHook& snapshot) const;
 
@@ -42,11 +49,15 @@ class MethodRun {
   std::optional<Barometer> barometer_;  // with `--altitude`
   RunScore score_;
   MapErrorSampler map_error_;
+  LocalizationState last_state_ = LocalizationState::Searching;
+  std::optional<guide::LookGoal> last_goal_;
   std::optional<Eigen::Isometry3d> estimate_;    // the last step's, for the snapshots
+  std::optional<std::size_t> storey_;            // ... and its storey
   std::optional<pf::UpdateReport> last_verdict_;  // the last update the path evidence spoke at
   std::size_t verdict_storey_ = 0;                // ... and the storey it spoke of
   std::optional<pf::StoreyBankReport> last_bank_;
   int updates_ = 0;
+  bool searching_ = true;
 };
 
 }  // namespace bimloc::sim

@@ -1,5 +1,6 @@
 #include "sim/runner/run_scenario.hpp"
 
+#include "sim/runner/guided_walk.hpp"
 #include "sim/runner/method_run.hpp"
 #include "sim/base/outside_rooms.hpp"
 
@@ -8,9 +9,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 
 namespace bimloc::sim {
 namespace {
+
+// CPU seconds of the process (all its threads): on a shared machine wall time also counts
+// waiting for a core.
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 // The turn's x, y, z; non-finite and out-of-range points are the plane extraction's to drop.
 std::vector<Eigen::Vector3f> scanPoints(const LidarScan& scan) {
@@ -45,12 +55,23 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   // The snapshot hooks by reference: each counts its pictures.
   const SnapshotHook none;
   const auto hookOf = [&](std::size_t k) -> const SnapshotHook& { return k < hooks.size() ? hooks[k] : none; };
+  // The base: its planned trajectory, or steered step by step where the first localizer
+  // suggests looking (motion.disambiguate): then the odometry is drawn as the base goes.
+  std::optional<GuidedWalk> walk;
+  if (s.motion.disambiguate) walk.emplace(sim);
+  const auto truthAt = [&](double t) { return walk ? walk->T_map_base(t) : sim.trajectory().T_map_base(t); };
   for (std::size_t k = 0; k < runs.size(); ++k)
-    if (hookOf(k)) runs[k].snapshotNow("initialization", 0.0, sim.trajectory().T_map_base(0.0), hookOf(k));
+    if (hookOf(k)) runs[k].snapshotNow("initialization", 0.0, truthAt(0.0), hookOf(k));
 
-  const std::vector<OdometrySample> odometry = sim.odometry();
+  std::vector<OdometrySample> odometry = walk ? std::vector<OdometrySample>() : sim.odometry();
+  std::optional<NoisyOdometry> odometry_model;
+  if (walk) odometry_model.emplace(sim.odometryModel(sim.trajectory().floor_z(0.0)));
   const auto odometryAt = [&](double t) {
     const auto k = static_cast<std::size_t>(std::llround(t * s.odometry.rate_hz));
+    while (odometry_model && odometry.size() <= k) {
+      const double tk = static_cast<double>(odometry.size()) / s.odometry.rate_hz;
+      odometry.push_back(odometry_model->step(tk, walk->T_map_base(tk)));
+    }
     return odometry[std::min(k, odometry.size() - 1)].T_odom_base;
   };
   // The oracle's record of the run (bounded: keyframes of a few hundred band points), and the
@@ -61,12 +82,16 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   double path_length_m = 0;
   Eigen::Isometry3d previous_truth = Eigen::Isometry3d::Identity();
   const double half_turn = 0.5 * sim.lidar().turnPeriod_s();
+  double search_cpu = 0, tracking_cpu = 0, search_sim = 0, tracking_sim = 0;
   for (std::size_t i = 0; i < sim.turnCount(); ++i) {
-    const LidarScan scan = sim.turn(i);
+    const double cpu_turn = processCpuSeconds();
+    const bool searching = runs.empty() || runs.front().searching();
+    const LidarScan scan =
+        walk ? sim.turnAlong(i, [&walk](double t) { return walk->T_map_base(t); }) : sim.turn(i);
     // The turn sweeps for a whole period: its planes are best explained by the mid-turn pose.
     const double t = scan.stamp_s + half_turn;
     const Eigen::Isometry3d T_odom_base = odometryAt(t);
-    const Eigen::Isometry3d truth = sim.trajectory().T_map_base(t);
+    const Eigen::Isometry3d truth = truthAt(t);
     if (i > 0) path_length_m += (truth.translation() - previous_truth.translation()).head<2>().norm();
     previous_truth = truth;
     std::optional<std::vector<Eigen::Vector3f>> points;  // made once a turn, when a localizer reads them
@@ -84,9 +109,13 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
       keyframes->add(t, T_odom_base, source);
     }
     for (std::size_t k = 0; k < runs.size(); ++k) runs[k].step(t, T_odom_base, source, truth, hookOf(k), k == 0 ? trace : nullptr, k == 0 ? poses : nullptr);
+    (searching ? search_cpu : tracking_cpu) += processCpuSeconds() - cpu_turn;
+    (searching ? search_sim : tracking_sim) += sim.lidar().turnPeriod_s();
+    // The poses of this whole turn are cast: the walk may change course only after it.
+    if (walk) walk->follow(runs[0].lastState(), runs[0].lastGoal(), T_odom_base, truth, sim.turnStamp(i + 1));
   }
   const double t_end = sim.lidar().turnPeriod_s() * (static_cast<double>(sim.turnCount()) - 0.5);
-  const Eigen::Isometry3d truth_end = sim.trajectory().T_map_base(std::max(0.0, t_end));
+  const Eigen::Isometry3d truth_end = truthAt(std::max(0.0, t_end));
   std::optional<oracle::OracleVerdict> verdict;
   if (keyframes) verdict = oracle::decideWhen(storey, floor_z, keyframes->keyframes(), truth_start);
   std::vector<ScenarioResult> results;
@@ -98,6 +127,8 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
     r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count() -
                      (verdict ? verdict->seconds : 0.0);
     r.oracle = verdict;
+    r.search_cpu_seconds = search_cpu, r.tracking_cpu_seconds = tracking_cpu;
+    r.search_sim_seconds = search_sim, r.tracking_sim_seconds = tracking_sim;
     results.push_back(std::move(r));
   }
   return results;

@@ -55,6 +55,9 @@ struct ScenarioResult {
   // convergence (m per metre travelled); unset when the robot walked less than that.
   std::optional<double> rpe_m_per_m;
   int losses = 0;                         // losses of track after convergence
+  // Changes of the true storey (the base climbed a flight onto another floor), and how many of
+  // them the localizer followed: on the new storey within 5 s of the base leaving the flight.
+  int storey_changes = 0, storey_changes_followed = 0;
   // The scans after convergence (one a second, every 20th point), placed with the estimate,
   // against the plan's storey mesh: the paper's "point cloud RMSE", no ground truth needed.
   std::optional<double> map_rmse_m;
@@ -95,14 +98,21 @@ struct ScenarioResult {
   struct ErrorSample {
     double time_s = 0, position_m = 0, yaw_deg = 0;
     LocalizationState state = LocalizationState::Searching;
-    // The truth's storey at this step (index into the plan's storeys; on a flight, the one the
-    // base came from until it steps off) and whether the base is on a flight (issue 31).
+    // The truth's storey at this step (index into the plan's storeys; RunScore::trueStorey: on
+    // a flight, the one the base came from until it steps off) and whether the base is on a
+    // flight (issue 31).
     std::size_t true_storey = 0;
     bool on_stairs = false;
+    std::optional<std::size_t> storey;  // the localizer's (LocalizationResult::storey)
   };
   std::vector<ErrorSample> error_series;
   // Wall seconds the localizer's steps took in each simulated minute (the last one partial).
   std::vector<double> localizer_seconds_by_minute;
+  // The whole loop's CPU seconds (the process's: simulator, planes, localizer, scoring) per
+  // turn, split by what the first localizer was doing when the turn began: searching (not yet
+  // converged) or tracking; and the simulated seconds of those turns. The setup before the
+  // first turn is in neither. Real-time factors per phase: bench loop.
+  double search_cpu_seconds = 0, search_sim_seconds = 0, tracking_cpu_seconds = 0, tracking_sim_seconds = 0;
   // With the oracle (`--oracle`): when the scans first ruled out every place but the true one
   // (sim/oracle/oracle.hpp), from the run's own scans, odometry and truth. Not in wall_seconds.
   std::optional<oracle::OracleVerdict> oracle;
@@ -111,7 +121,7 @@ struct ScenarioResult {
 // What a snapshot needs at a moment of the run (the runner calls it at initialization, while
 // the particles cluster, and at convergence).
 struct SnapshotMoment {
-  std::string phase;  // initialization | clustering | convergence | end (not converged)
+  std::string phase;  // initialization | clustering | convergence | storey_change | end (not converged)
   double time_s = 0;
   const pf::ParticleFilter* filter = nullptr;  // the leading storey's, with storey auto
   std::size_t storey = 0;                      // the filter's storey

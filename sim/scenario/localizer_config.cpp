@@ -19,6 +19,7 @@ using fields::pfFields;
 using fields::sgraphFields;
 using fields::amclFields;
 using fields::ndtFields;
+using fields::storeyFields;
 Range positive(double hi) { return Range::positive(hi); }
 
 // The field named `key` of `fields`, under another name (an alias keeps its field's range).
@@ -42,7 +43,7 @@ std::vector<Field> topFields(LocalizerConfig& c) {
           alias("voxel_size_m", planeFields(c.planes), "voxel_size_m")};
 }
 
-const std::vector<std::string> kOtherTopKeys{"method", "storey", "prior_rooms", "prior_pose", "planes", "pf", "sgraph", "amcl", "ndt"};
+const std::vector<std::string> kOtherTopKeys{"method", "storey", "prior_rooms", "prior_pose", "planes", "pf", "sgraph", "amcl", "ndt", "storeys"};
 
 struct Reader {
   const std::string& file;
@@ -133,6 +134,7 @@ LocalizerSettings readLocalizerSettings(const nlohmann::json& block, const std::
   if (block.contains("sgraph")) read.section(block["sgraph"], "localizer.sgraph", sgraphFields(c.sgraph));
   if (block.contains("amcl")) read.section(block["amcl"], "localizer.amcl", amclFields(c.amcl));
   if (block.contains("ndt")) read.section(block["ndt"], "localizer.ndt", ndtFields(c.ndt));
+  if (block.contains("storeys")) read.section(block["storeys"], "localizer.storeys", storeyFields(c.storeys));
   return out;
 }
 
@@ -182,6 +184,7 @@ std::vector<std::pair<std::string, std::string>> localizerKeys(const LocalizerCo
   add("sgraph.", sgraphFields(c.sgraph));
   add("amcl.", amclFields(c.amcl));
   add("ndt.", ndtFields(c.ndt));
+  add("storeys.", storeyFields(c.storeys));
   out.emplace_back("method", toString(c.method));
   out.emplace_back("storey", "auto, or told by the caller");
   out.emplace_back("prior_rooms", "[]");

@@ -8,6 +8,7 @@
 //     planes: {voxel_size_m: 0.1, ...}     # every field of planes::PlaneExtractionConfig
 //     pf: {particles: 6000, ...}           # every field of pf::ParticleFilterConfig
 //     sgraph: {window_keyframes: 10, ...}  # every field of sgraph::SGraphConfig
+//     storeys: {floor_tolerance_m: 0.6, ...}  # every field of storeys::StoreyFollowConfig
 //     relocalize_sigma_m: 2.0
 //
 // The flat keys of earlier scenarios (particles, sigma_d_m, sigma_azimuth_deg,

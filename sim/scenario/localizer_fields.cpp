@@ -20,7 +20,8 @@ std::vector<Field> planeFields(planes::PlaneExtractionConfig& c) {
           {"min_extent_m", &c.min_extent_m, closed(0, 100)},
           {"vertical_tolerance_deg", &c.vertical_tolerance_deg, closed(0, 45)},
           {"horizontal_tolerance_deg", &c.horizontal_tolerance_deg, closed(0, 45)},
-          {"max_planes", &c.max_planes, closed(1, 1000)}};
+          {"max_planes", &c.max_planes, closed(1, 1000)},
+          {"standing_height_m", &c.standing_height_m, closed(0, 100)}};
 }
 
 std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
@@ -59,6 +60,16 @@ std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
           {"evidence_yaw_drift_rad_per_m", &c.evidence_yaw_drift_rad_per_m, closed(0, 1)},
           {"evidence_plan_tolerance_m", &c.evidence_plan_tolerance_m, closed(0, 10)},
           {"evidence_injection_fraction", &c.evidence_injection_fraction, closed(0, 1)},
+          {"free_space_evidence", &c.free_space_evidence},
+          {"free_space_band_low_m", &c.free_space_band_low_m, closed(0, 10)},
+          {"free_space_band_high_m", &c.free_space_band_high_m, closed(0, 10)},
+          {"free_space_bin_deg", &c.free_space_bin_deg, closed(0.5, 90)},
+          {"free_space_sigma_m", &c.free_space_sigma_m, closed(1e-3, 10)},
+          {"free_space_gate_sigmas", &c.free_space_gate_sigmas, closed(0, 100)},
+          {"free_space_support_rays", &c.free_space_support_rays, closed(1, 1000)},
+          {"free_space_open_m", &c.free_space_open_m, closed(0, 100)},
+          {"free_space_open_wall_faces", &c.free_space_open_wall_faces, closed(0, 10)},
+          {"free_space_open_faces", &c.free_space_open_faces, closed(0, 10)},
           {"resample_ess_fraction", &c.resample_ess_fraction, closed(0, 1)},
           {"roughening_xy_m", &c.roughening_xy_m, closed(0, 10)},
           {"roughening_yaw_deg", &c.roughening_yaw_deg, closed(0, 180)},
@@ -69,6 +80,19 @@ std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
           {"min_observations", &c.min_observations, closed(1, 100)},
           {"prior_sigma_m", &c.prior_sigma_m, closed(1e-3, 1e4)},
           {"prior_sigma_yaw_deg", &c.prior_sigma_yaw_deg, closed(0.01, 180)}};
+}
+
+std::vector<Field> storeyFields(storeys::StoreyFollowConfig& c) {
+  return {{"follow", &c.follow},
+          {"floor_tolerance_m", &c.floor_tolerance_m, positive(100)},
+          {"settled_window_s", &c.settled_window_s, positive(600)},
+          {"settled_rise_m", &c.settled_rise_m, positive(10)},
+          {"flight_margin_m", &c.flight_margin_m, closed(0, 10)},
+          {"max_climb_s", &c.max_climb_s, positive(1e5)},
+          {"altitude_sigmas", &c.altitude_sigmas, positive(100)},
+          {"altitude_tolerance_m", &c.altitude_tolerance_m, closed(0, 100)},
+          {"arrival_sigma_m", &c.arrival_sigma_m, positive(1e4)},
+          {"arrival_sigma_yaw_deg", &c.arrival_sigma_yaw_deg, positive(180)}};
 }
 
 std::vector<Field> sgraphFields(sgraph::SGraphConfig& c) {

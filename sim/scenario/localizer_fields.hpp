@@ -27,5 +27,6 @@ std::vector<Field> pfFields(pf::ParticleFilterConfig& c);
 std::vector<Field> sgraphFields(sgraph::SGraphConfig& c);
 std::vector<Field> amclFields(peers::AmclConfig& c);
 std::vector<Field> ndtFields(peers::NdtConfig& c);
+std::vector<Field> storeyFields(storeys::StoreyFollowConfig& c);
 
 }  // namespace bimloc::sim::fields

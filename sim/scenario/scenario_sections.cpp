@@ -125,14 +125,21 @@ MotionConfig readMotion(const Mapping& top, std::map<std::string, int>& lines) {
                                            "max_accel_mps2", "max_turn_accel_dps2", "body_radius_m", "gait"});
   MotionConfig motion;
   std::string type = "stand";
-  m.readChoice("type", type, {"stand", "waypoints", "tour", "random_walk"});
+  m.readChoice("type", type, {"stand", "waypoints", "tour", "random_walk", "disambiguate"});
   lines["motion"] = m.line();
   if (type != "waypoints") m.onlyWith("waypoints", "type: waypoints");
-  if (type != "tour") m.onlyWith("rooms", "type: tour");
-  if (type != "tour") m.onlyWith("storeys", "type: tour");
+  if (type != "tour" && type != "disambiguate") m.onlyWith("rooms", "type: tour or disambiguate");
   if (type != "random_walk") m.onlyWith("room", "type: random_walk");
   if (type == "waypoints") motion.kind = MotionConfig::Kind::Waypoints, readWaypoints(m, motion, lines);
+  if (type != "tour") m.onlyWith("storeys", "type: tour");
   if (type == "tour") motion.kind = MotionConfig::Kind::Tour, readRooms(m, motion, lines), readTourStoreys(m, motion, lines);
+  // Walk where the localizer says to look; without a goal, and once converged, a tour of the
+  // rooms listed (if any) and on through every room it can reach.
+  if (type == "disambiguate") {
+    motion.kind = MotionConfig::Kind::Tour, motion.disambiguate = true;
+    motion.skip_unreachable_rooms = motion.explore_after_tour = true;
+    if (m.has("rooms")) readRooms(m, motion, lines);
+  }
   if (type == "random_walk") {
     motion.kind = MotionConfig::Kind::RandomWalk;
     m.read("room", motion.walk_room);

@@ -51,6 +51,14 @@ LidarScan Simulator::turn(std::size_t turn) const {
   return lidar_.scan(world_, lidarStorey(), pose, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
 }
 
+LidarScan Simulator::turnAlong(std::size_t turn, const std::function<Eigen::Isometry3d(double)>& T_map_base) const {
+  return lidar_.scan(world_, storey_, T_map_base, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
+}
+
+NoisyOdometry Simulator::odometryModel(double floor_z) const {
+  return NoisyOdometry(scenario_.odometry, streamSeed(scenario_.seed, kOdometryStream), floor_z);
+}
+
 void Simulator::castTurns(int threads, const std::function<void(LidarScan&&)>& sink,
                           const std::function<void(std::size_t, std::size_t)>& progress) const {
   const std::size_t total = turnCount();

@@ -6,6 +6,7 @@
 
 #include "sim/base/base_trajectory.hpp"
 #include "sim/lidar/vlp16.hpp"
+#include "sim/odometry/odometry_model.hpp"
 #include "sim/odometry/odometry_sample.hpp"
 #include "sim/scenario/scenario.hpp"
 #include "sim/world/world.hpp"
@@ -38,6 +39,12 @@ class Simulator {
   std::size_t turnCount() const;
   double turnStamp(std::size_t turn) const;
   LidarScan turn(std::size_t turn) const;  // thread-safe
+  // The same turn with the base moving along `T_map_base` instead of the planned trajectory
+  // (a base steered while it runs: motion.disambiguate); the same noise as turn().
+  LidarScan turnAlong(std::size_t turn, const std::function<Eigen::Isometry3d(double)>& T_map_base) const;
+  // The odometry's noise model, seeded as odometry() is, for a base steered while it runs:
+  // step it at the odometry's rate with the true poses.
+  NoisyOdometry odometryModel(double floor_z) const;
 
   // All turns, cast on `threads` threads, delivered in order to `sink` (progress optional).
   void castTurns(int threads, const std::function<void(LidarScan&&)>& sink,

@@ -1,5 +1,6 @@
 #include "sim/worldgen/ifc4_writer.hpp"
 
+#include "sim/worldgen/ifc4_stairs.hpp"
 #include "sim/worldgen/ifc_items.hpp"
 #include "sim/worldgen/spec_check.hpp"
 #include "sim/worldgen/step_file.hpp"
@@ -50,20 +51,6 @@ struct Writer : ifc::ItemWriter {
     return str(globalId(seedOf(*spec, kind, storey, index)));
   }
 };
-
-// IfcRoot's first four attributes: GlobalId, OwnerHistory ($, allowed in IFC4), Name,
-// Description.
-std::vector<std::string> root(const std::string& quoted_id, const std::string& name,
-                              const std::string& description = {}) {
-  return {quoted_id, step::unset(), name.empty() ? step::unset() : str(name),
-          description.empty() ? step::unset() : str(description)};
-}
-
-std::vector<std::string> operator+(std::vector<std::string> a,
-                                   const std::vector<std::string>& b) {
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
 
 struct WallIds {
   int wall = 0;
@@ -139,10 +126,11 @@ int writeDoor(Writer& w, const DoorSpec& door, const WallSpec& wall, const WallI
 // A slab whose body is `outline` extruded from z_bottom up `thickness` (storey frame).
 int writeSlab(Writer& w, const std::vector<Vector2d>& outline, double z_bottom,
               double thickness, const std::string& name, const char* type, int storey_placement,
-              const std::string& quoted_id) {
+              const std::string& quoted_id, int* placement_out = nullptr) {
   const int solid = extrusion(w, polygonProfile(w, outline),
                               translation(w, Vector3d(0.0, 0.0, z_bottom)), thickness);
   const int placement = localPlacement(w, storey_placement, w.origin_axes);
+  if (placement_out) *placement_out = placement;
   return w.file.add("IFCSLAB", root(quoted_id, name) +
                                    std::vector<std::string>{step::unset(), ref(placement),
                                                             ref(bodyShape(w, solid)),
@@ -182,9 +170,20 @@ int writeStorey(Writer& w, std::size_t s, int building_placement) {
     const DoorSpec& door = storey.doors[i];
     contained.push_back(writeDoor(w, door, storey.walls[door.wall], walls[door.wall], s, i));
   }
-  contained.push_back(writeSlab(w, storey.outline, -storey.slab_thickness_m,
-                                storey.slab_thickness_m, storey.name + " floor slab", ".FLOOR.",
-                                placement, w.id("floor", s, 0)));
+  int floor_placement = 0;
+  const int floor_slab = writeSlab(w, storey.outline, -storey.slab_thickness_m,
+                                   storey.slab_thickness_m, storey.name + " floor slab", ".FLOOR.",
+                                   placement, w.id("floor", s, 0), &floor_placement);
+  contained.push_back(floor_slab);
+  const ifc::IdFor id_for = [&w, s](const char* kind, std::size_t index) { return w.id(kind, s, index); };
+  for (std::size_t i = 0; i < storey.floor_openings.size(); ++i) {
+    writeSlabOpening(w, floor_slab, floor_placement, storey.floor_openings[i], -storey.slab_thickness_m,
+                     storey.slab_thickness_m, storey.name + " floor slab stair void " + std::to_string(i), i,
+                     id_for);
+  }
+  for (std::size_t i = 0; i < storey.stairs.size(); ++i) {
+    contained.push_back(writeStair(w, storey.stairs[i], i, placement, id_for));
+  }
   if (s + 1 == spec.storeys.size()) {
     contained.push_back(writeSlab(w, storey.outline, storey.height_m - spec.roof_thickness_m,
                                   spec.roof_thickness_m, "Roof slab", ".ROOF.", placement,

@@ -1,6 +1,8 @@
 // Writes a WorldSpec as an IFC4 STEP physical file (ISO-10303-21), the kind of plan the
 // localizer reads: project, site, building, storeys, walls with axis and swept-solid body,
-// floor and roof slabs, doors in openings, spaces, and optionally space boundaries.
+// floor and roof slabs, doors in openings, spaces, and optionally space boundaries; stairs
+// (IfcStair, its IfcStairFlights and landings) and the voids in the slabs they rise through
+// (ifc4_stairs.hpp).
 #pragma once
 
 #include "sim/worldgen/world_spec.hpp"

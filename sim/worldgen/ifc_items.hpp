@@ -7,6 +7,7 @@
 #include "sim/worldgen/step_file.hpp"
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 namespace bimloc::worldgen::ifc {
@@ -17,6 +18,19 @@ using step::real;
 using step::ref;
 using step::refs;
 using step::str;
+
+// IfcRoot's first four attributes: GlobalId, OwnerHistory ($, allowed in IFC4), Name,
+// Description.
+inline std::vector<std::string> root(const std::string& quoted_id, const std::string& name,
+                                     const std::string& description = {}) {
+  return {quoted_id, step::unset(), name.empty() ? step::unset() : str(name),
+          description.empty() ? step::unset() : str(description)};
+}
+
+inline std::vector<std::string> operator+(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
 
 // The file under construction and the items every product shares.
 struct ItemWriter {

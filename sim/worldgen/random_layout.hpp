@@ -116,6 +116,8 @@ struct Floor {
   PlanGrid grid;
   Mm exterior;
   Mm door_height = 2100;
+  Mm storey_height = 3000;  // floor to floor: what a stair core drawn on the floor must climb
+  int stair_room = -1;      // the label of the stairwell, when the style draws one
   std::vector<std::string> features;
   bool near_symmetric = false;  // drawn symmetric, then changed in one place (perturb)
   int room(const std::string& use);  // R001, R002, ...

@@ -73,5 +73,7 @@ void drawOffice(Floor& floor, int rooms);
 void drawSchool(Floor& floor, int rooms);
 void drawResidential(Floor& floor, int rooms);
 void drawHall(Floor& floor, int rooms);
+// A stair core (lobby and stairwell) with a flat on either side, mirror images of each other.
+void drawApartmentBlock(Floor& floor, int rooms);
 
 }  // namespace bimloc::worldgen::layout

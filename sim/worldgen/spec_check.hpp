@@ -55,6 +55,34 @@ inline bool onWallFace(const WallSpec& wall, const Eigen::Vector2d& a, const Eig
   throw std::invalid_argument("world spec " + where + ": " + what);
 }
 
+// Stairs climb exactly to the next storey; voids only in slabs above the ground floor.
+inline void checkStairs(const WorldSpec& spec, std::size_t s) {
+  const StoreySpec& storey = spec.storeys[s];
+  const std::string at = "'" + spec.name + "' storey '" + storey.name + "'";
+  if (!storey.stairs.empty() && s + 1 >= spec.storeys.size()) fail(at, "a stair goes up from the top storey");
+  for (const StairSpec& stair : storey.stairs) {
+    const std::string st = at + " stair '" + stair.name + "'";
+    if (stair.name.empty() || !plainAscii(stair.name) || stair.flights.empty()) fail(st, "needs a plain ASCII name and flights");
+    double rise = 0.0;
+    for (const StairFlightSpec& f : stair.flights) {
+      if (f.name.empty() || !plainAscii(f.name) || f.risers < 2 || !(f.riser_m > 0) || !(f.going_m > 0) ||
+          !(f.width_m > 0) || std::abs(f.direction.norm() - 1) > kTol_m || std::abs(f.z_m - rise) > kTol_m) {
+        fail(st, "flight '" + f.name + "': needs a name, 2+ risers, positive sizes, a unit direction, and to start "
+                 "where the one before ended");
+      }
+      rise += f.rise_m();
+    }
+    if (std::abs(rise - storey.height_m) > kTol_m) fail(st, "does not climb the storey height");
+    for (const LandingSpec& l : stair.landings) {
+      if (l.outline.size() < 3 || !(signedArea(l.outline) > 0) || !(l.thickness_m > 0) || !plainAscii(l.name))
+        fail(st, "landing '" + l.name + "': needs a counter-clockwise outline and a thickness");
+    }
+  }
+  if (!storey.floor_openings.empty() && s == 0) fail(at, "a void in the ground floor's slab");
+  for (const auto& outline : storey.floor_openings)
+    if (outline.size() < 3 || !(signedArea(outline) > 0)) fail(at, "a floor void must be a counter-clockwise polygon");
+}
+
 }  // namespace spec_check_detail
 
 // Throws std::invalid_argument naming the world, storey and element of the first problem.
@@ -128,6 +156,7 @@ inline void checkWorldSpec(const WorldSpec& spec) {
         if (!used[k]) fail(r, "wall '" + storey.walls[room.walls[k]].name + "' bounds no edge");
       }
     }
+    checkStairs(spec, s);
   }
 }
 

@@ -41,6 +41,38 @@ struct RoomSpec {
   std::vector<int> walls;  // indices into StoreySpec::walls of the walls bounding the room
 };
 
+// A straight flight of steps (IfcStairFlight): `risers` risers of riser_m and risers - 1 treads
+// of going_m; the last riser is the front of the landing or floor it arrives on. The run line
+// starts at the first riser, in the middle of the flight's width, and goes along `direction`.
+struct StairFlightSpec {
+  std::string name;
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();
+  Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  // unit, axis-aligned
+  double z_m = 0.0;  // floor (or landing) the first riser stands on, relative to the storey
+  double width_m = 0.0;
+  int risers = 0;
+  double riser_m = 0.0, going_m = 0.0;
+  int treads() const { return risers - 1; }
+  double run_m() const { return treads() * going_m; }
+  double rise_m() const { return risers * riser_m; }
+};
+
+// A landing between flights (IfcSlab .LANDING.): `outline` (CCW) from top_z_m - thickness_m
+// up to top_z_m, relative to the storey.
+struct LandingSpec {
+  std::string name;
+  std::vector<Eigen::Vector2d> outline;
+  double top_z_m = 0.0, thickness_m = 0.0;
+};
+
+// A stair from its storey's floor up to the next storey's (IfcStair decomposed into flights
+// and landings): its flights' rises add up to the storey height.
+struct StairSpec {
+  std::string name;
+  std::vector<StairFlightSpec> flights;  // in walking order, upwards
+  std::vector<LandingSpec> landings;
+};
+
 struct StoreySpec {
   std::string name;
   double elevation_m = 0.0;       // top of the floor slab, world z
@@ -52,6 +84,9 @@ struct StoreySpec {
   std::vector<WallSpec> walls;
   std::vector<DoorSpec> doors;
   std::vector<RoomSpec> rooms;
+  std::vector<StairSpec> stairs;  // stairs going up from this storey to the next
+  // Voids in this storey's floor slab (CCW polygons): where a flight from below rises through.
+  std::vector<std::vector<Eigen::Vector2d>> floor_openings;
 };
 
 struct WorldSpec {

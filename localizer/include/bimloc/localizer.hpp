@@ -13,12 +13,14 @@
 #pragma once
 
 #include <bimloc/bim/building.hpp>
+#include <bimloc/guide/look_goal.hpp>
 #include <bimloc/peers/amcl_config.hpp>
 #include <bimloc/peers/ndt_config.hpp>
 #include <bimloc/peers/peer_report.hpp>
 #include <bimloc/pf/storey_bank.hpp>
 #include <bimloc/planes/plane_extraction.hpp>
 #include <bimloc/sgraph/sgraph_tracker.hpp>
+#include <bimloc/storeys/storey_follower.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -55,11 +57,18 @@ struct LocalizerConfig {
   sgraph::SGraphConfig sgraph;
   peers::AmclConfig amcl;  // method Amcl only
   peers::NdtConfig ndt;    // method Ndt only
+  // While searching with several places left: where to look next (LocalizationResult::goal).
+  guide::GuideConfig guide;
   // Search again after a loss of track: the filter's particles start within this of the last
   // tracked pose (1 sigma; the tracker drifted at most a few keyframes of odometry before it
   // said lost), the heading within relocalize_sigma_yaw_deg.
   double relocalize_sigma_m = 2.0;
   double relocalize_sigma_yaw_deg = 30.0;
+  // Following the robot across storeys (issue 31): its height (the odometry's z, an altitude
+  // when observeAltitude is given one) and the plan's stairs say when it arrived on another
+  // storey; the tracker goes on there. With an altitude, the first search leaves out the
+  // storeys it rules out (storey unknown).
+  storeys::StoreyFollowConfig storeys;
 };
 
 enum class LocalizationState {
@@ -69,6 +78,15 @@ enum class LocalizationState {
   Lost,       // the tracker lost the plan; the filter searches again around the last pose
 };
 const char* toString(LocalizationState state);
+
+// The robot arrived on another storey, and the localizer followed it: the link between the
+// storeys' graphs (the pose carried across, by the odometry along the flight).
+struct StoreyLink {
+  std::size_t from_storey = 0, to_storey = 0;
+  int flight = -1;  // the flight it came by (index into Building::stairs), -1 when the plan has none there
+  double stamp_s = 0;
+  Eigen::Isometry3d T_map_base = Eigen::Isometry3d::Identity();  // carried onto the new storey
+};
 
 struct LocalizationResult {
   LocalizationState state = LocalizationState::Searching;
@@ -91,7 +109,15 @@ struct LocalizationResult {
   std::optional<pf::StoreyBankReport> filter;
   std::optional<sgraph::SGraphResult> sgraph;
   std::optional<peers::PeerReport> peer;  // methods Amcl and Ndt: every step
+  std::optional<StoreyLink> arrival;   // this step moved the localizer to another storey
   std::vector<std::string> warnings;  // this step's, from every stage
+  // While searching (the paper's method and its ablations, on the leading storey), when the path
+  // evidence fits two or more places: the places (map pose of the base now, best first, with the
+  // evidence margin of the best over each: 0 for the best), as of the last weighing, and, with
+  // config.guide.enabled, a goal from which their scans would differ most (guide/look_goal.hpp;
+  // unset when nothing within reach tells them apart). Empty and unset otherwise.
+  std::vector<guide::Place> places;
+  std::optional<guide::LookGoal> goal;
 };
 
 class Localizer {
@@ -118,6 +144,15 @@ class Localizer {
   const LocalizerConfig& config() const;
   const pf::StoreyBank* filter() const;                  // the current (or last) search; null for the peers
   const sgraph::SGraphTracker* tracker() const;          // while (or since) the S-Graph tracks; null before
+  // One graph per storey: the S-Graph of each storey the robot left, with the link it left
+  // by, oldest first (the current storey's graph is tracker()).
+  struct StoreyGraph {
+    std::size_t storey = 0;
+    const sgraph::SGraphTracker* tracker = nullptr;
+    StoreyLink left_by;
+  };
+  std::vector<StoreyGraph> storeyGraphs() const;
+  const std::vector<StoreyLink>& storeyLinks() const;    // every arrival so far
   const std::vector<std::string>& warnings() const;      // from the construction (the plan, the config)
 
  private:

@@ -106,6 +106,35 @@ Room roomFromJson(const json& j, const std::string& where) {
   return r;
 }
 
+json flightJson(const StairFlight& f) {
+  return {{"id", f.id}, {"name", f.name}, {"ifc_type", f.ifc_type}, {"stair_id", f.stair_id},
+          {"bottom", vec(f.bottom)}, {"top", vec(f.top)}, {"width_m", f.width_m}, {"risers", f.risers},
+          {"riser_height_m", f.riser_height_m}, {"going_m", f.going_m}, {"rise_m", f.rise_m()}, {"run_m", f.run_m()},
+          {"bottom_storey", f.bottom_storey}, {"top_storey", f.top_storey}, {"source", f.source}};
+}
+
+StairFlight flightFromJson(const json& j, const std::string& where, int storeys) {
+  StairFlight f;
+  f.id = field(j, "id", where).get<std::string>();
+  f.name = j.value("name", "");
+  f.ifc_type = j.value("ifc_type", "");
+  f.stair_id = j.value("stair_id", "");
+  f.bottom = vec3(field(j, "bottom", where), where + ".bottom");
+  f.top = vec3(field(j, "top", where), where + ".top");
+  f.width_m = field(j, "width_m", where).get<double>();
+  f.risers = field(j, "risers", where).get<int>();
+  f.riser_height_m = field(j, "riser_height_m", where).get<double>();
+  f.going_m = field(j, "going_m", where).get<double>();
+  f.bottom_storey = field(j, "bottom_storey", where).get<int>();
+  f.top_storey = field(j, "top_storey", where).get<int>();
+  for (const int s : {f.bottom_storey, f.top_storey})
+    if (s < -1 || s >= storeys)
+      throw std::runtime_error(where + ": storey index " + std::to_string(s) + " is not -1 or one of the " +
+                               std::to_string(storeys) + " storeys");
+  f.source = j.value("source", "");
+  return f;
+}
+
 }  // namespace
 
 nlohmann::json toJson(const Building& building) {
@@ -118,17 +147,19 @@ nlohmann::json toJson(const Building& building) {
                        {"elevation_source", s.elevation_source}, {"mesh_triangles", s.mesh.triangles.size()},
                        {"walls", walls}, {"rooms", rooms}});
   }
+  json stairs = json::array();
+  for (const auto& f : building.stairs) stairs.push_back(flightJson(f));
   return {{"format", "bimloc.building"}, {"version", kBuildingJsonVersion}, {"units", "m"},
           {"frame", "map (the plan's world frame, z up)"}, {"file", building.file}, {"schema", building.schema},
-          {"storeys", storeys}, {"warnings", building.warnings}};
+          {"storeys", storeys}, {"stairs", stairs}, {"warnings", building.warnings}};
 }
 
 Building buildingFromJson(const nlohmann::json& doc) {
   if (!doc.is_object() || doc.value("format", "") != "bimloc.building")
     throw std::runtime_error("not a bimloc building document (format is not 'bimloc.building')");
   const int version = doc.value("version", 0);
-  if (version != kBuildingJsonVersion)
-    throw std::runtime_error("building document version " + std::to_string(version) + " is not supported (expected " +
+  if (version < 1 || version > kBuildingJsonVersion)
+    throw std::runtime_error("building document version " + std::to_string(version) + " is not supported (this bimloc reads versions 1 to " +
                              std::to_string(kBuildingJsonVersion) + ")");
   Building b;
   b.file = doc.value("file", "");
@@ -151,6 +182,12 @@ Building buildingFromJson(const nlohmann::json& doc) {
       s.rooms.push_back(roomFromJson(rooms[k], where + ".rooms[" + std::to_string(k) + "]"));
     b.storeys.push_back(std::move(s));
   }
+  if (version >= 2) {  // version 1 had no stairs
+    const json& stairs = field(doc, "stairs", "building");
+    if (!stairs.is_array()) throw std::runtime_error("building.stairs: expected an array");
+    for (std::size_t i = 0; i < stairs.size(); ++i)
+      b.stairs.push_back(flightFromJson(stairs[i], "stairs[" + std::to_string(i) + "]", static_cast<int>(b.storeys.size())));
+  }
   return b;
 }
 
@@ -160,8 +197,10 @@ nlohmann::json extractionSummary(const Building& building, double seconds) {
     storeys.push_back({{"name", s.name}, {"elevation", s.elevation_m}, {"rooms", s.rooms.size()},
                        {"walls", s.walls.size()}, {"wall_planes", s.wallPlaneCount()},
                        {"mesh_triangles", s.mesh.triangles.size()}});
+  json stairs = json::array();
+  for (const auto& f : building.stairs) stairs.push_back(flightJson(f));
   return {{"file", building.file}, {"schema", building.schema}, {"seconds", seconds},
-          {"storeys", storeys}, {"warnings", building.warnings}};
+          {"storeys", storeys}, {"stairs", stairs}, {"warnings", building.warnings}};
 }
 
 }  // namespace bimloc::bim

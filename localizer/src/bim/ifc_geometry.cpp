@@ -10,13 +10,20 @@
 #include <ifcpp/IFC4/include/IfcBuildingStorey.h>
 #include <ifcpp/IFC4/include/IfcFeatureElement.h>
 #include <ifcpp/IFC4/include/IfcGloballyUniqueId.h>
+#include <ifcpp/IFC4/include/IfcInteger.h>
 #include <ifcpp/IFC4/include/IfcLabel.h>
 #include <ifcpp/IFC4/include/IfcLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcPositiveLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcRamp.h>
 #include <ifcpp/IFC4/include/IfcRelAggregates.h>
 #include <ifcpp/IFC4/include/IfcRelContainedInSpatialStructure.h>
 #include <ifcpp/IFC4/include/IfcRelSpaceBoundary.h>
 #include <ifcpp/IFC4/include/IfcRelVoidsElement.h>
+#include <ifcpp/IFC4/include/IfcSlab.h>
+#include <ifcpp/IFC4/include/IfcSlabTypeEnum.h>
 #include <ifcpp/IFC4/include/IfcSpace.h>
+#include <ifcpp/IFC4/include/IfcStair.h>
+#include <ifcpp/IFC4/include/IfcStairFlight.h>
 #include <ifcpp/IFC4/include/IfcVirtualElement.h>
 #include <ifcpp/IFC4/include/IfcWall.h>
 #include <ifcpp/geometry/Carve/GeometryConverter.h>
@@ -210,6 +217,21 @@ RawProduct makeProduct(const shared_ptr<IfcProduct>& product, ProductShapeData& 
   return raw;
 }
 
+// The stair-related attributes of a product: a slab's PredefinedType (LANDING marks a stair's
+// landing), a stair flight's numbers (IFC++ reads IFC2X3's NumberOfRiser into the IFC4 field).
+void readStairAttributes(const shared_ptr<IfcProduct>& product, double length_unit_m, RawProduct& raw) {
+  if (auto slab = dynamic_pointer_cast<IfcSlab>(product); slab && slab->m_PredefinedType)
+    raw.predefined_type = utf8(slab->m_PredefinedType->toString());
+  auto flight = dynamic_pointer_cast<IfcStairFlight>(product);
+  if (!flight) return;
+  FlightAttributes a;
+  if (flight->m_NumberOfRisers) a.risers = flight->m_NumberOfRisers->m_value;
+  if (flight->m_NumberOfTreads) a.treads = flight->m_NumberOfTreads->m_value;
+  if (flight->m_RiserHeight) a.riser_height_m = flight->m_RiserHeight->m_value * length_unit_m;
+  if (flight->m_TreadLength) a.tread_length_m = flight->m_TreadLength->m_value * length_unit_m;
+  raw.flight = a;
+}
+
 }  // namespace
 
 RawModel readRawModel(const PlanText& plan, const std::string& path) {
@@ -303,10 +325,26 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
       p.extrusion = profiles.bodyExtrusion(product, p.geometry_problem);
     }
     if (is_space) p.long_name = label(dynamic_pointer_cast<IfcSpace>(product)->m_LongName);
+    readStairAttributes(product, raw.length_unit_m, p);
     if (is_wall) raw.walls.push_back(std::move(p));
     else if (is_space) raw.spaces.push_back(std::move(p));
     else raw.elements.push_back(std::move(p));
   }
+
+  // Stairs and ramps, with or without a body of their own (Revit's have none: their flights do).
+  for (const auto& [id, entity] : model->getMapIfcEntities()) {
+    auto element = dynamic_pointer_cast<IfcElement>(entity);
+    if (!element || (!dynamic_pointer_cast<IfcStair>(element) && !dynamic_pointer_cast<IfcRamp>(element))) continue;
+    RawProduct p;
+    p.entity_id = id;
+    p.global_id = globalId(element);
+    p.name = label(element->m_Name);
+    p.ifc_class = element->className();
+    p.storey = storeyOf(id, parent, storey_index);
+    raw.stairs.push_back(std::move(p));
+  }
+  std::sort(raw.stairs.begin(), raw.stairs.end(),
+            [](const RawProduct& a, const RawProduct& b) { return a.entity_id < b.entity_id; });
 
   // Openings of the elements rebuilt from their extrusions: IFC++ cut the others already.
   std::unordered_set<int> rebuilt;

@@ -6,6 +6,7 @@
 #include "ifc_file.hpp"
 #include "ifc_geometry.hpp"
 #include "openings.hpp"
+#include "stairs.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
 
@@ -240,6 +241,9 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
                                     " '" + room.name + "': no bounding wall found");
   }
   for (const auto& [s, w, depth] : visible) detail::moveFacesToVisibleSurfaces(building.storeys[s].walls[w], depth);
+  building.stairs = detail::stairFlightsOf(
+      raw, building.storeys, [&](const RawProduct& p) -> const TriangleMesh& { return bodyMesh(p, rebuilt); },
+      building.warnings);
   if (options.build_meshes) buildStoreyMeshes(raw, new_index, options.door_leaves, rebuilt, building);
 
   building.times.parse_s = raw.parse_s;

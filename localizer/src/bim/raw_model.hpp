@@ -23,6 +23,14 @@ struct Extrusion {
   bool vertical = true;  // extruded along world z
 };
 
+// What an IfcStairFlight says of itself (IFC2X3 NumberOfRiser, NumberOfTreads, RiserHeight,
+// TreadLength; IFC4 NumberOfRisers, ...), lengths converted with the file's unit. Unchecked:
+// exporters write nonsense here too (Revit writes feet into metre and millimetre files).
+struct FlightAttributes {
+  std::optional<int> risers, treads;
+  std::optional<double> riser_height_m, tread_length_m;
+};
+
 struct RawProduct {
   int entity_id = 0;
   std::string global_id;
@@ -35,6 +43,8 @@ struct RawProduct {
   TriangleMesh mesh;      // world frame, metres
   std::optional<Extrusion> extrusion;
   std::string geometry_problem;  // why there is neither mesh nor extrusion
+  std::string predefined_type;   // IfcSlab's PredefinedType (LANDING, FLOOR, ...), else empty
+  std::optional<FlightAttributes> flight;  // IfcStairFlight only
 };
 
 // How a warning names a product: its class, its instance id in the file, its GlobalId and name
@@ -75,6 +85,9 @@ struct RawModel {
   std::vector<RawProduct> spaces;    // IfcSpace
   std::vector<RawProduct> elements;  // every other physical element, for the storey meshes
   std::vector<SpaceBoundary> space_boundaries;
+  // Every IfcStair and IfcRamp, body or not (their bodies, if any, are in `elements` too; their
+  // flights and landings are the elements whose whole_entity_id is theirs).
+  std::vector<RawProduct> stairs;
   std::vector<RawOpening> openings;  // those of the elements that have no IFC++ mesh
   std::vector<std::string> warnings;
   double parse_s = 0.0;

@@ -47,6 +47,7 @@ struct ParticleFilter::Impl {
   double anneal = 1.0;
   bool weighed_once = false;
   std::vector<std::string> pending_warnings;  // from predict(), reported by the next update()
+  const RangeProfile* profile = nullptr;      // of the scan being weighed (update's argument)
 
   // AMCL-style gate: weigh after enough motion, or after enough scans standing still.
   bool shouldWeigh() const {

@@ -49,7 +49,7 @@ detail::PathVerdict ParticleFilter::Impl::askThePath(const std::vector<detail::O
   // This scan joins the window; the scan's best poses and the filter's best particle become
   // candidates.
   const detail::Pose2 now = planarPose(odom);
-  evidence.addScan(now, z, observations);
+  evidence.addScan(now, z, observations, profile);
   for (std::size_t k = 0; k < hyps.size() && static_cast<int>(k) < config.evidence_proposals; ++k)
     evidence.propose({hyps[k].x, hyps[k].y, hyps[k].yaw}, now);
   const Particle& top = particles[heaviest()];

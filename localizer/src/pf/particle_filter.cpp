@@ -123,8 +123,17 @@ double ParticleFilter::pathScore(double x, double y, double yaw) const {
   return impl_->evidence.logLikelihoodOf({x, y, yaw}, planarPose(impl_->odom));
 }
 
-UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& walls) {
+RangeProfileConfig profileConfig(const ParticleFilterConfig& config) {
+  RangeProfileConfig c;
+  c.min_height_m = config.free_space_band_low_m;
+  c.max_height_m = config.free_space_band_high_m;
+  c.bin_deg = config.free_space_bin_deg;
+  return c;
+}
+
+UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& walls, const RangeProfile* profile) {
   auto& m = *impl_;
+  m.profile = profile;
   UpdateReport report;
   report.warnings.swap(m.pending_warnings);
   const std::vector<detail::Observation> observations = m.observe(walls, &report.warnings);

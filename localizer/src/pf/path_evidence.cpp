@@ -35,6 +35,12 @@ ParticleFilterConfig windowModel(ParticleFilterConfig c) {
 
 PathEvidence::PathEvidence(const bim::Storey& storey, const ParticleFilterConfig& config)
     : rooms_(storey, /*use_rooms=*/false), config_(windowModel(config)) {
+  if (config.free_space_evidence) {
+    free_space_map_ = std::make_shared<const FreeSpaceMap>(storey);
+    // A ray's range is off by the scan's placement along the window (drift, as the planes'),
+    // not by the planes' own fitting noise.
+    free_space_ = FreeSpaceParams::of(config, config.evidence_drift_fraction * 0.5 * config.evidence_window_m);
+  }
   for (const auto& l : rooms_.landmarks(0)) {
     if (l.id >= static_cast<int>(face_normals_.size())) face_normals_.resize(static_cast<std::size_t>(l.id) + 1, Eigen::Vector2d::Zero());
     face_normals_[static_cast<std::size_t>(l.id)] = l.normal.head<2>();
@@ -58,7 +64,8 @@ double PathEvidence::total(double matched_sum, int out_of_rooms) const {
   return matched_sum - 0.5 * config_.gate_mahalanobis2 * static_cast<double>(out_of_rooms) / n;
 }
 
-bool PathEvidence::addScan(const Pose2& odom, double z_base, const std::vector<Observation>& observations) {
+bool PathEvidence::addScan(const Pose2& odom, double z_base, const std::vector<Observation>& observations,
+                           const RangeProfile* profile) {
   if (has_last_odom_) travelled_m_ += std::hypot(odom.x() - last_odom_.x(), odom.y() - last_odom_.y());
   has_last_odom_ = true;
   last_odom_ = odom;
@@ -68,7 +75,7 @@ bool PathEvidence::addScan(const Pose2& odom, double z_base, const std::vector<O
                        std::abs(wrapAngle(odom.z() - last.z())) >= config_.evidence_spacing_deg * M_PI / 180.0;
     if (!moved) return false;
   }
-  scans_.push_back({odom, z_base, observations, travelled_m_});
+  scans_.push_back({odom, z_base, observations, travelled_m_, free_space_map_ && profile ? *profile : RangeProfile{}});
   for (auto& c : candidates_) {
     ScanScore s = scoreOn(c.T_map_odom, scans_.back(), true);
     c.matched_sum += s.matched;

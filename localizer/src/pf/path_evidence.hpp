@@ -10,11 +10,15 @@
 // is scored once per candidate, a new candidate once per scan of the window.
 #pragma once
 
+#include "free_space_evidence.hpp"
 #include "measurement.hpp"
 #include "pose_refinement.hpp"
 #include "start_prior.hpp"
 
+#include <bimloc/pf/range_profile.hpp>
+
 #include <deque>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -99,7 +103,9 @@ class PathEvidence {
 
   // A weighed scan at odometry pose `odom` (x, y, yaw of odom <- base): joins the window when
   // the robot moved enough since the last one that did. Returns whether it joined.
-  bool addScan(const Pose2& odom, double z_base, const std::vector<Observation>& observations);
+  // `profile` (may be null or empty): the scan's range profile, for the free-space evidence.
+  bool addScan(const Pose2& odom, double z_base, const std::vector<Observation>& observations,
+               const RangeProfile* profile = nullptr);
   // The map pose `map_pose` of the base, at odometry pose `odom`, as a candidate. Near an
   // existing candidate, the better of the two stays.
   void propose(const Pose2& map_pose, const Pose2& odom);
@@ -134,6 +140,15 @@ class PathEvidence {
   // and every face of the storey: what the converged pose is refined on (pose_refinement.hpp).
   std::vector<RefinementScan> latestScans(double path_m) const;
   const RoomIndex& everyFace() const { return rooms_; }
+  // The per-scan error model the window and the searches score with (the scan's sigmas grown
+  // by the window's drift and the plan's tolerance), and the candidates' poses now (map <-
+  // base at odometry pose `odom`): what a test checks the searches against.
+  const ParticleFilterConfig& scanModel() const { return config_; }
+  std::vector<Pose2> candidatePoses(const Pose2& odom) const {
+    std::vector<Pose2> out;
+    for (const auto& c : candidates_) out.push_back(compose(c.T_map_odom, odom));
+    return out;
+  }
 
  private:
   struct Scan {
@@ -141,11 +156,16 @@ class PathEvidence {
     double z_base = 0;
     std::vector<Observation> observations;
     double travelled_m = 0;  // path length from the start to this scan
+    RangeProfile profile;    // empty without free-space evidence
   };
   struct ScanScore {
     double matched = 0;  // sum of -m2 / 2 over the observations (clutter at the gate)
     bool out_of_rooms = false;
     std::vector<ObservationMatch> per_observation;
+    // The scan's free-space hits at the candidate, cast when a margin first asks for them
+    // (free_space_evidence.hpp): most candidates never need them.
+    mutable bool free_space_cast = false;
+    mutable std::vector<FreeSpaceHit> free_space;
   };
   struct Candidate {
     Pose2 T_map_odom;
@@ -173,6 +193,16 @@ class PathEvidence {
   // scans (odometry drift, a wall a few centimetres off its plan, a near-symmetric twin that
   // differs by less than the sigmas) cannot add up to a verdict.
   double distinctMargin(const Candidate& p, const Candidate& q) const;
+  // The evidence against a candidate from what the window's scans rule out (free space,
+  // counted once per wall: free_space_evidence.hpp); 0 without free-space evidence.
+  double freeSpacePenalty(const Candidate& c) const;
+  // The margin of P over Q that decides: the planes' distinctMargin plus what the free space
+  // says against Q less what it says against P. Both are log-likelihood ratios counted in the
+  // same unit (one face), so one bar (evidenceMargin) holds for their sum.
+  double margin(const Candidate& p, const Candidate& q) const;
+  // The rivals' margins (index into candidates_): the planes' for all, then the free space's
+  // added to the closest ones, until no rival left could come below the lowest found.
+  void addFreeSpace(const Candidate& best, std::vector<std::pair<double, std::size_t>>& rivals) const;
   // Whether the distinct faces P matches over the window fix its position: each face, counted
   // once as in distinctMargin, pins the position along its normal to the window's sigma_d;
   // fixed when the weakest direction is pinned to within the convergence radius.
@@ -183,6 +213,8 @@ class PathEvidence {
   const StartPrior* prior_ = nullptr;
   Pose2 odom_start_ = Pose2::Zero();
   ParticleFilterConfig config_;  // with the sigmas of the window's error model
+  std::shared_ptr<const FreeSpaceMap> free_space_map_;  // null without free-space evidence
+  FreeSpaceParams free_space_;
   std::deque<Scan> scans_;
   std::vector<Candidate> candidates_;
   double travelled_m_ = 0;

@@ -46,6 +46,46 @@ double PathEvidence::distinctMargin(const Candidate& p, const Candidate& q) cons
   return margin.total(config_.gate_mahalanobis2, static_cast<double>(scans_.size()));
 }
 
+double PathEvidence::freeSpacePenalty(const Candidate& c) const {
+  if (!free_space_map_) return 0.0;
+  std::vector<const std::vector<FreeSpaceHit>*> per_scan;
+  for (std::size_t k = 0; k < c.per_scan.size() && k < scans_.size(); ++k) {
+    const ScanScore& s = c.per_scan[k];
+    if (!s.free_space_cast) {
+      s.free_space = freeSpaceHits(*free_space_map_, free_space_, compose(c.T_map_odom, scans_[k].odom), scans_[k].z_base,
+                                   scans_[k].profile);
+      s.free_space_cast = true;
+    }
+    per_scan.push_back(&s.free_space);
+  }
+  return detail::freeSpacePenalty(per_scan, free_space_);
+}
+
+double PathEvidence::margin(const Candidate& p, const Candidate& q) const {
+  const double planes = distinctMargin(p, q);
+  return free_space_map_ ? planes + freeSpacePenalty(q) - freeSpacePenalty(p) : planes;
+}
+
+void PathEvidence::addFreeSpace(const Candidate& best, std::vector<std::pair<double, std::size_t>>& rivals) const {
+  if (!free_space_map_ || rivals.empty()) return;
+  // The free space can lower a margin by at most the penalty of the best, and never raises the
+  // lowest above what its rival's full margin is: in order of the planes' margin, each rival's
+  // full margin, until the planes' margin less the best's penalty is no lower than the lowest
+  // full margin found. The rest keep that lower bound (a margin never overstated).
+  std::sort(rivals.begin(), rivals.end());
+  const double against_best = freeSpacePenalty(best);
+  double lowest = std::numeric_limits<double>::infinity();
+  for (auto& [m, i] : rivals) {
+    if (m - against_best >= lowest) {
+      m -= against_best;
+      continue;
+    }
+    m += freeSpacePenalty(candidates_[i]) - against_best;
+    lowest = std::min(lowest, m);
+  }
+  std::sort(rivals.begin(), rivals.end());
+}
+
 bool PathEvidence::fixesPose(const Candidate& p) const {
   std::vector<int> faces;
   for (const auto& scan : p.per_scan)
@@ -77,6 +117,7 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
   // the best, the roles swap.
   std::vector<std::pair<double, std::size_t>> rivals;
   std::vector<std::size_t> same_place;
+  std::vector<std::size_t> left_by_free_space;  // bests the free space swapped away from: no way back
   for (int round = 0; round < 3; ++round) {
     const Pose2 here = compose(candidates_[best].T_map_odom, odom);
     rivals.clear();
@@ -84,6 +125,7 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
       if (!near(compose(candidates_[i].T_map_odom, odom), here, kOtherPlaceM, kOtherPlaceRad))
         rivals.emplace_back(distinctMargin(candidates_[best], candidates_[i]), i);
     std::sort(rivals.begin(), rivals.end());
+    addFreeSpace(candidates_[best], rivals);
     // The closest rivals fitted, in margin order, until three other places are fitted or one is
     // below the bar (fitting the others could only lower the margin further). A candidate that
     // fitting moves onto the best place (it was proposed 0.5 m off the same walls, along a wall
@@ -95,7 +137,8 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
     for (std::size_t r = 0; r < rivals.size() && fitted < 3; ++r) {
       Candidate& rival = candidates_[rivals[r].second];
       refine(rival, odom);
-      if (rival.log_likelihood > candidates_[best].log_likelihood) {
+      const bool left = std::find(left_by_free_space.begin(), left_by_free_space.end(), rivals[r].second) != left_by_free_space.end();
+      if (rival.log_likelihood > candidates_[best].log_likelihood && !left) {
         best = rivals[r].second;
         swapped = true;
         break;
@@ -105,7 +148,16 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
         continue;
       }
       ++fitted;
-      rivals[r].first = distinctMargin(candidates_[best], rival);
+      rivals[r].first = margin(candidates_[best], rival);
+      // The free space may say the rival is the better place where the planes could not tell
+      // (two offices alike but for their doors): the roles swap, as for a better fit. Only
+      // while the round allows another (the last keeps its best, whatever its margin).
+      if (rivals[r].first < 0.0 && free_space_map_ && round < 2) {
+        left_by_free_space.push_back(best);
+        best = rivals[r].second;
+        swapped = true;
+        break;
+      }
       if (rivals[r].first < config_.evidenceMargin()) break;
     }
     if (!swapped) break;

@@ -147,10 +147,10 @@ bool StoreyBank::wantsObservations() const {
   return false;
 }
 
-StoreyBankReport StoreyBank::update(const std::vector<planes::ObservedPlane>& walls) {
+StoreyBankReport StoreyBank::update(const std::vector<planes::ObservedPlane>& walls, const RangeProfile* profile) {
   auto& m = *impl_;
   std::vector<UpdateReport> reports;
-  for (auto& e : m.entries) reports.push_back(e.filter->update(walls));
+  for (auto& e : m.entries) reports.push_back(e.filter->update(walls, profile));
   // Every filter gets the same scans and odometry, so they weigh together.
   const bool weighed = reports.front().weighed;
   if (!m.decided && m.entries.size() == 1) {

@@ -24,6 +24,8 @@ constexpr double kMinPlaneDistance_m = 0.1;
 // RANSAC attempts per accepted plane: rejected candidates (slanted, too short, fragments) cost
 // an attempt each, and this bounds the work on scans full of them.
 constexpr int kAttemptsPerPlane = 3;
+// The standing stage's attempts draw from their own seeds (xor'ed into the user's).
+constexpr std::uint64_t kStandingSeed = 0x5747414E44494E47ull;
 
 // Every RANSAC attempt gets its own seed from the user's seed and the attempt's number
 // (splitmix64), so that attempts do not repeat one another's samples and all is reproducible.
@@ -108,37 +110,64 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
   detail::Indices pool(cloud.size());
   std::iota(pool.begin(), pool.end(), 0);
   int accepted = 0;
-  for (int attempt = 0; accepted < config.max_planes && attempt < kAttemptsPerPlane * config.max_planes &&
-                        pool.size() >= min_inliers;
-       ++attempt) {
-    const auto candidate = detail::ransacPlane(cloud, pool, config.ransac_iterations, config.distance_threshold_m,
-                                               attemptSeed(config.seed, attempt));
-    if (!candidate || candidate->inliers.size() < min_inliers) break;  // no plane left worth having
 
+  // One candidate of either stage: its support, the plane, accepted or not, and what leaves
+  // which pool. `walls_pool`, while the standing stage runs, is that stage's pool, and `pool`
+  // the whole scan's, from which an accepted wall's band is removed too.
+  auto take = [&](const detail::RansacPlane& candidate, detail::Indices& search, detail::Indices* also,
+                  bool walls_allowed) {
     // Walls: one run along the wall. Floor and ceiling are kept whole: a storey has one of
     // each, and a floor's scan rings are metres apart, so any gap would cut it up.
-    const bool wall_band = std::abs(candidate->normal.z()) < sin_vertical;
-    const Support support = findSupport(cloud, raw, pool, *candidate, wall_band, config.distance_threshold_m, voxel_m);
+    const bool wall_band = std::abs(candidate.normal.z()) < sin_vertical;
+    const Support support = findSupport(cloud, raw, search, candidate, wall_band, config.distance_threshold_m, voxel_m);
     ObservedPlane plane = detail::describePlane(cloud, support.voxels, support.fit);
     const double nz = std::abs(plane.normal.z());
     plane.vertical = nz < sin_vertical;
     const bool horizontal = nz > cos_horizontal;
-    const bool surface = plane.d >= kMinPlaneDistance_m && (plane.vertical || horizontal);
+    const bool surface = plane.d >= kMinPlaneDistance_m && ((plane.vertical && walls_allowed) || horizontal);
     const bool large = support.voxels.size() >= min_inliers && plane.extent_m >= config.min_extent_m;
     if (surface && large) {
       (plane.vertical ? result.walls : result.horizontals).push_back(plane);
       ++accepted;
       // The run's voxels in the full band of the final plane are this plane's; the other
       // inliers may belong to other walls.
-      pool = without(pool, detail::withinBand(cloud, support.run, support.fit, config.distance_threshold_m));
+      const detail::Indices band = detail::withinBand(cloud, support.run, support.fit, config.distance_threshold_m);
+      search = without(search, band);
+      if (also) *also = without(*also, band);
     } else if (surface) {
       // Too small a run: the band's other runs may still be walls (a wall close by, of few
       // voxels, beside a farther piece of more), so only this run leaves the pool.
-      pool = without(pool, support.run);
+      search = without(search, support.run);
     } else {
       // Slanted, or scan lines: no run of this band is a wall or a floor.
-      pool = without(pool, candidate->inliers);
+      search = without(search, candidate.inliers);
     }
+  };
+
+  // Stage 1 (standing_height_m > 0): the walls, by vertical-plane RANSAC on the voxels of x-y
+  // columns whose returns span standing_height_m (standing.cpp). Stage 2 then finds only the
+  // horizontals, in what is left.
+  const bool standing_stage = config.standing_height_m > 0;
+  if (standing_stage) {
+    detail::Indices standing = detail::standingVoxels(cloud, raw, voxel_m, config.standing_height_m);
+    const double radius_m = std::max(config.min_extent_m, 2 * voxel_m);
+    for (int attempt = 0; accepted < config.max_planes && attempt < kAttemptsPerPlane * config.max_planes &&
+                          standing.size() >= min_inliers;
+         ++attempt) {
+      const auto candidate = detail::ransacVerticalPlane(cloud, standing, config.ransac_iterations,
+                                                         config.distance_threshold_m, radius_m,
+                                                         attemptSeed(config.seed ^ kStandingSeed, attempt));
+      if (!candidate || candidate->inliers.size() < min_inliers) break;
+      take(*candidate, standing, &pool, true);
+    }
+  }
+  for (int attempt = 0; accepted < config.max_planes && attempt < kAttemptsPerPlane * config.max_planes &&
+                        pool.size() >= min_inliers;
+       ++attempt) {
+    const auto candidate = detail::ransacPlane(cloud, pool, config.ransac_iterations, config.distance_threshold_m,
+                                               attemptSeed(config.seed, attempt));
+    if (!candidate || candidate->inliers.size() < min_inliers) break;  // no plane left worth having
+    take(*candidate, pool, nullptr, !standing_stage);
   }
   return result;
 }

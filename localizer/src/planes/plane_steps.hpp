@@ -30,6 +30,14 @@ struct RansacPlane {
 std::optional<RansacPlane> ransacPlane(const Cloud& cloud, const Indices& pool, int iterations, double threshold_m,
                                        std::uint32_t seed);
 
+// standing.cpp. The voxels whose x-y column (cell_m square) holds returns spanning at least
+// min_height_m in z: walls, shelves and doors, not floors, table tops or a ring's slab.
+Indices standingVoxels(const Cloud& voxels, const Cloud& raw, double cell_m, double min_height_m);
+// One vertical plane by RANSAC over cloud[pool] in x-y: two points a sample, the second within
+// radius_m of the first; the plane with the most points within threshold_m, and those points.
+std::optional<RansacPlane> ransacVerticalPlane(const Cloud& cloud, const Indices& pool, int iterations,
+                                               double threshold_m, double radius_m, std::uint32_t seed);
+
 // A least-squares plane (PCA: the normal is the direction of least variance of the points).
 struct PlaneFit {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();

@@ -7,7 +7,8 @@
 
 namespace bimloc::bim {
 
-constexpr int kBuildingJsonVersion = 1;
+// 2: "stairs" (issue 31). Version 1 documents still read, with no stairs.
+constexpr int kBuildingJsonVersion = 2;
 
 nlohmann::json toJson(const Building& building);
 // Throws std::runtime_error naming the field on a document that is not a bimloc building.

@@ -7,6 +7,7 @@
 
 #include <bimloc/bim/building.hpp>
 #include <bimloc/planes/plane_extraction.hpp>
+#include <bimloc/pf/range_profile.hpp>
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -87,6 +88,26 @@ struct ParticleFilterConfig {
   double evidence_yaw_drift_rad_per_m = 0.001;
   double evidence_plan_tolerance_m = 0.05;
   double evidence_injection_fraction = 0.3;
+  // Free-space evidence (beyond the paper; pf/free_space_evidence.hpp): what the scans rule
+  // out. A ray of the scan's range profile that ends beyond a candidate place's wall is
+  // evidence against the place, counted once per wall (like a face of the planes' margin) and
+  // worth at most one face: a wall not built yet costs the true place at most one face, and the
+  // bar is evidence_faces (2). A ray ending far short of every wall (in the place's open) is
+  // worth little (people, furniture, stacked material do that), and the whole of that term is
+  // bounded to free_space_open_faces. False: the planes alone decide. Off by default until
+  // the two false convergences it caused on a generated sports hall (random_hall_93003 R006,
+  // R007: 21 and 15 m off; docs/results/2026-11-26-h28neg.md) are explained and fixed.
+  bool free_space_evidence = false;
+  double free_space_band_low_m = 1.0;   // heights above the floor of the profile (range_profile.hpp)
+  double free_space_band_high_m = 1.8;
+  double free_space_bin_deg = 2.0;
+  double free_space_sigma_m = 0.05;     // the ray's range noise and the plan's as-built tolerance,
+                                        // added to the window's drift (path_evidence.cpp)
+  double free_space_gate_sigmas = 3.0;  // beyond a wall by more than this many sigmas: through it
+  int free_space_support_rays = 3;      // a wall counts in full once this many rays went through it
+  double free_space_open_m = 1.0;       // a ray ending this far short of the place's wall ...
+  double free_space_open_wall_faces = 0.25;  // ... costs this (in faces) per wall it fell short of,
+  double free_space_open_faces = 1.0;   // and all such rays together at most this
   // Resampling and its guards.
   double resample_ess_fraction = 0.5;  // low-variance resampling when ESS < fraction * N
   double roughening_xy_m = 0.02;       // jitter after resampling, against depletion
@@ -120,6 +141,9 @@ struct ParticleFilterConfig {
   double prior_sigma_yaw_deg = 180.0;  // the heading unknown unless given
   std::uint64_t seed = 0;
 };
+
+// The range profile's settings of a filter configuration (its free_space_band_*, _bin_deg).
+RangeProfileConfig profileConfig(const ParticleFilterConfig& config);
 
 struct Particle {
   double x = 0, y = 0, yaw = 0;  // map frame
@@ -170,8 +194,10 @@ class ParticleFilter {
   // weighing, or stood long enough): when not, the caller may skip extracting the planes and
   // call update with none.
   bool wantsObservations() const;
-  // Update with the wall planes of one scan (sensor frame), then resample if needed.
-  UpdateReport update(const std::vector<planes::ObservedPlane>& walls);
+  // Update with the wall planes of one scan (sensor frame), then resample if needed. `profile`:
+  // the same scan's range profile (rangeProfile with profileConfig()), for the free-space
+  // evidence; without it (null, or free_space_evidence off) the planes alone decide.
+  UpdateReport update(const std::vector<planes::ObservedPlane>& walls, const RangeProfile* profile = nullptr);
 
   bool converged() const;
   // Map <- odom, fixed at convergence (paper Eq. of the initial transformation).

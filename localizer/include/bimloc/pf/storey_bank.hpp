@@ -54,7 +54,7 @@ class StoreyBank {
 
   void predict(const Eigen::Isometry3d& T_odom_base);
   bool wantsObservations() const;
-  StoreyBankReport update(const std::vector<planes::ObservedPlane>& walls);
+  StoreyBankReport update(const std::vector<planes::ObservedPlane>& walls, const RangeProfile* profile = nullptr);
 
   // Converged: the storey is decided and its filter converged.
   bool converged() const;

@@ -31,6 +31,13 @@ struct PlaneExtractionConfig {
   double vertical_tolerance_deg = 10;   // |n_z| < sin(tol) -> vertical (wall candidate)
   double horizontal_tolerance_deg = 10; // |n_z| > cos(tol) -> horizontal (floor/ceiling), reported apart
   int max_planes = 20;                  // walls + horizontals
+  // Walls first, from the voxels of x-y columns (voxel_size_m square) whose returns span at least
+  // this in height, by a vertical-plane RANSAC; then the horizontals from the rest. 0: one
+  // sequential RANSAC over the whole scan for both (the dense slabs of a dense lidar's rings
+  // then cut the walls of a cluttered room apart: docs/realdata_room.md). Off by default: with
+  // 0.3 it finds 2-13 walls in the real frames instead of 1-6, but fails three of the simulated
+  // plane tests (tests/test_planes.cpp), not yet understood (docs/results/2026-11-26-h29frames.md).
+  double standing_height_m = 0.0;
   std::uint64_t seed = 0;               // RANSAC is seeded: same scan + seed -> same planes
 };
 

@@ -1,0 +1,93 @@
+// Where to look next (issue 28 §4): while the path still fits several places, a goal near the
+// robot from which those places would be seen to differ most. Each place is a transform
+// map <- odom, so one motion of the base (in its own frame now, hence in the odom frame) takes
+// the robot to a different map pose in each place; from each of those the plan predicts a 2D
+// range scan, and the motion whose scans differ most, reachable in every place, is the goal.
+//
+//   guide::GoalPlanner planner(storey, config.guide);
+//   auto goal = planner.suggest(places, T_odom_base_now);   // nothing with fewer than 2 places
+//   if (goal) walk_to(goal->T_odom_goal);                    // the odom frame: valid as it moves
+#pragma once
+
+#include <bimloc/bim/building.hpp>
+#include <bimloc/geometry/planar_pose.hpp>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace bimloc::guide {
+
+struct GuideConfig {
+  bool enabled = true;  // Localizer: suggest goals while searching (costs a planning every few seconds)
+  // Candidate goals: rings around the robot, from min to max radius, each with `bearings` goals.
+  double goal_min_m = 1.0;
+  double goal_max_m = 4.0;
+  int goal_rings = 4;
+  int goal_bearings = 16;
+  // The predicted scan: a 2D slice of the plan's wall faces at this height above the walls'
+  // base (below window sills: only doors are gaps, as they are to the walking base too).
+  int scan_rays = 90;
+  double scan_range_m = 10.0;
+  double scan_height_m = 0.6;
+  // The range model: plan versus site and a place's own pose error (far above the lidar's
+  // 8 mm), and the chance that a ray ends on something not in the plan (people, furniture,
+  // glass), which caps what one ray can say: a clutter return explains any range.
+  double range_sigma_m = 0.15;
+  double clutter_probability = 0.2;
+  // Rays of one scan are not independent (neighbours hit the same wall): the scan counts as
+  // this many independent rays.
+  double independent_rays = 10.0;
+  // The body: goals and the straight walk to them keep this far from every wall in every place.
+  double clearance_m = 0.4;
+  // Information is in [0, 1] (the mean, over pairs of places, of the probability that the goal's
+  // scan tells them apart); each metre of walk costs this much of it.
+  double travel_cost_per_m = 0.02;
+  // Below this much information, no goal: the places look alike from everywhere within reach.
+  double min_information = 0.05;
+  // Localizer: plan again after this long, when the goal was reached (within goal_reached_m),
+  // or when the places change.
+  double replan_interval_s = 5.0;
+  double goal_reached_m = 0.5;
+};
+
+// A place the path still fits: the base's map pose now, and the evidence margin of the best
+// place over it (0 for the best itself).
+struct Place {
+  PlanarPose T_map_base = PlanarPose::Zero();
+  double margin = 0;
+};
+
+struct LookGoal {
+  PlanarPose motion = PlanarPose::Zero();       // the goal in the base frame now (same for every place)
+  PlanarPose T_odom_goal = PlanarPose::Zero();  // the goal in the odom frame: stays valid as the base moves
+  std::vector<PlanarPose> T_map_goal;           // the goal in the map, for each place (in places' order)
+  double information = 0;                       // expected information gain at the goal, 0..1
+  double distance_m = 0;                        // straight walk from the base now
+};
+
+class GoalPlanner {
+ public:
+  // The storey must outlive the planner: its wall faces are sliced once, here.
+  GoalPlanner(const bim::Storey& storey, const GuideConfig& config);
+  ~GoalPlanner();
+  GoalPlanner(GoalPlanner&&) noexcept;
+
+  // The goal, or nothing with fewer than two places, or when no candidate within reach is free
+  // in every place and tells them apart by at least config.min_information.
+  std::optional<LookGoal> suggest(const std::vector<Place>& places, const PlanarPose& T_odom_base) const;
+  // The predicted scan from a map pose: range per ray (ray k at yaw + 2 pi k / scan_rays),
+  // scan_range_m where it hits nothing. For tests and pictures.
+  std::vector<double> predictScan(const PlanarPose& T_map_base) const;
+  // Whether the body fits at `to` and walks there in a straight line from `from` (map frame).
+  bool reachable(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
+  // The information (0..1) of scans from these map poses, one per place.
+  double information(const std::vector<PlanarPose>& T_map_bases) const;
+  const GuideConfig& config() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace bimloc::guide

@@ -1,0 +1,89 @@
+#include "wall_slice.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bimloc::guide::detail {
+namespace {
+
+double cross2(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+// Whether segments p0-p1 and q0-q1 cross (touching counts).
+bool segmentsCross(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, const Eigen::Vector2d& q0,
+                   const Eigen::Vector2d& q1) {
+  const double d1 = cross2(p1 - p0, q0 - p0), d2 = cross2(p1 - p0, q1 - p0);
+  const double d3 = cross2(q1 - q0, p0 - q0), d4 = cross2(q1 - q0, p1 - q0);
+  return ((d1 > 0) != (d2 > 0) || d1 == 0 || d2 == 0) && ((d3 > 0) != (d4 > 0) || d3 == 0 || d4 == 0) &&
+         !(d1 == 0 && d2 == 0);  // collinear: left to the distance test
+}
+
+}  // namespace
+
+std::vector<Segment2> sliceWalls(const bim::Storey& storey, double height_m) {
+  std::vector<Segment2> out;
+  for (const auto& wall : storey.walls)
+    for (const auto& face : wall.faces) {
+      const double length = face.length_m();
+      if (!(length > 1e-3)) continue;
+      const double z = face.start.z() + height_m;
+      // The gaps at that height along the face, merged, then the solid stretches between them.
+      std::vector<std::pair<double, double>> gaps;
+      for (const auto& o : face.openings)
+        if (o.z_min_m <= z && o.z_max_m >= z) gaps.emplace_back(std::max(0.0, o.along_min_m), std::min(length, o.along_max_m));
+      std::sort(gaps.begin(), gaps.end());
+      const Eigen::Vector2d a = face.start.head<2>(), dir = (face.end - face.start).head<2>() / length;
+      double from = 0;
+      const auto solid = [&](double lo, double hi) {
+        if (hi - lo > 1e-3) out.push_back({a + lo * dir, a + hi * dir});
+      };
+      for (const auto& [lo, hi] : gaps) {
+        if (hi <= from) continue;
+        solid(from, lo);
+        from = std::max(from, hi);
+      }
+      solid(from, length);
+    }
+  return out;
+}
+
+std::vector<Segment2> segmentsNear(const std::vector<Segment2>& segments, const Eigen::Vector2d& centre, double radius_m) {
+  std::vector<Segment2> out;
+  for (const auto& s : segments)
+    if (distanceTo(s, centre) <= radius_m) out.push_back(s);
+  return out;
+}
+
+double castRay(const std::vector<Segment2>& segments, const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
+               double max_m) {
+  double best = max_m;
+  for (const auto& s : segments) {
+    const Eigen::Vector2d e = s.b - s.a;
+    const double denom = cross2(direction, e);
+    if (std::abs(denom) < 1e-12) continue;  // parallel: a grazing ray hits the neighbouring face
+    const Eigen::Vector2d w = s.a - origin;
+    const double t = cross2(w, e) / denom, u = cross2(w, direction) / denom;
+    if (t > 0 && t < best && u >= 0 && u <= 1) best = t;
+  }
+  return best;
+}
+
+double distanceTo(const Segment2& s, const Eigen::Vector2d& p) {
+  const Eigen::Vector2d e = s.b - s.a;
+  const double l2 = e.squaredNorm();
+  const double u = l2 > 0 ? std::clamp((p - s.a).dot(e) / l2, 0.0, 1.0) : 0.0;
+  return (s.a + u * e - p).norm();
+}
+
+bool walkClear(const std::vector<Segment2>& segments, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+               double clearance_m) {
+  const Segment2 walk{from, to};
+  for (const auto& s : segments) {
+    if (segmentsCross(from, to, s.a, s.b)) return false;
+    // Not crossing: the distance between the segments is at one of the four end points.
+    const double d = std::min(std::min(distanceTo(s, from), distanceTo(s, to)), std::min(distanceTo(walk, s.a), distanceTo(walk, s.b)));
+    if (d < clearance_m) return false;
+  }
+  return true;
+}
+
+}  // namespace bimloc::guide::detail

@@ -1,0 +1,35 @@
+// The plan's walls as a 2D slice: every wall face cut at one height above its base, its
+// openings at that height left as gaps (doors; windows start higher). What a planar lidar at
+// that height would hit, and what a walking body must keep clear of.
+#pragma once
+
+#include <bimloc/bim/building.hpp>
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace bimloc::guide::detail {
+
+struct Segment2 {
+  Eigen::Vector2d a = Eigen::Vector2d::Zero(), b = Eigen::Vector2d::Zero();
+};
+
+// The solid pieces of every face of the storey at `height_m` above the face's base.
+std::vector<Segment2> sliceWalls(const bim::Storey& storey, double height_m);
+
+// The segments with a point within `radius_m` of `centre`.
+std::vector<Segment2> segmentsNear(const std::vector<Segment2>& segments, const Eigen::Vector2d& centre, double radius_m);
+
+// Distance from the ray's origin to the first segment along it, or max_m.
+double castRay(const std::vector<Segment2>& segments, const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
+               double max_m);
+
+// The distance from p to segment s.
+double distanceTo(const Segment2& s, const Eigen::Vector2d& p);
+
+// Whether the straight walk from `from` to `to` keeps `clearance_m` from every segment
+// (the distance between the two segments, which is 0 when they cross).
+bool walkClear(const std::vector<Segment2>& segments, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+               double clearance_m);
+
+}  // namespace bimloc::guide::detail

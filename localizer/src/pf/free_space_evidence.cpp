@@ -1,0 +1,233 @@
+#include "free_space_evidence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace bimloc::pf::detail {
+namespace {
+
+// Within this of a face's end, a crossing is a corner: the plan's faces meet there only to
+// within its drawing, and a ray may slip between two of them or stop on either.
+constexpr double kFreeSpaceCornerM = 0.15;
+// Within this of an opening's edge, a crossing is the opening's frame: the plan's openings are
+// drawn to within centimetres, a ray is a few centimetres wide at range, and a door leaf stands
+// in the frame. No verdict, as at a corner.
+constexpr double kFreeSpaceOpeningMarginM = 0.1;
+// The ray's range sigma grows as 1 / |cos| of its incidence on the face, up to this.
+constexpr double kFreeSpaceMinCos = 0.3;
+constexpr double kFreeSpaceRegionM = 2.0;
+
+}  // namespace
+
+FreeSpaceParams FreeSpaceParams::of(const ParticleFilterConfig& c, double drift_m) {
+  FreeSpaceParams p;
+  p.sigma_m = std::sqrt(c.free_space_sigma_m * c.free_space_sigma_m + drift_m * drift_m);
+  p.gate_sigmas = c.free_space_gate_sigmas;
+  // A place's heading is fitted on the window's planes, each known to sigma_azimuth: a few
+  // dozen of them pin it to about sigma_azimuth / 5 (5 deg -> 1 deg).
+  // And the odometry's heading drift over half the window moves it as much again.
+  const double fitted = c.sigma_azimuth_deg / 5.0 * M_PI / 180.0;
+  const double drift = c.evidence_yaw_drift_rad_per_m * 0.5 * c.evidence_window_m;
+  p.sigma_yaw_rad = std::hypot(fitted, drift);
+  p.face_worth = 0.5 * (c.gate_mahalanobis2 - 3.0);
+  p.support_rays = std::max(1, c.free_space_support_rays);
+  p.open_m = c.free_space_open_m;
+  p.open_wall_faces = c.free_space_open_wall_faces;
+  p.open_faces = c.free_space_open_faces;
+  return p;
+}
+
+double throughCost(double beyond_m, double sigma_m, double cap) {
+  if (!(beyond_m > 0.0) || !(cap > 0.0)) return 0.0;
+  const double z = beyond_m / sigma_m;
+  const double w = std::exp(-cap);
+  return std::min(cap, -std::log((1.0 - w) * std::exp(-0.5 * z * z) + w));
+}
+
+FreeSpaceMap::FreeSpaceMap(const bim::Storey& storey, double cell_m) : cell_m_(cell_m) {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t w = 0; w < storey.walls.size(); ++w) {
+    const bim::Wall& wall = storey.walls[w];
+    for (const auto& f : wall.faces) {
+      Face face;
+      face.start = f.start.head<2>();
+      const Eigen::Vector2d along = f.end.head<2>() - face.start;
+      face.length_m = along.norm();
+      if (!(face.length_m > 1e-6) || !along.allFinite()) continue;
+      face.direction = along / face.length_m;
+      face.normal = Eigen::Vector2d(-face.direction.y(), face.direction.x());
+      const bool bounded = wall.height_m > 0.0 && std::isfinite(f.start.z());
+      face.z_bottom = bounded ? f.start.z() : -std::numeric_limits<double>::infinity();
+      face.z_top = bounded ? f.start.z() + wall.height_m : std::numeric_limits<double>::infinity();
+      face.openings = &f.openings;
+      face.wall = static_cast<int>(w);
+      lo = lo.cwiseMin(face.start).cwiseMin(f.end.head<2>());
+      hi = hi.cwiseMax(face.start).cwiseMax(f.end.head<2>());
+      faces_.push_back(face);
+    }
+  }
+  if (faces_.empty()) return;
+  origin_ = lo - Eigen::Vector2d::Constant(cell_m_);
+  nx_ = static_cast<int>(std::ceil((hi.x() - origin_.x()) / cell_m_)) + 2;
+  ny_ = static_cast<int>(std::ceil((hi.y() - origin_.y()) / cell_m_)) + 2;
+  cells_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), {});
+  for (std::size_t i = 0; i < faces_.size(); ++i) {
+    // Every cell the segment passes through, sampled at a quarter cell (and its ends' cells).
+    const Face& f = faces_[i];
+    const int steps = static_cast<int>(std::ceil(f.length_m / (0.25 * cell_m_))) + 1;
+    for (int s = 0; s <= steps; ++s) {
+      const Eigen::Vector2d p = f.start + f.direction * (f.length_m * s / steps);
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          // The neighbours too when the point is within a few centimetres of their edge.
+          const Eigen::Vector2d q = p + 0.05 * Eigen::Vector2d(dx, dy);
+          const int ix = static_cast<int>(std::floor((q.x() - origin_.x()) / cell_m_));
+          const int iy = static_cast<int>(std::floor((q.y() - origin_.y()) / cell_m_));
+          if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_) continue;
+          auto& cell = cells_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix)];
+          if (cell.empty() || cell.back() != i) cell.push_back(static_cast<std::uint32_t>(i));
+        }
+    }
+  }
+  for (auto& cell : cells_) {
+    std::sort(cell.begin(), cell.end());
+    cell.erase(std::unique(cell.begin(), cell.end()), cell.end());
+  }
+}
+
+int FreeSpaceMap::regionKey(const Eigen::Vector2d& p) const {
+  const int ix = static_cast<int>(std::floor(p.x() / kFreeSpaceRegionM)) & 0x3fff;
+  const int iy = static_cast<int>(std::floor(p.y() / kFreeSpaceRegionM)) & 0x3fff;
+  return (iy << 14) | ix;
+}
+
+std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0,
+                                                                  double dz_per_m, double max_t, double lateral_per_m,
+                                                                  double position_sigma_m) const {
+  std::optional<Crossing> best;
+  if (faces_.empty() || !(max_t > 0.0)) return best;
+  // Amanatides-Woo traversal of the cells along the ray; a crossing found in a cell may lie in
+  // a later one (faces span cells), so the walk stops once the cells begin beyond it.
+  double gx = (o.x() - origin_.x()) / cell_m_, gy = (o.y() - origin_.y()) / cell_m_;
+  int ix = static_cast<int>(std::floor(gx)), iy = static_cast<int>(std::floor(gy));
+  const int sx = u.x() > 0 ? 1 : -1, sy = u.y() > 0 ? 1 : -1;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double ddx = u.x() != 0.0 ? cell_m_ / std::abs(u.x()) : inf, ddy = u.y() != 0.0 ? cell_m_ / std::abs(u.y()) : inf;
+  double tx = u.x() != 0.0 ? ((sx > 0 ? (ix + 1 - gx) : (gx - ix)) * cell_m_) / std::abs(u.x()) : inf;
+  double ty = u.y() != 0.0 ? ((sy > 0 ? (iy + 1 - gy) : (gy - iy)) * cell_m_) / std::abs(u.y()) : inf;
+  double t_cell = 0.0;  // where the current cell begins along the ray
+  std::vector<std::uint32_t> tried;
+  while (t_cell <= max_t && (!best || t_cell <= best->t)) {
+    if (ix >= 0 && iy >= 0 && ix < nx_ && iy < ny_) {
+      for (const std::uint32_t i : cells_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix)]) {
+        if (std::find(tried.begin(), tried.end(), i) != tried.end()) continue;
+        tried.push_back(i);
+        const Face& f = faces_[i];
+        // o + t u = start + s direction.
+        const double denom = u.x() * f.direction.y() - u.y() * f.direction.x();
+        if (std::abs(denom) < 1e-9) continue;  // parallel: the ray runs along it
+        const Eigen::Vector2d w = f.start - o;
+        const double t = (w.x() * f.direction.y() - w.y() * f.direction.x()) / denom;
+        const double s = (w.x() * u.y() - w.y() * u.x()) / denom;
+        if (!(t > 1e-6) || t > max_t || (best && t >= best->t)) continue;
+        // Where along the face the ray crosses is known to the place's pose: its heading moves
+        // the ray t sigma_yaw sideways, which is that over cos(incidence) along the face; its
+        // position moves the crossing by sigma_pos along the face and, across it, by sigma_pos
+        // tan(incidence) along it (a ray at 17 deg to a wall, from a robot in its doorway,
+        // crosses 3 cm off the plan 10 cm farther along). A crossing within 2 sigma of a face's
+        // end or an opening's edge could as well have missed the face or passed through the
+        // hole: no verdict.
+        const double cos_i = std::max(kFreeSpaceMinCos, std::abs(u.dot(f.normal)));
+        const double tan_i = std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / cos_i;
+        const double along_sigma = std::sqrt(std::pow(lateral_per_m * t / cos_i, 2) + std::pow(position_sigma_m, 2) * (1.0 + tan_i * tan_i));
+        const double corner_m = std::max(kFreeSpaceCornerM, 2.0 * along_sigma);
+        const double frame_m = std::max(kFreeSpaceOpeningMarginM, 2.0 * along_sigma);
+        if (s < -corner_m || s > f.length_m + corner_m) continue;
+        const double z = z0 + dz_per_m * t;
+        if (z < f.z_bottom || z > f.z_top) continue;  // above or below the wall's body
+        bool corner = s < corner_m || s > f.length_m - corner_m;
+        // Through a door or a window: no wall there. (A rectangle of no width lies inside any
+        // set of holes, even none: a centimetre.)
+        if (!corner && f.openings && bim::insideOpening(*f.openings, s - 0.01, s + 0.01, z - 0.01, z + 0.01, 0.0)) continue;
+        // Near a hole: within frame_m of it along the face (the heading's sideways slip),
+        // within the drawing's margin in height.
+        if (f.openings)
+          for (const auto& o : *f.openings)
+            corner |= s >= o.along_min_m - frame_m && s <= o.along_max_m + frame_m && z >= o.z_min_m - kFreeSpaceOpeningMarginM &&
+                      z <= o.z_max_m + kFreeSpaceOpeningMarginM;  // at its frame: a jamb or the hole, no verdict
+        Crossing c;
+        c.t = t, c.wall = f.wall, c.cos_incidence = std::abs(u.dot(f.normal)), c.uncertain = corner;
+        best = c;
+      }
+    }
+    if (tx < ty) {
+      t_cell = tx, tx += ddx, ix += sx;
+    } else {
+      t_cell = ty, ty += ddy, iy += sy;
+    }
+    if (!std::isfinite(t_cell)) break;
+  }
+  return best;
+}
+
+std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpaceParams& params, const Eigen::Vector3d& pose, double z_base,
+                                        const RangeProfile& profile) {
+  std::vector<FreeSpaceHit> hits;
+  const double c = std::cos(pose.z()), s = std::sin(pose.z());
+  const auto toMap = [&](double x, double y) { return Eigen::Vector2d(pose.x() + c * x - s * y, pose.y() + s * x + c * y); };
+  const Eigen::Vector2d o = toMap(profile.origin_base.x(), profile.origin_base.y());
+  const double z0 = z_base + profile.origin_base.z();
+  // This turn's own skew (range_profile.hpp) adds to the place's uncertainty, as a sigma: a
+  // bound taken for a sigma is the safe side of a uniform error's (bound / sqrt 3).
+  const double sigma_yaw = std::hypot(params.sigma_yaw_rad, profile.skew_yaw_rad);
+  const double sigma_m = std::hypot(params.sigma_m, profile.skew_m);
+  for (const auto& e : profile.ends_base) {
+    const Eigen::Vector2d end = toMap(e.x(), e.y());
+    const Eigen::Vector2d v = end - o;
+    const double r = v.norm();
+    if (!(r > 1e-3)) continue;
+    const Eigen::Vector2d u = v / r;
+    const double dz = (z_base + e.z() - z0) / r;
+    const auto x = map.firstCrossing(o, u, z0, dz, r + params.open_m, sigma_yaw, sigma_m);
+    if (!x) {
+      // Nothing solid along the ray up to open_m past its end: it ended in the place's open.
+      hits.push_back({kOpenKeyBase + map.regionKey(end), static_cast<float>(params.open_wall_faces * params.face_worth)});
+      continue;
+    }
+    if (x->uncertain) continue;
+    // The range along the ray is uncertain by the range noise over the incidence, and by the
+    // place's heading: a candidate fitted on a few scans is known to sigma_yaw, which moves the
+    // ray sideways by r sigma_yaw at the wall and so along it by that times tan(incidence). At
+    // grazing incidence on a wall far away that is metres: a ray that ended on the hall's far
+    // corner must not count as through the side wall beside it (random hall, 1 deg off).
+    const double cos_i = std::max(kFreeSpaceMinCos, x->cos_incidence);
+    const double tan_i = std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / cos_i;
+    const double lateral = x->t * sigma_yaw * tan_i;
+    const double sigma = std::hypot(sigma_m / cos_i, lateral);
+    const double beyond = r - x->t;
+    if (beyond > params.gate_sigmas * sigma)
+      hits.push_back({x->wall, static_cast<float>(throughCost(beyond, sigma, params.face_worth))});
+  }
+  return hits;
+}
+
+double freeSpacePenalty(const std::vector<const std::vector<FreeSpaceHit>*>& per_scan, const FreeSpaceParams& params) {
+  std::vector<FreeSpaceHit> all;
+  for (const auto* scan : per_scan)
+    if (scan) all.insert(all.end(), scan->begin(), scan->end());
+  std::sort(all.begin(), all.end(), [](const FreeSpaceHit& a, const FreeSpaceHit& b) { return a.key < b.key; });
+  double through = 0, open = 0;
+  for (std::size_t i = 0; i < all.size();) {
+    std::size_t j = i;
+    double sum = 0;
+    for (; j < all.size() && all[j].key == all[i].key; ++j) sum += all[j].cost;
+    const double n = static_cast<double>(j - i);
+    const double worth = sum / n * std::min(1.0, n / static_cast<double>(params.support_rays));
+    (all[i].key >= kOpenKeyBase ? open : through) += worth;
+    i = j;
+  }
+  return through + std::min(open, params.open_faces * params.face_worth);
+}
+
+}  // namespace bimloc::pf::detail

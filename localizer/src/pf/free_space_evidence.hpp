@@ -1,0 +1,105 @@
+// Free-space (negative) evidence: what the scans rule out. The planes' margin weighs the walls a
+// place explains; two offices alike in their walls but not in where their doors are stay tied
+// on planes for as long as the robot stays in one of them, although every ray through the true
+// door went through the other office's solid wall. Here each ray of a scan's range profile
+// (range_profile.hpp) is cast from a candidate place through the plan's wall faces:
+//   - through: it ends beyond the first solid face it crosses (not in an opening) by more than
+//     gate_sigmas sigmas of its range: the place has a wall where the scan saw none;
+//   - open: it ends open_m or more short of every face along it: the place has free space where
+//     the scan saw something;
+//   - else it is consistent (ended on a wall, or short of one by clutter): no cost.
+// The model is a beam model with a uniform clutter floor (Thrun et al., Probabilistic Robotics
+// 6.3: p(r) = (1 - w) N(r; t, sigma) + w), restricted to rays that reach beyond t: such a reading
+// has no short-reading explanation, and its cost -log p(r) + log p(t) rises as the Gaussian's
+// and then saturates at -log w, which the floor w is chosen to make one face's worth (half the
+// planes' gate less its 3 dof, the unit of ParticleFilterConfig::evidenceMargin). Short rays
+// are what people, furniture and stacked material do: the open cost is a small constant per
+// ray, and bounded per region and in total.
+//
+// Counted once per wall (like FaceMargin counts a face once): a wall's through-rays over the
+// whole window contribute the mean of their costs, times min(1, rays / support_rays). So a
+// wall missing on a construction site costs the true place at most one face, below the bar of
+// two; a wall that really is not at the place costs a wrong place about one face per wall.
+#pragma once
+
+#include <bimloc/bim/building.hpp>
+#include <bimloc/pf/particle_filter.hpp>
+#include <bimloc/pf/range_profile.hpp>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace bimloc::pf::detail {
+
+// One ray's cost against a place, and what it is counted under: a wall index (through it), or
+// kOpenKeyBase + a 2 m region cell of the floor where it ended (in the open).
+struct FreeSpaceHit {
+  std::int32_t key = 0;
+  float cost = 0;
+};
+constexpr std::int32_t kOpenKeyBase = 1 << 28;
+
+struct FreeSpaceParams {
+  double sigma_m = 0.15;           // a ray's range sigma at normal incidence (noise, drift, plan)
+  double gate_sigmas = 3.0;
+  double sigma_yaw_rad = 0.0175;   // the place's heading, as fitted: moves a far ray sideways
+  double face_worth = 4.17;        // one face of the planes' margin: 0.5 (gate - 3)
+  int support_rays = 3;
+  double open_m = 1.0;
+  double open_wall_faces = 0.25;   // per open region, in faces
+  double open_faces = 1.0;         // all open regions, in faces
+  static FreeSpaceParams of(const ParticleFilterConfig& c, double drift_m);
+};
+
+// The cost of one ray ending `beyond_m` past the wall it crossed, range sigma `sigma_m`:
+// -log((1 - w) exp(-z^2 / 2) + w), z = beyond / sigma, with w = exp(-cap): 0 at the wall,
+// never more than cap.
+double throughCost(double beyond_m, double sigma_m, double cap);
+
+// The plan's wall faces in a grid, for rays: the first solid face a ray crosses.
+class FreeSpaceMap {
+ public:
+  explicit FreeSpaceMap(const bim::Storey& storey, double cell_m = 1.0);
+  struct Crossing {
+    double t = 0;             // along the ray, metres
+    int wall = -1;            // the storey's wall index
+    double cos_incidence = 1; // |cos| between the ray and the face normal
+    bool uncertain = false;   // within a few centimetres of the face's end: a corner, no verdict
+  };
+  // The first solid crossing of the ray o + t u (u unit, map x y; its height goes from z0 at
+  // t = 0 by dz_per_m), 0 < t <= max_t. Openings the ray passes through are not crossings.
+  // lateral_per_m (the place's heading sigma) and position_sigma_m (its position's) say how far
+  // along a face the crossing may be off: that close to a face's end or an opening's edge it
+  // is `uncertain`.
+  std::optional<Crossing> firstCrossing(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0, double dz_per_m,
+                                        double max_t, double lateral_per_m = 0.0, double position_sigma_m = 0.0) const;
+  int regionKey(const Eigen::Vector2d& p) const;  // a 2 m cell of the floor
+
+ private:
+  struct Face {
+    Eigen::Vector2d start, direction, normal;
+    double length_m = 0;
+    double z_bottom = 0, z_top = 0;  // map heights; unbounded when unknown
+    const std::vector<bim::FaceOpening>* openings = nullptr;
+    int wall = -1;
+  };
+  std::vector<Face> faces_;
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  double cell_m_ = 1.0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::vector<std::uint32_t>> cells_;
+};
+
+// The hits of one scan's profile with the base at map pose `pose` (x, y, yaw), base height z_base.
+std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpaceParams& params, const Eigen::Vector3d& pose, double z_base,
+                                        const RangeProfile& profile);
+
+// The evidence against a place over a window (its scans' hits): per key the mean cost of its
+// rays times min(1, rays / support_rays); through keys add up, open keys add up to at most
+// open_faces faces.
+double freeSpacePenalty(const std::vector<const std::vector<FreeSpaceHit>*>& per_scan, const FreeSpaceParams& params);
+
+}  // namespace bimloc::pf::detail
