@@ -26,11 +26,6 @@ constexpr int kWalkDraws = 200;
 // Goals in a room: the centre, or the nearest spot within this distance where the body fits.
 constexpr double kSpotSearch_m = 3.0;
 
-std::string xy(const Eigen::Vector2d& p) {
-  char text[64];
-  std::snprintf(text, sizeof text, "(%.2f, %.2f)", p.x(), p.y());
-  return text;
-}
 
 std::string metres(double v) {
   char text[32];
@@ -65,7 +60,7 @@ void randomWalk(ScriptBuilder& script, const bim::Storey& storey, const MotionCo
   const bim::Room* room = motion.walk_room.empty() ? roomAt(storey, {start.x, start.y})
                                                    : &roomOrThrow(storey, motion.walk_room);
   if (!room)
-    throw MotionError("random walk: the start " + xy({start.x, start.y}) + " is in no room of storey '" + storey.name +
+    throw MotionError("random walk: the start " + pointText({start.x, start.y}) + " is in no room of storey '" + storey.name +
                           "'; name the room (motion.room)",
                       MotionError::Where::Script);
   Eigen::Vector2d lo = room->footprint.front(), hi = lo;
@@ -85,7 +80,7 @@ void randomWalk(ScriptBuilder& script, const bim::Storey& storey, const MotionCo
     if (leg.empty()) {
       if (legs == 0)
         throw MotionError("random walk: no spot in room " + room->name + " where the body fits is reachable from " +
-                              xy(script.timeline().position()),
+                              pointText(script.timeline().position()),
                           MotionError::Where::Script);
       break;
     }
@@ -105,7 +100,7 @@ void legToRoom(ScriptBuilder& script, const bim::Room& room) {
   const Eigen::Vector2d from = script.timeline().position(), goal = roomGoal(script.space(), room);
   std::vector<Eigen::Vector2d> leg = script.space().pathInto(from, goal, room.footprint);
   if (leg.empty())
-    throw MotionError("no path from " + xy(from) + " into room " + room.name + " for a body of radius " +
+    throw MotionError("no path from " + pointText(from) + " into room " + room.name + " for a body of radius " +
                           metres(script.space().radius()),
                       MotionError::Where::Script);
   leg.erase(leg.begin());  // `from`: where the base already is
@@ -222,7 +217,7 @@ BaseTrajectory BaseTrajectory::plan(const World& world, std::size_t storey, cons
   ScriptBuilder script(world, storey, floor0, start, motion, limits);
   Eigen::Vector3d contact = Eigen::Vector3d::Zero();
   if (!script.space().spotFree(origin, 0.0, &contact))
-    throw MotionError("the start " + xy(origin) + " leaves no room for a body of radius " + metres(motion.body_radius_m) +
+    throw MotionError("the start " + pointText(origin) + " leaves no room for a body of radius " + metres(motion.body_radius_m) +
                           ": it touches the building at " + xyz(contact),
                       MotionError::Where::Start);
   if (!motion.storeys.empty() && motion.storeys.size() != motion.rooms.size())

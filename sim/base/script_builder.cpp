@@ -8,6 +8,14 @@
 #include <cstdio>
 
 namespace bimloc::sim {
+
+// A plan point as text for errors: "(x, y)" in metres.
+std::string pointText(const Eigen::Vector2d& p) {
+  char text[64];
+  std::snprintf(text, sizeof text, "(%.2f, %.2f)", p.x(), p.y());
+  return text;
+}
+
 namespace {
 
 // Floor search under the body: from body height down to a bit below the storey floor.
@@ -18,12 +26,6 @@ constexpr double kFloorSearchBelow_m = 1.0;
 constexpr double kFlightClearance_m = 0.15;
 // Where the spot before a flight is walled in (a railing, a newel), the nearest free spot within this.
 constexpr double kFlightSpotSearch_m = 1.0;
-
-std::string pointText(const Eigen::Vector2d& p) {
-  char text[64];
-  std::snprintf(text, sizeof text, "(%.2f, %.2f)", p.x(), p.y());
-  return text;
-}
 
 std::string pointText3(const Eigen::Vector3d& p) {
   char text[96];

@@ -16,6 +16,9 @@
 
 namespace bimloc::sim {
 
+// A plan point as text for errors: "(x, y)" in metres (script_builder.cpp, base_trajectory.cpp).
+std::string pointText(const Eigen::Vector2d& p);
+
 class ScriptBuilder {
  public:
   // Starts at `start` on `storey`, whose floor under the start is at floor_z.
