@@ -339,7 +339,11 @@ void Localizer::Impl::follow(double stamp_s, const Eigen::Isometry3d& odom, Loca
   }
   if (!T_map_odom) return followSearch(stamp_s, odom, r);
   Eigen::Vector3d base = (*T_map_odom * odom).translation();
-  if (altitude && storeys::storeysAtAltitude(building, {storey}, *altitude, *base_height_m, config.storeys).empty())
+  // The altitude stands in for the height only when the odometry shows none (2-D odometry: still
+  // on the tracked floor while the altitude rules that out). An odometry that climbed keeps its
+  // own height: a barometer's per-reading noise (0.1-0.3 m) would never let the height settle.
+  if (altitude && storeys::storeysAtAltitude(building, {storey}, *altitude, *base_height_m, config.storeys).empty() &&
+      storeys::storeyAtHeight(building, {storey}, base.z(), *base_height_m, config.storeys.floor_tolerance_m) == storey)
     base.z() = altitude->altitude_m;
   if (const auto arrival = follower.step(stamp_s, storey, base, *base_height_m, altitude)) {
     arrive(*arrival, stamp_s, odom, r);

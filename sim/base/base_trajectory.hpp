@@ -36,7 +36,8 @@ struct Pose2 {
 class BaseTrajectory {
  public:
   // Plans the motion from `start` on `storey`: expands the script (waypoints, a tour through
-  // rooms and their doors, a random walk in a room) into a path, checks every segment with a
+  // rooms and their doors, over the stairs to rooms on other storeys, a random walk in a room)
+  // into a path, checks every segment with a
   // Bullet sweep of the body, and times it under the limits. Throws MotionError (a
   // std::runtime_error) naming the segment and the contact point for a path through a wall.
   static BaseTrajectory plan(const World& world, std::size_t storey, const Pose2& start, const MotionConfig& motion,
@@ -52,8 +53,16 @@ class BaseTrajectory {
   // The planar path (x, y, yaw) at its corners, for drawing and tests: the start pose, then
   // every corner with the heading the base arrives with (it then turns in place).
   const std::vector<Pose2>& corners() const;
-  // Height of the floor under the body at time t (map z).
+  // Height of the floor under the body at time t (map z); on a flight, the run line's.
   double floor_z(double t_s) const;
+  // The storey the base is on at time t (issue 31): the one it came from while on a flight,
+  // the new one from the instant it steps off. And whether it is on a flight.
+  std::size_t storey(double t_s) const;
+  bool onStairs(double t_s) const;
+  // The storeys it stands on, in the order it reaches them (the start storey first): more
+  // than one when the script climbs.
+  const std::vector<std::size_t>& storeys() const;
+  bool multiStorey() const { return storeys().size() > 1; }
   // Distance walked by time t (metres).
   double distance_m(double t_s) const;
   // The first moment at or after t when the base is at rest (the end of its turn or straight

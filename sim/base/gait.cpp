@@ -30,4 +30,11 @@ GaitOffsets gaitOffsets(const GaitConfig& gait, double t_s, double activity, dou
   return g;
 }
 
+double stairSpeed_mps(const bim::StairFlight& flight, const MotionConfig& motion) {
+  constexpr double kRampFraction = 0.5;
+  constexpr double kStepsPerStride = 2.0;  // a trot: left pair, right pair
+  if (flight.risers <= 0 || !(flight.going_m > 0.0)) return kRampFraction * motion.max_speed_mps;
+  return std::min(motion.max_speed_mps, flight.going_m * motion.gait.step_frequency_hz / kStepsPerStride);
+}
+
 }  // namespace bimloc::sim

@@ -5,6 +5,8 @@
 
 #include "sim/base/motion_config.hpp"
 
+#include <bimloc/bim/building.hpp>
+
 namespace bimloc::sim {
 
 struct GaitOffsets {
@@ -18,5 +20,12 @@ double gaitActivity(double speed_mps, double turn_rate_rps, double max_speed_mps
 
 // `phase_rad` shifts the gait cycle (drawn from the seed: a run does not start on a step).
 GaitOffsets gaitOffsets(const GaitConfig& gait, double t_s, double activity, double phase_rad);
+
+// The base's horizontal speed on a flight (issue 31): the trot slows to one tread per stride
+// (each leg pair steps up one riser per stride, at the gait's step frequency), so a 0.28 m
+// going at 2 steps/s gives 0.28 m/s, a third of the 0.8 m/s on the flat. A model: no published
+// figure of Spot's or ANYmal's stair speed was found. A ramp (no risers): half the speed limit.
+// Never above the speed limit.
+double stairSpeed_mps(const bim::StairFlight& flight, const MotionConfig& motion);
 
 }  // namespace bimloc::sim

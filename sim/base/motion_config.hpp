@@ -26,6 +26,13 @@ struct MotionConfig {
   Kind kind = Kind::Stand;
   std::vector<Waypoint> waypoints;  // Kind::Waypoints
   std::vector<std::string> rooms;   // Kind::Tour: room names or ids, visited in order through the doors
+  // Kind::Tour: the storey (name, GlobalId or index) of each room, as many as rooms; empty: all
+  // on the start storey. A room on another storey is reached over the stairs (issue 31).
+  std::vector<std::string> storeys;
+  // Kind::Tour (`--multi-storey`): after the listed rooms, the base explores every storey the
+  // stairs lead to from its start, in turn (the nearest by stairs first), an equal share of the
+  // duration on each, and goes on exploring the last one.
+  bool all_storeys = false;
   std::string walk_room;            // Kind::RandomWalk: the room to wander in (default: the start room)
   // Kind::Tour: rooms out of reach (another flat, closed doors) are left out instead of an
   // error; reaching none, the base explores (explore_after_tour) or else wanders in its start

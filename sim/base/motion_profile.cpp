@@ -50,8 +50,8 @@ double RestToRest::speed(double t) const {
 }
 
 Timeline::Timeline(const Eigen::Vector2d& start, double yaw, const MotionLimits& limits,
-                   std::function<double(const Eigen::Vector2d&)> floor_z)
-    : limits_(limits), floor_z_(std::move(floor_z)), position_(start), yaw_(yaw) {
+                   std::function<double(const Eigen::Vector2d&)> floor_z, int storey)
+    : limits_(limits), floor_z_(std::move(floor_z)), position_(start), yaw_(yaw), storey_(storey) {
   floor_here_ = floor_z_(start);
 }
 
@@ -67,15 +67,14 @@ void Timeline::turnTo(double yaw) {
   p.profile = RestToRest::plan(std::abs(delta), limits_.max_turn_rate_rps, limits_.max_turn_accel_rps2);
   p.t1 = p.t0 + p.profile.duration();
   p.floor_z = {floor_here_};
+  p.storey = storey_;
   phases_.push_back(std::move(p));
   yaw_ += delta;
 }
 
-void Timeline::moveTo(const Eigen::Vector2d& target) {
+void Timeline::addMove(const Eigen::Vector2d& target, std::vector<double> floor_z, double max_speed_mps, bool stairs) {
   const Eigen::Vector2d d = target - position_;
   const double length = d.norm();
-  if (length < kMinMove_m) return;
-  turnTo(std::atan2(d.y(), d.x()));
   Phase p;
   p.move = true;
   p.t0 = end_s();
@@ -83,14 +82,47 @@ void Timeline::moveTo(const Eigen::Vector2d& target) {
   p.dir = d / length;
   p.yaw0 = yaw_;
   p.distance0 = distance_;
-  p.profile = RestToRest::plan(length, limits_.max_speed_mps, limits_.max_accel_mps2);
+  p.profile = RestToRest::plan(length, std::min(max_speed_mps, limits_.max_speed_mps), limits_.max_accel_mps2);
   p.t1 = p.t0 + p.profile.duration();
-  const int samples = std::max(1, static_cast<int>(std::ceil(length / kFloorStep_m)));
-  for (int i = 0; i <= samples; ++i) p.floor_z.push_back(floor_z_(position_ + d * (double(i) / samples)));
+  p.floor_z = std::move(floor_z);
+  p.slope_rad = stairs ? std::atan2(p.floor_z.back() - p.floor_z.front(), length) : 0.0;
+  p.storey = storey_;
+  p.stairs = stairs;
   phases_.push_back(std::move(p));
   position_ = target;
   distance_ += length;
   floor_here_ = phases_.back().floor_z.back();
+}
+
+void Timeline::moveTo(const Eigen::Vector2d& target) {
+  const Eigen::Vector2d d = target - position_;
+  const double length = d.norm();
+  if (length < kMinMove_m) return;
+  turnTo(std::atan2(d.y(), d.x()));
+  const int samples = std::max(1, static_cast<int>(std::ceil(length / kFloorStep_m)));
+  std::vector<double> floor_z;
+  for (int i = 0; i <= samples; ++i) floor_z.push_back(floor_z_(position_ + d * (double(i) / samples)));
+  addMove(target, std::move(floor_z), limits_.max_speed_mps, false);
+}
+
+void Timeline::moveFlatTo(const Eigen::Vector2d& target, double z) {
+  const Eigen::Vector2d d = target - position_;
+  if (d.norm() < kMinMove_m) {
+    floor_here_ = z;
+    return;
+  }
+  turnTo(std::atan2(d.y(), d.x()));
+  addMove(target, {floor_here_, z}, limits_.max_speed_mps, false);
+}
+
+void Timeline::climbTo(const Eigen::Vector2d& target, double z_end, double max_speed_mps, int storey_after) {
+  const Eigen::Vector2d d = target - position_;
+  if (d.norm() >= kMinMove_m) {
+    turnTo(std::atan2(d.y(), d.x()));
+    addMove(target, {floor_here_, z_end}, max_speed_mps, true);
+  }
+  floor_here_ = z_end;
+  storey_ = storey_after;
 }
 
 const Timeline::Phase* Timeline::find(double t_s) const {
@@ -109,10 +141,12 @@ PlanarState Timeline::at(double t_s) const {
     s.yaw = after ? yaw_ : (phases_.empty() ? yaw_ : phases_.front().yaw0);
     s.distance = after ? distance_ : 0.0;
     s.floor_z = after ? floor_here_ : (phases_.empty() ? floor_here_ : phases_.front().floor_z.front());
+    s.storey = after || phases_.empty() ? storey_ : phases_.front().storey;
     return s;
   }
   const double tau = t_s - p->t0;
   const double q = p->profile.position(tau);
+  s.storey = p->storey;
   if (!p->move) {
     s.xy = p->from;
     s.yaw = p->yaw0 + p->turn_sign * q;
@@ -125,6 +159,8 @@ PlanarState Timeline::at(double t_s) const {
   s.yaw = p->yaw0;
   s.speed = p->profile.speed(tau);
   s.distance = p->distance0 + q;
+  s.slope_rad = p->slope_rad;
+  s.on_stairs = p->stairs;
   // Linear between the floor samples (evenly spaced along the move).
   const double u = p->profile.length > 0.0 ? q / p->profile.length * double(p->floor_z.size() - 1) : 0.0;
   const std::size_t i = std::min(static_cast<std::size_t>(u), p->floor_z.size() - 2);

@@ -26,7 +26,13 @@ struct PlanarState {
   double speed = 0.0;      // m/s along the path
   double turn_rate = 0.0;  // rad/s
   double distance = 0.0;   // metres walked since t = 0
-  double floor_z = 0.0;    // floor under the body
+  double floor_z = 0.0;    // floor under the body (on a flight: the run line's height)
+  // On a flight (issue 31): the slope of the run line along the direction of travel (positive
+  // going up; the body pitches nose-up by it), and which storey the base is on: the storey it
+  // came from until it steps off the flight.
+  double slope_rad = 0.0;
+  int storey = 0;
+  bool on_stairs = false;
 };
 
 struct MotionLimits {
@@ -38,12 +44,21 @@ class Timeline {
  public:
   // floor_z(xy): the floor height under the body, sampled while the table is built.
   Timeline(const Eigen::Vector2d& start, double yaw, const MotionLimits& limits,
-           std::function<double(const Eigen::Vector2d&)> floor_z);
+           std::function<double(const Eigen::Vector2d&)> floor_z, int storey = 0);
   Timeline() = default;
 
   void turnTo(double yaw);               // the shorter way round; nothing if already there
   void moveTo(const Eigen::Vector2d& p);  // straight, facing the direction of travel
-  // Planning done: forget the floor sampler, which refers to the world.
+  // Up or down a flight, straight to p (facing the direction of travel): the floor goes linearly
+  // from where the base stands to z_end (the run line), at most max_speed_mps horizontally;
+  // the base is on `storey_after` once it has stepped off.
+  void climbTo(const Eigen::Vector2d& p, double z_end, double max_speed_mps, int storey_after);
+  // A move on a landing or onto the new floor, its floor going linearly to z (the ends of a
+  // flight and the floor beside them agree to a few millimetres), without asking the sampler
+  // (which looks at one storey's mesh); not a flight: no slope.
+  void moveFlatTo(const Eigen::Vector2d& p, double z);
+  int storey() const { return storey_; }
+  double floorHere() const { return floor_here_; }  // Planning done: forget the floor sampler, which refers to the world.
   void seal() { floor_z_ = nullptr; }
   double end_s() const { return phases_.empty() ? 0.0 : phases_.back().t1; }
   const Eigen::Vector2d& position() const { return position_; }
@@ -64,7 +79,11 @@ class Timeline {
     double yaw0 = 0.0, turn_sign = 0.0, distance0 = 0.0;
     RestToRest profile;
     std::vector<double> floor_z;  // along a move every kFloorStep_m (both ends included); else one
+    double slope_rad = 0.0;       // a climb's slope (floor_z then holds its two ends)
+    int storey = 0;
+    bool stairs = false;
   };
+  void addMove(const Eigen::Vector2d& target, std::vector<double> floor_z, double max_speed_mps, bool stairs);
   const Phase* find(double t_s) const;
 
   MotionLimits limits_;
@@ -72,6 +91,7 @@ class Timeline {
   std::vector<Phase> phases_;
   Eigen::Vector2d position_ = Eigen::Vector2d::Zero();
   double yaw_ = 0.0, distance_ = 0.0, floor_here_ = 0.0;
+  int storey_ = 0;
 };
 
 }  // namespace bimloc::sim

@@ -1,4 +1,4 @@
-// bimloc run SCENARIO... | --plan PLAN --all-rooms [--storey S|auto] [--method M] [--config FILE.yaml] [--starts rooms|outside] [--json] [--out DIR] [--jobs N] [--shard K/N] [--oracle]
+// bimloc run SCENARIO... | --plan PLAN --all-rooms [--storey S|auto] [--method M] [--config FILE.yaml] [--starts rooms|outside] [--json] [--out DIR] [--jobs N] [--shard K/N] [--oracle] [--multi-storey] [--altitude]
 #include "sim/cli/commands.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
@@ -36,6 +36,8 @@ struct RunArgs {
   std::string shard;  // K/N: only the K-th of N slices of the scenario list (sim/cli/shards.hpp)
   std::string tum;    // folder for each scenario's truth.tum and estimate.tum
   bool oracle = false;  // --oracle: each run's information limit (docs/oracle.md)
+  bool multi_storey = false;  // --multi-storey: every storey the stairs reach (docs/multi_storey.md)
+  bool altitude = false;      // --altitude: the localizer is given a barometer's altitude
   std::string motion = "tour";  // --motion tour|disambiguate (docs/disambiguate.md)
 };
 
@@ -64,6 +66,10 @@ void run(const RunArgs& args) {
   }
   if (!args.site.empty())
     for (auto& s : scenarios) s.site = sitePreset(args.site);
+  for (auto& s : scenarios) {
+    if (args.multi_storey) s = multiStoreyTour(std::move(s));
+    s.barometer.enabled = s.barometer.enabled || args.altitude;
+  }
   bimloc::cli::applyMotion(scenarios, args.motion);
 
   std::vector<bool> generated(scenarios.size());
@@ -180,6 +186,12 @@ void addRunCommand(CLI::App& app) {
                   "folder for each scenario's trajectories in the TUM format, for `bimloc eval` or evo: truth.tum (every "
                   "step) and estimate.tum (the steps the ATE scores: converged, not lost) in DIR/<scenario>/");
   cmd->add_option("--jobs", args->jobs, "scenarios run in parallel")->check(CLI::Range(1, 256))->capture_default_str();
+  cmd->add_flag("--multi-storey", args->multi_storey,
+                "the base tours every storey the plan's stairs reach from its start, an equal share of the duration on "
+                "each, up and down the flights (docs/multi_storey.md)");
+  cmd->add_flag("--altitude", args->altitude,
+                "the localizer is given the base's altitude as a barometer reads it (noise, offset, drift: "
+                "docs/multi_storey.md)");
   cmd->add_option("--motion", args->motion, bimloc::cli::kMotionHelp)->check(bimloc::cli::motionCheck())->capture_default_str();
   cmd->add_flag("--oracle", args->oracle,
                 "also each run's information limit (docs/oracle.md): decidable_at_s (from when the scans ruled out every "

@@ -1,4 +1,4 @@
-// bimloc sweep PLAN... [--sites P,Q --methods M,N --plot F.png] [--seeds K] [--method M] [--duration S] [--storey auto] [--starts rooms|outside] [--jobs N] [--json] [--oracle]
+// bimloc sweep PLAN... [--sites P,Q --methods M,N --plot F.png] [--seeds K] [--method M] [--duration S] [--storey auto] [--starts rooms|outside] [--jobs N] [--json] [--oracle] [--multi-storey] [--altitude]
 // The paper's experiment over many plans at once: every room of every storey with rooms, K
 // seeds each, and a row per plan and storey: how often it localized, how often falsely, how
 // fast, how accurately, and the smallest path-evidence margin a convergence was accepted at.
@@ -42,6 +42,8 @@ struct SweepArgs {
   std::string prior_pose;
   std::string config;  // --config FILE.yaml: localizer settings (each method reads its own sections)
   bool oracle = false;  // --oracle: each run's information limit (docs/oracle.md)
+  bool multi_storey = false;  // --multi-storey: every storey the stairs reach (docs/multi_storey.md)
+  bool altitude = false;      // --altitude: the localizer is given a barometer's altitude
   std::string motion = "tour";  // --motion tour|disambiguate (docs/disambiguate.md)
 };
 
@@ -89,7 +91,11 @@ void run(const SweepArgs& args) {
   if (scenarios.empty()) throw std::runtime_error("no storey with rooms and walls in the given plans");
   bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
   if (!args.config.empty()) bimloc::cli::applyConfig(scenarios, args.config);
-  for (auto& s : scenarios) s.localizer["method"] = args.method;  // the sweep's, over a config file's
+  for (auto& s : scenarios) {
+    s.localizer["method"] = args.method;  // the sweep's, over a config file's
+    if (args.multi_storey) s = multiStoreyTour(std::move(s));
+    s.barometer.enabled = s.barometer.enabled || args.altitude;
+  }
   bimloc::cli::applyMotion(scenarios, args.motion);
   if (!args.sites.empty() || !args.methods.empty() || !args.plot.empty()) {
     bimloc::cli::RobustnessOptions o;
@@ -225,6 +231,11 @@ void addSweepCommand(CLI::App& app) {
                   "YAML file of localizer settings (a scenario's `localizer:` keys, e.g. `amcl: {...}`); each method reads "
                   "its own sections, the method is the sweep's")
       ->check(CLI::ExistingFile);
+  cmd->add_flag("--multi-storey", args->multi_storey,
+                "every run tours every storey the plan's stairs reach from its start, an equal share of the duration "
+                "on each (docs/multi_storey.md)");
+  cmd->add_flag("--altitude", args->altitude,
+                "the localizer is given the base's altitude as a barometer reads it (docs/multi_storey.md)");
   cmd->add_option("--motion", args->motion, bimloc::cli::kMotionHelp)->check(bimloc::cli::motionCheck())->capture_default_str();
   cmd->add_flag("--oracle", args->oracle,
                 "also each run's information limit (docs/oracle.md): from when the scans ruled out every place but the "

@@ -12,7 +12,7 @@ LidarSite::LidarSite(const World& world, std::size_t storey, std::uint64_t turn_
       random_(turn_seed ^ 0x51735E75E7ull),
       previous_range_(static_cast<std::size_t>(lasers), std::numeric_limits<float>::infinity()) {
   for (const PersonTruth& p : world.siteTruth().people)
-    if (p.storey == storey) people_.push_back(&p);
+    if (p.storey == storey || storey == World::kAllStoreys) people_.push_back(&p);
   now_.resize(people_.size());
   any_effect_ = sensor_.any();
 }

@@ -18,6 +18,11 @@ struct OdometryConfig {
   double scale_bias_walk_per_sqrt_m = 0.0;
   double yaw_bias_sigma_rad_per_m = 0.0;
   double yaw_bias_walk_rad_per_m_per_sqrt_m = 0.0;
+  // On a flight (issue 31): the height the legs report is off by a scale error of the height
+  // climbed (drawn once per run with this sigma), and the feet slip: every increment's
+  // translation and heading noise is this many times its flat-ground sigma (1: none extra).
+  double stair_height_scale_sigma = 0.0;
+  double stair_slip_factor = 1.0;
 };
 
 // legged: about 1-2 % of distance; lidar: about 0.5 %; perfect: none. Throws

@@ -24,13 +24,15 @@ Eigen::Isometry3d fromPlanar(const Eigen::Vector3d& p, double z) {
 }  // namespace
 
 NoisyOdometry::NoisyOdometry(const OdometryConfig& config, std::uint64_t seed, double floor_z)
-    : config_(config), rng_(seed), floor_z_(floor_z) {
+    : config_(config), rng_(seed), stair_rng_(seed ^ 0x57A125C11B5ull), floor_z_(floor_z) {
   std::normal_distribution<double> n(0.0, 1.0);
   scale_bias_ = config_.scale_bias_sigma * n(rng_);
   yaw_bias_ = config_.yaw_bias_sigma_rad_per_m * n(rng_);
+  std::normal_distribution<double> stair(0.0, 1.0);
+  stair_height_scale_ = config_.stair_height_scale_sigma * stair(stair_rng_);
 }
 
-OdometrySample NoisyOdometry::step(double t_s, const Eigen::Isometry3d& T_map_base) {
+OdometrySample NoisyOdometry::step(double t_s, const Eigen::Isometry3d& T_map_base, bool on_stairs) {
   const Eigen::Vector3d now = planar(T_map_base);
   if (!last_true_) {
     // The odom frame: the base's start pose, dropped to the floor it stands on.
@@ -52,6 +54,17 @@ OdometrySample NoisyOdometry::step(double t_s, const Eigen::Isometry3d& T_map_ba
   // The biases: a scale error and a heading drift that grow the error with the distance walked.
   tr *= 1.0 + scale_bias_;
   r2 += yaw_bias_ * trans;
+  if (on_stairs && c.stair_slip_factor > 1.0) {
+    // Slip: the flat-ground noise again, scaled so the total sigma is the factor times it.
+    // Its own distribution: libstdc++'s caches every second draw, which must stay rng_'s.
+    std::normal_distribution<double> slip(0.0, 1.0);
+    const double extra = std::sqrt(c.stair_slip_factor * c.stair_slip_factor - 1.0);
+    tr -= extra * std::sqrt(c.alpha3 * trans * trans + c.alpha4 * (rot1 * rot1 + rot2 * rot2)) * slip(stair_rng_);
+    r2 -= extra * std::sqrt(c.alpha1 * rot2 * rot2 + c.alpha2 * trans * trans) * slip(stair_rng_);
+  }
+  const double true_z = T_map_base.translation().z();
+  if (on_stairs && last_true_z_) height_error_m_ += stair_height_scale_ * std::abs(true_z - *last_true_z_);
+  last_true_z_ = true_z;
   scale_bias_ += c.scale_bias_walk_per_sqrt_m * std::sqrt(trans) * n(rng_);
   yaw_bias_ += c.yaw_bias_walk_rad_per_m_per_sqrt_m * std::sqrt(trans) * n(rng_);
 
@@ -66,7 +79,7 @@ OdometrySample NoisyOdometry::step(double t_s, const Eigen::Isometry3d& T_map_ba
   const double true_yaw = yawOf(R_true);
   OdometrySample sample;
   sample.stamp_s = t_s;
-  sample.T_odom_base = fromPlanar(estimate_, T_odom_base_true.translation().z());
+  sample.T_odom_base = fromPlanar(estimate_, T_odom_base_true.translation().z() + height_error_m_);
   sample.T_odom_base.linear() =
       Eigen::AngleAxisd(estimate_.z() - true_yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * R_true;
   if (last_sample_ && t_s > last_t_) {

@@ -20,8 +20,13 @@ class NoisyOdometry {
   // own floor, not the storey's elevation in the plan).
   NoisyOdometry(const OdometryConfig& config, std::uint64_t seed, double floor_z = 0.0);
 
-  // The reading at time t for the true pose T_map_base (call with increasing t).
-  OdometrySample step(double t_s, const Eigen::Isometry3d& T_map_base);
+  // The reading at time t for the true pose T_map_base (call with increasing t); on_stairs:
+  // the base is on a flight (the increment since the last call counts as climbed, with the
+  // stair model of OdometryConfig). Off the stairs, the same readings as before the stairs
+  // existed: the stair draws have their own random stream.
+  OdometrySample step(double t_s, const Eigen::Isometry3d& T_map_base, bool on_stairs = false);
+  // The height error accumulated on flights so far (odometry z minus true z), for tests.
+  double heightError_m() const { return height_error_m_; }
 
   // True map -> odom: where the odom frame is in the plan (for evaluation only).
   const Eigen::Isometry3d& T_map_odom_true() const { return T_map_odom_; }
@@ -29,6 +34,10 @@ class NoisyOdometry {
  private:
   OdometryConfig config_;
   std::mt19937_64 rng_;
+  std::mt19937_64 stair_rng_;  // the stair model's draws
+  double stair_height_scale_ = 0.0;
+  double height_error_m_ = 0.0;
+  std::optional<double> last_true_z_;
   Eigen::Isometry3d T_map_odom_ = Eigen::Isometry3d::Identity();
   std::optional<Eigen::Vector3d> last_true_;  // x, y, yaw of the previous call
   Eigen::Vector3d estimate_ = Eigen::Vector3d::Zero();  // x, y, yaw in odom

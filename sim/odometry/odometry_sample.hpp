@@ -15,6 +15,10 @@ struct OdometrySample {
 struct GroundTruthSample {
   double stamp_s = 0.0;
   Eigen::Isometry3d T_map_base = Eigen::Isometry3d::Identity();
+  // The storey the base is on (index into the building's storeys; while on a flight, the one
+  // it came from) and whether it is on a flight (issue 31). Not in recordings' ground truth.
+  std::size_t storey = 0;
+  bool on_stairs = false;
 };
 
 }  // namespace bimloc::sim

@@ -56,16 +56,7 @@ MethodRun::MethodRun(const Scenario& s, const World& plan, const Simulator& sim,
   r_.storey_auto = settings.storey_auto;
   r_.method = toString(config.method);
   if (!r_.storey_auto) config.storey = storeyKey(building, sim.storey());
-  // The truth's altitude for the localizer, with white noise of this sigma: a stand-in until the
-  // bench's --altitude (issue 31, the barometer's model) is merged; unset, none is given.
-  if (const char* sigma = std::getenv("BIMLOC_BENCH_ALTITUDE_SIGMA_M")) {
-    char* end = nullptr;
-    const double v = std::strtod(sigma, &end);
-    if (end == sigma || *end != '\0' || !(v > 0) || !std::isfinite(v))
-      throw ScenarioError(std::string("BIMLOC_BENCH_ALTITUDE_SIGMA_M: expected a positive number of metres, got '") + sigma + "'");
-    altitude_sigma_m_ = v;
-    altitude_rng_.seed(s.seed * 0x2545F4914F6CDD1Dull + 5);
-  }
+  if (s.barometer.enabled) barometer_.emplace(s.barometer, s.seed);
   try {
     localizer_.emplace(building, s.sensor.T_base_lidar, config);
   } catch (const std::invalid_argument& e) {
@@ -86,9 +77,8 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
                      std::vector<PoseRow>* poses) {
   const bim::Building& building = building_;
   const auto step_start = std::chrono::steady_clock::now();
-  if (altitude_sigma_m_ > 0)
-    localizer_->observeAltitude(t, truth.translation().z() + altitude_sigma_m_ * std::normal_distribution<double>()(altitude_rng_),
-                                altitude_sigma_m_);
+  // The barometer's altitude first (issue 31): every method reads the same (its own stream of the seed).
+  if (barometer_) localizer_->observeAltitude(t, barometer_->read(t, truth.translation().z()), barometer_->sigma_m());
   const LocalizationResult step = localizer_->step(t, T_odom_base, points);
   estimate_ = step.T_map_base;
   storey_ = step.storey;
@@ -118,6 +108,7 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
   const bool converged_now = score_.add(t, step, truth);
   r_.error_series.back().true_storey = score_.trueStorey();
   r_.error_series.back().on_stairs = score_.onStairs();
+  if (poses) poses->back().true_storey = score_.trueStorey(), poses->back().on_stairs = score_.onStairs();
   if (step.arrival && snapshot) snapshotNow("storey_change", t, truth, snapshot);
   if (converged_now) {
     if (step.filter) r_.convergence_margin = step.filter->filter.path_margin;

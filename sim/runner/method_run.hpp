@@ -46,6 +46,7 @@ class MethodRun {
   const Simulator& sim_;
   ScenarioResult r_;
   std::optional<Localizer> localizer_;
+  std::optional<Barometer> barometer_;  // with `--altitude`
   RunScore score_;
   MapErrorSampler map_error_;
   LocalizationState last_state_ = LocalizationState::Searching;
@@ -57,8 +58,6 @@ class MethodRun {
   std::optional<pf::StoreyBankReport> last_bank_;
   int updates_ = 0;
   bool searching_ = true;
-  double altitude_sigma_m_ = 0;  // > 0: the truth's altitude, with this noise, every turn
-  std::mt19937_64 altitude_rng_;
 };
 
 }  // namespace bimloc::sim

@@ -91,6 +91,15 @@ std::vector<Scenario> roomScenarios(const World& world, const RoomScenarioOption
   return out;
 }
 
+Scenario multiStoreyTour(Scenario s) {
+  if (s.motion.kind != MotionConfig::Kind::Tour) s.motion.rooms.clear(), s.motion.storeys.clear();
+  s.motion.kind = MotionConfig::Kind::Tour;
+  s.motion.all_storeys = true;
+  s.motion.skip_unreachable_rooms = true;
+  s.motion.explore_after_tour = true;
+  return s;
+}
+
 Scenario stayInRoom(Scenario s) {
   s.motion.rooms.clear();
   if (s.start.kind == StartConfig::Kind::OutsideRooms) {

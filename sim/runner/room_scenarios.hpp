@@ -35,4 +35,9 @@ std::vector<Scenario> roomScenarios(const World& world, const RoomScenarioOption
 // stands instead.
 Scenario stayInRoom(Scenario scenario);
 
+// `--multi-storey` (issue 31): the scenario's motion becomes a tour that, after its own rooms
+// (a tour's; none for another motion), visits every storey the stairs reach from the start,
+// an equal share of the duration on each (MotionConfig::all_storeys).
+Scenario multiStoreyTour(Scenario scenario);
+
 }  // namespace bimloc::sim

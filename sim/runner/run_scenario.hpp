@@ -150,6 +150,8 @@ struct PoseRow {
   double time_s = 0;
   Eigen::Isometry3d truth = Eigen::Isometry3d::Identity(), estimate = Eigen::Isometry3d::Identity();
   bool scored = false;
+  std::size_t true_storey = 0;  // as ScenarioResult::ErrorSample's
+  bool on_stairs = false;
 };
 
 // `trace`, when given, receives a row per weighing; `poses` a row per step. With `with_oracle`,

@@ -5,6 +5,7 @@
 #include "sim/base/base_trajectory.hpp"
 #include "sim/base/motion_config.hpp"
 #include "sim/lidar/vlp16_config.hpp"
+#include "sim/odometry/barometer.hpp"
 #include "sim/odometry/odometry_config.hpp"
 #include "sim/world/site_config.hpp"
 
@@ -56,6 +57,7 @@ struct Scenario {
   double duration_s = 30.0;
   Vlp16Config sensor;
   OdometryConfig odometry;
+  BarometerConfig barometer;  // `--altitude`: the localizer is given the base's altitude
   nlohmann::json localizer = nlohmann::json::object();  // settings for the localizer (next issues)
   std::uint64_t seed = 0;
   // How the simulated site differs from the plan (walls, glass, doors); the localizer still

@@ -11,6 +11,7 @@
 
 #include <bimloc/bim/geometry2d.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -109,7 +110,19 @@ void checkScenarioAgainstWorld(const Scenario& s, const World& world) {
                     lineOf(s, "motion.waypoints." + std::to_string(i)));
       break;
     case MotionConfig::Kind::Tour:
-      for (std::size_t i = 0; i < m.rooms.size(); ++i) room(s, storey, m.rooms[i], lineOf(s, "motion.rooms." + std::to_string(i)));
+      for (std::size_t i = 0; i < m.rooms.size(); ++i) {
+        // A room on another storey (motion.storeys): that storey's rooms.
+        const bim::Storey* on = &storey;
+        if (!m.storeys.empty()) {
+          const int line = lineOf(s, "motion.storeys." + std::to_string(std::min<std::size_t>(i, m.storeys.size() - 1)));
+          try {
+            on = &world.building().storeys.at(world.storeyIndex(m.storeys[i]));
+          } catch (const std::invalid_argument& e) {
+            detail::fail(s.file, line > 0 ? line : lineOf(s, "motion"), std::string("motion.storeys: ") + e.what());
+          }
+        }
+        room(s, *on, m.rooms[i], lineOf(s, "motion.rooms." + std::to_string(i)));
+      }
       break;
     case MotionConfig::Kind::RandomWalk:
       if (!m.walk_room.empty())

@@ -55,6 +55,23 @@ void readRooms(const Mapping& m, MotionConfig& motion, std::map<std::string, int
   }
 }
 
+// The storey of each room (issue 31): one name for all of them, or one per room.
+void readTourStoreys(const Mapping& m, MotionConfig& motion, std::map<std::string, int>& lines) {
+  if (!m.has("storeys")) return;
+  const YAML::Node& list = m.value("storeys");
+  if (!list.IsSequence() || (list.size() != 1 && list.size() != motion.rooms.size()))
+    m.fail("storeys", "motion.storeys must be a list of storey names or indices, one for every room (" +
+                          std::to_string(motion.rooms.size()) + ") or one for all, got " + describe(list));
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const int line = lineOf(list[i]) > 0 ? lineOf(list[i]) : m.line("storeys");
+    if (!list[i].IsScalar() || list[i].Scalar().empty())
+      fail(m.file(), line, "motion.storeys[" + std::to_string(i) + "] must be a storey name or index, got " + describe(list[i]));
+    motion.storeys.push_back(list[i].Scalar());
+    lines["motion.storeys." + std::to_string(i)] = line;
+  }
+  if (motion.storeys.size() == 1) motion.storeys.assign(motion.rooms.size(), motion.storeys.front());
+}
+
 }  // namespace
 
 StartConfig readStart(const Mapping& top, std::map<std::string, int>& lines) {
@@ -104,7 +121,7 @@ StartConfig readStart(const Mapping& top, std::map<std::string, int>& lines) {
 }
 
 MotionConfig readMotion(const Mapping& top, std::map<std::string, int>& lines) {
-  const Mapping m = top.mapping("motion", {"type", "waypoints", "rooms", "room", "max_speed_mps", "max_turn_rate_dps",
+  const Mapping m = top.mapping("motion", {"type", "waypoints", "rooms", "storeys", "room", "max_speed_mps", "max_turn_rate_dps",
                                            "max_accel_mps2", "max_turn_accel_dps2", "body_radius_m", "gait"});
   MotionConfig motion;
   std::string type = "stand";
@@ -114,7 +131,8 @@ MotionConfig readMotion(const Mapping& top, std::map<std::string, int>& lines) {
   if (type != "tour" && type != "disambiguate") m.onlyWith("rooms", "type: tour or disambiguate");
   if (type != "random_walk") m.onlyWith("room", "type: random_walk");
   if (type == "waypoints") motion.kind = MotionConfig::Kind::Waypoints, readWaypoints(m, motion, lines);
-  if (type == "tour") motion.kind = MotionConfig::Kind::Tour, readRooms(m, motion, lines);
+  if (type != "tour") m.onlyWith("storeys", "type: tour");
+  if (type == "tour") motion.kind = MotionConfig::Kind::Tour, readRooms(m, motion, lines), readTourStoreys(m, motion, lines);
   // Walk where the localizer says to look; without a goal, and once converged, a tour of the
   // rooms listed (if any) and on through every room it can reach.
   if (type == "disambiguate") {
@@ -181,7 +199,8 @@ Vlp16Config readSensor(const Mapping& top) {
 OdometryConfig readOdometry(const Mapping& top) {
   const Mapping m = top.mapping("odometry", {"preset", "rate_hz", "alpha1", "alpha2", "alpha3", "alpha4", "scale_bias_sigma",
                                              "scale_bias_walk_per_sqrt_m", "yaw_bias_sigma_rad_per_m",
-                                             "yaw_bias_walk_rad_per_m_per_sqrt_m"});
+                                             "yaw_bias_walk_rad_per_m_per_sqrt_m", "stair_height_scale_sigma",
+                                             "stair_slip_factor"});
   std::string preset = "legged";
   m.readChoice("preset", preset, {"legged", "lidar", "perfect", "custom"});
   OdometryConfig odometry;
@@ -205,6 +224,8 @@ OdometryConfig readOdometry(const Mapping& top) {
   noise("scale_bias_walk_per_sqrt_m", odometry.scale_bias_walk_per_sqrt_m, Range::closed(0.0, 1.0));
   noise("yaw_bias_sigma_rad_per_m", odometry.yaw_bias_sigma_rad_per_m, Range::closed(0.0, 1.0));
   noise("yaw_bias_walk_rad_per_m_per_sqrt_m", odometry.yaw_bias_walk_rad_per_m_per_sqrt_m, Range::closed(0.0, 1.0));
+  noise("stair_height_scale_sigma", odometry.stair_height_scale_sigma, Range::closed(0.0, 1.0));
+  noise("stair_slip_factor", odometry.stair_slip_factor, Range::closed(1.0, 100.0));
   // A preset with other noise is no longer that preset: reports must not call it one.
   odometry.preset = noise_given ? "custom" : preset;
   return odometry;

@@ -38,6 +38,8 @@ Simulator::Simulator(const Scenario& scenario, const World& world)
       trajectory_(planTrajectory(scenario, world)),
       lidar_(scenario.sensor) {}
 
+std::size_t Simulator::lidarStorey() const { return trajectory_.multiStorey() ? World::kAllStoreys : storey_; }
+
 std::size_t Simulator::turnCount() const {
   return static_cast<std::size_t>(std::floor(scenario_.duration_s / lidar_.turnPeriod_s() + 1e-9));
 }
@@ -46,7 +48,7 @@ double Simulator::turnStamp(std::size_t turn) const { return static_cast<double>
 
 LidarScan Simulator::turn(std::size_t turn) const {
   const auto pose = [this](double t) { return trajectory_.T_map_base(t); };
-  return lidar_.scan(world_, storey_, pose, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
+  return lidar_.scan(world_, lidarStorey(), pose, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
 }
 
 LidarScan Simulator::turnAlong(std::size_t turn, const std::function<Eigen::Isometry3d(double)>& T_map_base) const {
@@ -85,14 +87,15 @@ std::vector<OdometrySample> Simulator::odometry() const {
   std::vector<OdometrySample> out;
   const double dt = 1.0 / scenario_.odometry.rate_hz;
   for (std::size_t k = 0; k * dt <= scenario_.duration_s + 1e-9; ++k)
-    out.push_back(model.step(k * dt, trajectory_.T_map_base(k * dt)));
+    out.push_back(model.step(k * dt, trajectory_.T_map_base(k * dt), trajectory_.onStairs(k * dt)));
   return out;
 }
 
 std::vector<GroundTruthSample> Simulator::groundTruth() const {
   std::vector<GroundTruthSample> out;
   const double dt = 1.0 / scenario_.odometry.rate_hz;
-  for (std::size_t k = 0; k * dt <= scenario_.duration_s + 1e-9; ++k) out.push_back({k * dt, trajectory_.T_map_base(k * dt)});
+  for (std::size_t k = 0; k * dt <= scenario_.duration_s + 1e-9; ++k)
+    out.push_back({k * dt, trajectory_.T_map_base(k * dt), trajectory_.storey(k * dt), trajectory_.onStairs(k * dt)});
   return out;
 }
 

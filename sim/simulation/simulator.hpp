@@ -27,7 +27,10 @@ class Simulator {
   const Scenario& scenario() const { return scenario_; }
   // The world simulated: the site's (world().siteTruth() says how it differs from the plan).
   const World& world() const { return world_; }
-  std::size_t storey() const { return storey_; }
+  std::size_t storey() const { return storey_; }  // where the base starts
+  // The storey the lidar sees: the start's, or, when the base climbs to another storey (issue
+  // 31), World::kAllStoreys: every storey's mesh, so the flight and the floors it links are seen.
+  std::size_t lidarStorey() const;
   const Pose2& start() const { return start_; }
   const BaseTrajectory& trajectory() const { return trajectory_; }
   const Vlp16& lidar() const { return lidar_; }

@@ -57,6 +57,24 @@ void World::Impl::build() {
     // The robot never walks through glass: Bullet has the glazing as solid as the rest.
     bullet.push_back(makeBullet({&building.storeys[s].mesh, &glass[s]->mesh}));
   }
+  if (scenes.size() < 2) return;
+  all_scene = rtcNewScene(device);
+  rtcSetSceneFlags(all_scene, RTC_SCENE_FLAG_ROBUST);
+  const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  for (std::size_t s = 0; s < scenes.size(); ++s) {
+    RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(instance, scenes[s]);
+    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+    rtcCommitGeometry(instance);
+    rtcAttachGeometryByID(all_scene, instance, static_cast<unsigned>(s));
+    rtcReleaseGeometry(instance);
+  }
+  rtcCommitScene(all_scene);
+}
+
+RTCScene World::Impl::scene(std::size_t storey) const {
+  if (storey == World::kAllStoreys) return all_scene ? all_scene : scenes.at(0);
+  return scenes.at(storey);
 }
 
 float World::Impl::dropout(std::size_t storey, unsigned geometry, unsigned triangle) const {
@@ -91,6 +109,7 @@ std::unique_ptr<BulletStorey> World::Impl::makeBullet(const std::vector<bim::Tri
 World::Impl::~Impl() {
   // Bullet's objects first (they point into the meshes), then Embree's scenes.
   bullet.clear();
+  if (all_scene) rtcReleaseScene(all_scene);
   for (RTCScene s : scenes) rtcReleaseScene(s);
   if (device) rtcReleaseDevice(device);
 }
@@ -159,6 +178,15 @@ World World::fromMesh(const std::string& mesh_path) {
   return World(std::move(impl));
 }
 
+World World::fromBuilding(bim::Building building) {
+  auto impl = std::make_unique<Impl>();
+  impl->source = building.file.empty() ? std::string("(building made in code)") : building.file;
+  impl->building = std::move(building);
+  impl->truth = exactSiteTruth(impl->building, nullptr);
+  impl->build();
+  return World(std::move(impl));
+}
+
 World World::load(const std::string& path) {
   if (fs::is_directory(path)) return fromExtractDir(path);
   std::string ext = fs::path(path).extension().string();
@@ -184,7 +212,7 @@ std::size_t World::storeyIndex(const std::string& name_or_index) const {
   throw std::invalid_argument("no storey '" + name_or_index + "' (storeys: " + names + ")");
 }
 
-void* World::embreeScene(std::size_t storey) const { return impl_->scenes.at(storey); }
+void* World::embreeScene(std::size_t storey) const { return impl_->scene(storey); }
 
 RayHit World::castRay(std::size_t storey, const Eigen::Vector3f& origin, const Eigen::Vector3f& dir, float t_min,
                       float t_max) const {
@@ -196,7 +224,7 @@ RayHit World::castRay(std::size_t storey, const Eigen::Vector3f& origin, const E
   rh.ray.tnear = t_min, rh.ray.tfar = t_max;
   rh.ray.mask = 0xFFFFFFFFu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scenes.at(storey), &context, &rh);
+  rtcIntersect1(impl_->scene(storey), &context, &rh);
   RayHit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
     hit.range_m = kInf;
@@ -204,7 +232,8 @@ RayHit World::castRay(std::size_t storey, const Eigen::Vector3f& origin, const E
   }
   hit.range_m = rh.ray.tfar;
   hit.normal = normalFacing({rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}, dir);
-  hit.dropout = impl_->any_dropout ? impl_->dropout(storey, rh.hit.geomID, rh.hit.primID) : 0.0f;
+  const std::size_t hit_storey = storey == kAllStoreys ? (impl_->all_scene ? rh.hit.instID[0] : 0) : storey;
+  hit.dropout = impl_->any_dropout ? impl_->dropout(hit_storey, rh.hit.geomID, rh.hit.primID) : 0.0f;
   return hit;
 }
 
@@ -223,7 +252,7 @@ void World::castRays16(std::size_t storey, const Eigen::Vector3f origins[16], co
     rh.ray.mask[i] = 0xFFFFFFFFu, rh.ray.time[i] = 0.0f, rh.ray.flags[i] = 0, rh.ray.id[i] = static_cast<unsigned>(i);
     rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
   }
-  rtcIntersect16(valid, impl_->scenes.at(storey), &context, &rh);
+  rtcIntersect16(valid, impl_->scene(storey), &context, &rh);
   for (int i = 0; i < count; ++i) {
     if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
       hits[i].range_m = kInf;
@@ -232,7 +261,8 @@ void World::castRays16(std::size_t storey, const Eigen::Vector3f origins[16], co
     }
     hits[i].range_m = rh.ray.tfar[i];
     hits[i].normal = normalFacing({rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]}, dirs[i]);
-    hits[i].dropout = impl_->any_dropout ? impl_->dropout(storey, rh.hit.geomID[i], rh.hit.primID[i]) : 0.0f;
+    const std::size_t hit_storey = storey == kAllStoreys ? (impl_->all_scene ? rh.hit.instID[0][i] : 0) : storey;
+    hits[i].dropout = impl_->any_dropout ? impl_->dropout(hit_storey, rh.hit.geomID[i], rh.hit.primID[i]) : 0.0f;
   }
 }
 

@@ -30,6 +30,9 @@ class World {
   static World fromExtractDir(const std::string& dir);
   // One mesh file (PLY, OBJ, glTF, STL, DAE) as a single storey at elevation 0, no rooms.
   static World fromMesh(const std::string& mesh_path);
+  // A building made in code (tests): its storeys' meshes as they are, in world coordinates,
+  // its rooms and stairs as given; no site can be built from it.
+  static World fromBuilding(bim::Building building);
   // Any of the three, by what the path is.
   static World load(const std::string& path);
 
@@ -53,6 +56,10 @@ class World {
   // Index of a storey by name, GlobalId or index; throws std::invalid_argument listing them.
   std::size_t storeyIndex(const std::string& name_or_index) const;
   std::size_t triangleCount(std::size_t storey) const;
+  // The storey index of the whole building for the lidar (castRay, castRays16, embreeScene):
+  // every storey's mesh at once, each in world coordinates, so a base climbing the stairs sees
+  // the storey it leaves and the one it reaches (issue 31). Bullet's queries take real storeys.
+  static constexpr std::size_t kAllStoreys = static_cast<std::size_t>(-1);
 
   // Embree: the first hit of the ray origin + t dir (dir unit), t in [t_min, t_max].
   RayHit castRay(std::size_t storey, const Eigen::Vector3f& origin, const Eigen::Vector3f& dir,

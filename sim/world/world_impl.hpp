@@ -60,6 +60,10 @@ struct World::Impl {
   std::vector<unsigned> opaque_geometry;  // per storey: the opaque mesh's Embree geometry id
   RTCDevice device = nullptr;
   std::vector<RTCScene> scenes;
+  // Every storey's scene as an instance (identity transform; instance id = storey index):
+  // World::kAllStoreys. Null for a single storey (scenes[0] serves).
+  RTCScene all_scene = nullptr;
+  RTCScene scene(std::size_t storey) const;
   std::vector<std::unique_ptr<BulletStorey>> bullet;
 
   ~Impl();
