@@ -94,9 +94,13 @@ TEST(Evaluation, TheTrueStoreyFollowsTheBaseUpTheStairsAndTheLocalizerHasFiveSec
   const sim::ScenarioResult followed = walk(6.0), missed = walk(10.0);
   EXPECT_EQ(followed.storey_changes, 1);
   EXPECT_EQ(followed.storey_changes_followed, 1);
+  // On the new floor (within 0.3 m of it) from t = 3.7-3.8 s, on the new storey from 6.0 s.
+  ASSERT_EQ(followed.storey_follow_lags_s.size(), 1u);
+  EXPECT_NEAR(followed.storey_follow_lags_s[0], 2.25, 0.06);
   EXPECT_FALSE(followed.false_convergence) << "the old storey on the stairs and for 2 s after is no error";
   EXPECT_EQ(missed.storey_changes, 1);
   EXPECT_EQ(missed.storey_changes_followed, 0);
+  EXPECT_TRUE(missed.storey_follow_lags_s.empty());
   EXPECT_TRUE(missed.false_convergence);
   EXPECT_EQ(sim::RunScore::floorStorey(building, 0, 0.5, 2.0), std::nullopt) << "half way up: on no floor";
 }

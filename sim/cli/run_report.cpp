@@ -87,7 +87,7 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
           {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", valueOrNull(r.ate_m)},
           {"rpe_m_per_m", valueOrNull(r.rpe_m_per_m)}, {"map_rmse_m", valueOrNull(r.map_rmse_m)}, {"losses", r.losses},
           {"storey_changes", r.storey_changes}, {"storey_changes_followed", r.storey_changes_followed},
-          {"path_length_m", r.path_length_m}, {"wall_deviations", wallsJson(r.wall_deviations)}, {"site", r.site},
+          {"storey_follow_lags_s", r.storey_follow_lags_s}, {"path_length_m", r.path_length_m}, {"wall_deviations", wallsJson(r.wall_deviations)}, {"site", r.site},
           {"wall_offset_error_m", valueOrNull(r.wall_offset_error_m)},
           {"false_convergence", r.false_convergence}, {"convergence_margin", valueOrNull(r.convergence_margin)},
           {"hypotheses", placesJson(r.hypotheses)}, {"storey_auto", r.storey_auto},
@@ -102,7 +102,7 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
 nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) {
   int localized = 0, false_convergences = 0, losses = 0, storey_changes = 0, storey_changes_followed = 0;
   double sim_seconds = 0;
-  std::vector<double> times, ates;
+  std::vector<double> times, ates, follow_lags;
   for (const auto& s : scenarios) {
     const bool converged = s.at("converged").get<bool>(), false_convergence = s.at("false_convergence").get<bool>();
     localized += converged && !false_convergence;
@@ -111,6 +111,8 @@ nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) 
     losses += s.at("losses").get<int>();
     storey_changes += s.value("storey_changes", 0);
     storey_changes_followed += s.value("storey_changes_followed", 0);
+    if (s.contains("storey_follow_lags_s"))
+      for (const auto& lag : s["storey_follow_lags_s"]) follow_lags.push_back(lag.get<double>());
     if (!s.at("convergence_time_s").is_null()) times.push_back(s["convergence_time_s"].get<double>());
     if (!s.at("ate_m").is_null() && !false_convergence) ates.push_back(s["ate_m"].get<double>());
   }
@@ -119,6 +121,7 @@ nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) 
   nlohmann::json summary = {{"runs", scenarios.size()}, {"localized", localized}, {"false_convergences", false_convergences},
                             {"median_convergence_s", median_time}, {"median_ate_m", median_ate}, {"losses", losses},
                             {"storey_changes", storey_changes}, {"storey_changes_followed", storey_changes_followed},
+                            {"median_storey_follow_lag_s", follow_lags.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(follow_lags))},
                             {"sim_seconds", sim_seconds}, {"wall_seconds", wall_seconds}};
   if (nlohmann::json dropped = recordingTotal(scenarios); !dropped.is_null()) summary["recording"] = std::move(dropped);
   if (hasOracle(scenarios)) summary.update(oracleSummary(scenarios));

@@ -50,6 +50,7 @@ void RunScore::followStorey(double t, const LocalizationResult& step, const Eige
   if (!change_followed_ && changed_at_ && t <= *changed_at_ + kFollowWindowS && step.storey == storey_) {
     change_followed_ = true;
     ++storey_changes_followed_;
+    follow_lags_s_.push_back(t - *changed_at_);
   }
 }
 
@@ -113,6 +114,7 @@ void RunScore::finish(ScenarioResult& r) const {
   r.losses = losses_;
   r.storey_changes = storey_changes_;
   r.storey_changes_followed = storey_changes_followed_;
+  r.storey_follow_lags_s = follow_lags_s_;
   if (converged_) {
     r.convergence_time_s = convergence_time_;
     r.found_room = found_room_;

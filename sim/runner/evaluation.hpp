@@ -50,6 +50,7 @@ class RunScore {
   std::optional<double> changed_at_;  // the base stepped onto storey_ then (the last change)
   bool change_followed_ = true;
   int storey_changes_ = 0, storey_changes_followed_ = 0;
+  std::vector<double> follow_lags_s_;
   Eigen::Isometry3d truth_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d estimate_ = Eigen::Isometry3d::Identity();
   bool converged_ = false, false_convergence_ = false;
