@@ -204,6 +204,7 @@ LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_od
   if (m.filter_active) m.bank->predict(odom);
   m.follow(stamp_s, odom, r);
   odom = m.levelled(T_odom_base);  // an arrival levels it anew
+  const PlanarPose odom_now = planarPose(odom);
   std::vector<planes::ObservedPlane> walls;
   pf::RangeProfile profile;  // for the filter's free-space evidence (pf/range_profile.hpp)
   if (m.wantsPoints(odom)) {
@@ -214,14 +215,14 @@ LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_od
       // The turn spans the interval since the last step, stamped at its middle: its rays are off
       // the stamp's pose by up to half the motion over it (range_profile.hpp).
       if (m.last_odom) {
-        const PlanarPose moved = between(*m.last_odom, planarPose(odom));
+        const PlanarPose moved = between(*m.last_odom, odom_now);
         profile.skew_yaw_rad = 0.5 * std::abs(moved.z()), profile.skew_m = 0.5 * moved.head<2>().norm();
       }
     }
     r.used_points = true;
     r.walls_observed = static_cast<int>(walls.size());
   }
-  m.last_odom = planarPose(odom);
+  m.last_odom = odom_now;
   if (m.tracker) m.track(stamp_s, odom, walls, r);
   // Off the floor (on the stairs), the storey's walls are not where the filter looks for them.
   if (m.filter_active && !m.follower.climbing()) m.search(walls, profile, r);

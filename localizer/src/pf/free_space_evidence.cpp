@@ -138,9 +138,9 @@ std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::V
         // crosses 3 cm off the plan 10 cm farther along). A crossing within 2 sigma of a face's
         // end or an opening's edge could as well have missed the face or passed through the
         // hole: no verdict.
-        const double cos_i = std::max(kFreeSpaceMinCos, std::abs(u.dot(f.normal)));
-        const double tan_i = std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / cos_i;
-        const double along_sigma = std::sqrt(std::pow(lateral_per_m * t / cos_i, 2) + std::pow(position_sigma_m, 2) * (1.0 + tan_i * tan_i));
+        // Both over cos(incidence): sigma_pos sqrt(1 + tan^2) is sigma_pos / cos.
+        const double cos_incidence = std::abs(u.dot(f.normal));
+        const double along_sigma = std::hypot(lateral_per_m * t, position_sigma_m) / std::max(kFreeSpaceMinCos, cos_incidence);
         const double corner_m = std::max(kFreeSpaceCornerM, 2.0 * along_sigma);
         const double frame_m = std::max(kFreeSpaceOpeningMarginM, 2.0 * along_sigma);
         if (s < -corner_m || s > f.length_m + corner_m) continue;
@@ -153,11 +153,11 @@ std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::V
         // Near a hole: within frame_m of it along the face (the heading's sideways slip),
         // within the drawing's margin in height.
         if (f.openings)
-          for (const auto& o : *f.openings)
-            corner |= s >= o.along_min_m - frame_m && s <= o.along_max_m + frame_m && z >= o.z_min_m - kFreeSpaceOpeningMarginM &&
-                      z <= o.z_max_m + kFreeSpaceOpeningMarginM;  // at its frame: a jamb or the hole, no verdict
+          for (const auto& hole : *f.openings)
+            corner |= s >= hole.along_min_m - frame_m && s <= hole.along_max_m + frame_m && z >= hole.z_min_m - kFreeSpaceOpeningMarginM &&
+                      z <= hole.z_max_m + kFreeSpaceOpeningMarginM;  // at its frame: a jamb or the hole, no verdict
         Crossing c;
-        c.t = t, c.wall = f.wall, c.cos_incidence = std::abs(u.dot(f.normal)), c.uncertain = corner;
+        c.t = t, c.wall = f.wall, c.cos_incidence = cos_incidence, c.uncertain = corner;
         best = c;
       }
     }
