@@ -363,3 +363,36 @@ TEST(FreeSpace, TheFilterWithFreeSpaceCountsTheDoorAgainstTheOfficeWithoutIt) {
   EXPECT_GT(faces_free, 0.9);
   EXPECT_LT(faces_free, 1.0 + 1e-5);  // one wall: at most one face
 }
+
+TEST(FreeSpace, AnOpenRayThatTheOtherPlaceEndsOnItsWallCountsPerThatWallAndOnceWithItsPlane) {
+  // free_space_explained (off by default): place X sees 4 rays end 3 m short of the wall (in its
+  // open); at place Y (1 m nearer the wall, the same rays) three of them end on the wall's face
+  // and one 2 m short of it.
+  FreeSpaceParams params = defaultParams();
+  params.explained = true;
+  const std::vector<Eigen::Vector2d> ends{{1.9, 0.0}, {1.9, 0.3}, {1.9, -0.3}, {0.9, 1.0}};
+  const FreeSpaceMap map(oneWall());
+  const auto at_x = freeSpaceHits(map, params, Eigen::Vector3d::Zero(), 0.0, profileOf(ends));
+  const auto at_y = freeSpaceHits(map, params, Eigen::Vector3d(3.0, 0.0, 0.0), 0.0, profileOf(ends));
+  ASSERT_EQ(at_x.size(), 4u);  // all open
+  int on_wall = 0;
+  for (const auto& h : at_y) on_wall += (h.key == kOnWallBase + 0 && h.cost == 0.0f) ? 1 : 0;
+  EXPECT_EQ(on_wall, 3);
+  const std::vector<const std::vector<FreeSpaceHit>*> x{&at_x}, y{&at_y};
+  // Against X: wall 0 in full (3 rays = support), the fourth ray stays open (a quarter face, a third of it).
+  const FreeSpaceCost cost = freeSpaceCostGiven(x, y, params, {});
+  ASSERT_EQ(cost.explained.size(), 1u);
+  EXPECT_EQ(cost.explained[0].first, 0);
+  EXPECT_NEAR(cost.explained[0].second, kFaceWorth, 1e-6);
+  EXPECT_NEAR(cost.rest, params.open_wall_faces * kFaceWorth / 3.0, 1e-5);
+  // The planes already counted 3 of wall 0's worth for Y: the rays add only what is left, and
+  // stay in the bounded open term.
+  const FreeSpaceCost counted = freeSpaceCostGiven(x, y, params, {3.0});
+  EXPECT_NEAR(counted.explained[0].second, kFaceWorth - 3.0, 1e-6);
+  EXPECT_NEAR(counted.rest, freeSpacePenalty(x, params), 1e-6);
+  // The bound over every other place holds.
+  EXPECT_LE(cost.rest + cost.explained[0].second, freeSpacePenaltyBound(x, params) + 1e-9);
+  // Y's own rays end on its wall: nothing against Y given X.
+  const FreeSpaceCost against_y = freeSpaceCostGiven(y, x, params, {});
+  EXPECT_TRUE(against_y.explained.empty());
+}

@@ -35,6 +35,7 @@ FreeSpaceParams FreeSpaceParams::of(const ParticleFilterConfig& c, double drift_
   p.open_m = c.free_space_open_m;
   p.open_wall_faces = c.free_space_open_wall_faces;
   p.open_faces = c.free_space_open_faces;
+  p.explained = c.free_space_explained;
   return p;
 }
 
@@ -182,7 +183,9 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
   // bound taken for a sigma is the safe side of a uniform error's (bound / sqrt 3).
   const double sigma_yaw = std::hypot(params.sigma_yaw_rad, profile.skew_yaw_rad);
   const double sigma_m = std::hypot(params.sigma_m, profile.skew_m);
-  for (const auto& e : profile.ends_base) {
+  for (std::size_t ray = 0; ray < profile.ends_base.size(); ++ray) {
+    const Eigen::Vector3f& e = profile.ends_base[ray];
+    const auto index = static_cast<std::int32_t>(ray);
     const Eigen::Vector2d end = toMap(e.x(), e.y());
     const Eigen::Vector2d v = end - o;
     const double r = v.norm();
@@ -192,7 +195,7 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
     const auto x = map.firstCrossing(o, u, z0, dz, r + params.open_m, sigma_yaw, sigma_m);
     if (!x) {
       // Nothing solid along the ray up to open_m past its end: it ended in the place's open.
-      hits.push_back({kOpenKeyBase + map.regionKey(end), static_cast<float>(params.open_wall_faces * params.face_worth)});
+      hits.push_back({kOpenKeyBase + map.regionKey(end), static_cast<float>(params.open_wall_faces * params.face_worth), index});
       continue;
     }
     if (x->uncertain) continue;
@@ -207,15 +210,16 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
     const double sigma = std::hypot(sigma_m / cos_i, lateral);
     const double beyond = r - x->t;
     if (beyond > params.gate_sigmas * sigma)
-      hits.push_back({x->wall, static_cast<float>(throughCost(beyond, sigma, params.face_worth))});
+      hits.push_back({x->wall, static_cast<float>(throughCost(beyond, sigma, params.face_worth)), index});
+    else if (params.explained && beyond >= -params.gate_sigmas * sigma)
+      hits.push_back({kOnWallBase + x->wall, 0.0f, index});
   }
   return hits;
 }
 
-double freeSpacePenalty(const std::vector<const std::vector<FreeSpaceHit>*>& per_scan, const FreeSpaceParams& params) {
-  std::vector<FreeSpaceHit> all;
-  for (const auto* scan : per_scan)
-    if (scan) all.insert(all.end(), scan->begin(), scan->end());
+namespace {
+
+double penaltyOf(std::vector<FreeSpaceHit>& all, const FreeSpaceParams& params) {
   std::sort(all.begin(), all.end(), [](const FreeSpaceHit& a, const FreeSpaceHit& b) { return a.key < b.key; });
   double through = 0, open = 0;
   for (std::size_t i = 0; i < all.size();) {
@@ -224,10 +228,75 @@ double freeSpacePenalty(const std::vector<const std::vector<FreeSpaceHit>*>& per
     for (; j < all.size() && all[j].key == all[i].key; ++j) sum += all[j].cost;
     const double n = static_cast<double>(j - i);
     const double worth = sum / n * std::min(1.0, n / static_cast<double>(params.support_rays));
-    (all[i].key >= kOpenKeyBase ? open : through) += worth;
+    const std::int32_t key = all[i].key;
+    if (key >= kOpenKeyBase && key < kOnWallBase)
+      open += worth;
+    else if (key < kOnWallBase || key >= kExplainedBase)
+      through += worth;
     i = j;
   }
   return through + std::min(open, params.open_faces * params.face_worth);
+}
+
+}  // namespace
+
+double freeSpacePenalty(const std::vector<const std::vector<FreeSpaceHit>*>& per_scan, const FreeSpaceParams& params) {
+  std::vector<FreeSpaceHit> all;
+  for (const auto* scan : per_scan)
+    if (scan) all.insert(all.end(), scan->begin(), scan->end());
+  return penaltyOf(all, params);
+}
+
+FreeSpaceCost freeSpaceCostGiven(const std::vector<const std::vector<FreeSpaceHit>*>& x, const std::vector<const std::vector<FreeSpaceHit>*>& y,
+                                 const FreeSpaceParams& params, const std::vector<double>& counted) {
+  std::vector<FreeSpaceHit> all;
+  std::vector<std::int32_t> on_wall;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    if (!x[k]) continue;
+    on_wall.clear();
+    if (k < y.size() && y[k])
+      for (const auto& h : *y[k])
+        if (h.key >= kOnWallBase && h.key < kExplainedBase && h.ray >= 0) {
+          if (on_wall.size() <= static_cast<std::size_t>(h.ray)) on_wall.resize(static_cast<std::size_t>(h.ray) + 1, -1);
+          on_wall[static_cast<std::size_t>(h.ray)] = h.key - kOnWallBase;
+        }
+    for (const auto& h : *x[k]) {
+      const bool open = h.key >= kOpenKeyBase && h.key < kOnWallBase;
+      const std::int32_t wall =
+          open && h.ray >= 0 && static_cast<std::size_t>(h.ray) < on_wall.size() ? on_wall[static_cast<std::size_t>(h.ray)] : -1;
+      if (wall >= 0) all.push_back({kExplainedBase + wall, static_cast<float>(params.face_worth), h.ray});
+      // A wall the planes counted keeps its rays in the open term too (bounded, as before).
+      if (wall < 0 || (static_cast<std::size_t>(wall) < counted.size() && counted[static_cast<std::size_t>(wall)] > 0.0)) all.push_back(h);
+    }
+  }
+  FreeSpaceCost cost;
+  std::sort(all.begin(), all.end(), [](const FreeSpaceHit& a, const FreeSpaceHit& b) { return a.key < b.key; });
+  const auto first_explained =
+      std::lower_bound(all.begin(), all.end(), kExplainedBase, [](const FreeSpaceHit& h, std::int32_t k) { return h.key < k; });
+  for (auto i = first_explained; i != all.end();) {
+    auto j = i;
+    for (; j != all.end() && j->key == i->key; ++j) {}
+    const double n = static_cast<double>(j - i);
+    const auto wall = static_cast<std::size_t>(i->key - kExplainedBase);
+    // One wall, one face's worth, whatever saw it: what the planes counted for it is taken off.
+    const double planes = wall < counted.size() ? std::max(0.0, counted[wall]) : 0.0;
+    const double worth = params.face_worth * std::min(1.0, n / static_cast<double>(params.support_rays));
+    cost.explained.emplace_back(static_cast<std::int32_t>(wall), std::max(0.0, worth - planes));
+    i = j;
+  }
+  all.erase(first_explained, all.end());
+  cost.rest = penaltyOf(all, params);
+  return cost;
+}
+
+double freeSpacePenaltyBound(const std::vector<const std::vector<FreeSpaceHit>*>& x, const FreeSpaceParams& params) {
+  // Every open ray explained, each under a key of its own: at most face_worth / support_rays each.
+  double open_rays = 0;
+  for (const auto* scan : x)
+    if (scan)
+      for (const auto& h : *scan) open_rays += (h.key >= kOpenKeyBase && h.key < kOnWallBase) ? 1.0 : 0.0;
+  const double extra = params.explained ? params.face_worth * open_rays / static_cast<double>(params.support_rays) : 0.0;
+  return freeSpacePenalty(x, params) + extra;
 }
 
 }  // namespace bimloc::pf::detail

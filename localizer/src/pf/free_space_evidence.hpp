@@ -39,8 +39,13 @@ namespace bimloc::pf::detail {
 struct FreeSpaceHit {
   std::int32_t key = 0;
   float cost = 0;
+  std::int32_t ray = -1;  // the ray's index in the scan's profile
 };
 constexpr std::int32_t kOpenKeyBase = 1 << 28;
+// Costless marks of rays that ended on a wall (kOnWallBase + wall): another place's open ray
+// that this place explains is counted against that place under kExplainedBase + this wall.
+constexpr std::int32_t kOnWallBase = 1 << 29;
+constexpr std::int32_t kExplainedBase = 3 << 28;
 
 struct FreeSpaceParams {
   double sigma_m = 0.15;           // a ray's range sigma at normal incidence (noise, drift, plan)
@@ -51,6 +56,7 @@ struct FreeSpaceParams {
   double open_m = 1.0;
   double open_wall_faces = 0.25;   // per open region, in faces
   double open_faces = 1.0;         // all open regions, in faces
+  bool explained = false;          // pairs: an open ray the other place ends on its wall
   static FreeSpaceParams of(const ParticleFilterConfig& c, double drift_m);
 };
 
@@ -101,5 +107,17 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
 // rays times min(1, rays / support_rays); through keys add up, open keys add up to at most
 // open_faces faces.
 double freeSpacePenalty(const std::vector<const std::vector<FreeSpaceHit>*>& per_scan, const FreeSpaceParams& params);
+// The same against X given another place Y (scan by scan, the same rays): X's open rays that end
+// on Y's wall w count per wall w, one face's worth per ray, times min(1, rays / support_rays).
+struct FreeSpaceCost {
+  double rest = 0;                                      // through and open, as freeSpacePenalty
+  std::vector<std::pair<std::int32_t, double>> explained;  // per Y's wall: the worth of X's open rays ending on it
+};
+// `counted`: per Y's wall, what the planes already counted for it (one wall is one face's worth,
+// whatever saw it: that much is taken off; its rays stay in the bounded open term as well).
+FreeSpaceCost freeSpaceCostGiven(const std::vector<const std::vector<FreeSpaceHit>*>& x, const std::vector<const std::vector<FreeSpaceHit>*>& y,
+                                 const FreeSpaceParams& params, const std::vector<double>& counted);
+// An upper bound of freeSpacePenaltyGiven(x, y) over every y.
+double freeSpacePenaltyBound(const std::vector<const std::vector<FreeSpaceHit>*>& x, const FreeSpaceParams& params);
 
 }  // namespace bimloc::pf::detail

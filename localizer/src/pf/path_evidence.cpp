@@ -39,6 +39,7 @@ PathEvidence::PathEvidence(const bim::Storey& storey, const ParticleFilterConfig
     free_space_map_ = std::make_shared<const FreeSpaceMap>(storey);
     // A ray's range is off by the scan's placement along the window (drift, as the planes'),
     // not by the planes' own fitting noise.
+    free_space_walls_ = storey.walls.size();
     free_space_ = FreeSpaceParams::of(config, config.evidence_drift_fraction * 0.5 * config.evidence_window_m);
   }
   for (const auto& l : rooms_.landmarks(0)) {

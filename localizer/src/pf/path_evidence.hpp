@@ -56,8 +56,10 @@ class FaceMargin {
   }
   // One observation, as matched at P and at Q.
   void add(const ObservationMatch& at_p, const ObservationMatch& at_q);
-  // The margin, the room prior spread over a window of `scans` scans.
-  double total(double gate, double scans);
+  // The margin, the room prior spread over a window of `scans` scans. With `per_face`, each
+  // face's contribution too, under its key (P's faces, then Q's from rival_keys on).
+  double total(double gate, double scans, std::vector<std::pair<int, double>>* per_face = nullptr);
+  int rivalKeys() const { return rival_keys_; }
 
  private:
   int rival_keys_;
@@ -192,10 +194,14 @@ class PathEvidence {
   // up. A wall seen in thirty scans is one piece of evidence, not thirty: errors shared by the
   // scans (odometry drift, a wall a few centimetres off its plan, a near-symmetric twin that
   // differs by less than the sigmas) cannot add up to a verdict.
-  double distinctMargin(const Candidate& p, const Candidate& q) const;
+  double distinctMargin(const Candidate& p, const Candidate& q, std::vector<std::pair<int, double>>* per_face = nullptr) const;
   // The evidence against a candidate from what the window's scans rule out (free space,
   // counted once per wall: free_space_evidence.hpp); 0 without free-space evidence.
-  double freeSpacePenalty(const Candidate& c) const;
+  double freeSpacePenalty(const Candidate& c) const;  // with explained rays: an upper bound over every other place
+  std::vector<const std::vector<FreeSpaceHit>*> freeSpaceHitsOf(const Candidate& c) const;
+  // The free space's part of margin(p, q); with the planes' per-face terms (distinctMargin's),
+  // a wall the planes counted is not counted again for the rays that end on it.
+  double freeSpaceMargin(const Candidate& p, const Candidate& q, const std::vector<std::pair<int, double>>* per_face = nullptr) const;
   // The margin of P over Q that decides: the planes' distinctMargin plus what the free space
   // says against Q less what it says against P. Both are log-likelihood ratios counted in the
   // same unit (one face), so one bar (evidenceMargin) holds for their sum.
@@ -215,6 +221,9 @@ class PathEvidence {
   ParticleFilterConfig config_;  // with the sigmas of the window's error model
   std::shared_ptr<const FreeSpaceMap> free_space_map_;  // null without free-space evidence
   FreeSpaceParams free_space_;
+  // FaceMargin's keys: P's faces by id (2 wall + side), Q's after every id.
+  int faceKeys() const { return static_cast<int>(face_normals_.size()) + 1; }
+  std::size_t free_space_walls_ = 0;  // the storey's walls (keys of explained rays)
   std::deque<Scan> scans_;
   std::vector<Candidate> candidates_;
   double travelled_m_ = 0;

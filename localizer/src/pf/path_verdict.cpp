@@ -19,7 +19,7 @@ void FaceMargin::add(const ObservationMatch& at_p, const ObservationMatch& at_q)
   if (key >= 0) deltas_.emplace_back(key, delta);
 }
 
-double FaceMargin::total(double gate, double scans) {
+double FaceMargin::total(double gate, double scans, std::vector<std::pair<int, double>>* per_face) {
   std::sort(deltas_.begin(), deltas_.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   double margin = 0;
   for (std::size_t i = 0; i < deltas_.size();) {
@@ -27,14 +27,15 @@ double FaceMargin::total(double gate, double scans) {
     double sum = 0;
     for (; j < deltas_.size() && deltas_[j].first == deltas_[i].first; ++j) sum += deltas_[j].second;
     margin += sum / static_cast<double>(j - i);
+    if (per_face) per_face->emplace_back(deltas_[i].first, sum / static_cast<double>(j - i));
     i = j;
   }
   return margin + 0.5 * gate * out_of_rooms_ / std::max(1.0, scans);
 }
 
-double PathEvidence::distinctMargin(const Candidate& p, const Candidate& q) const {
+double PathEvidence::distinctMargin(const Candidate& p, const Candidate& q, std::vector<std::pair<int, double>>* per_face) const {
   // Faces of P as keys 0 ... ; faces of Q (observations Q explains and P does not) after them.
-  FaceMargin margin(static_cast<int>(rooms_.landmarks(0).size()) + 1);
+  FaceMargin margin(faceKeys());
   for (std::size_t k = 0; k < p.per_scan.size() && k < q.per_scan.size(); ++k) {
     const ScanScore& a = p.per_scan[k];
     const ScanScore& b = q.per_scan[k];
@@ -43,11 +44,10 @@ double PathEvidence::distinctMargin(const Candidate& p, const Candidate& q) cons
       margin.add(a.per_observation[o], b.per_observation[o]);
   }
   // The room prior, as in total(): at most one clutter plane's worth.
-  return margin.total(config_.gate_mahalanobis2, static_cast<double>(scans_.size()));
+  return margin.total(config_.gate_mahalanobis2, static_cast<double>(scans_.size()), per_face);
 }
 
-double PathEvidence::freeSpacePenalty(const Candidate& c) const {
-  if (!free_space_map_) return 0.0;
+std::vector<const std::vector<FreeSpaceHit>*> PathEvidence::freeSpaceHitsOf(const Candidate& c) const {
   std::vector<const std::vector<FreeSpaceHit>*> per_scan;
   for (std::size_t k = 0; k < c.per_scan.size() && k < scans_.size(); ++k) {
     const ScanScore& s = c.per_scan[k];
@@ -58,12 +58,44 @@ double PathEvidence::freeSpacePenalty(const Candidate& c) const {
     }
     per_scan.push_back(&s.free_space);
   }
-  return detail::freeSpacePenalty(per_scan, free_space_);
+  return per_scan;
+}
+
+double PathEvidence::freeSpacePenalty(const Candidate& c) const {
+  if (!free_space_map_) return 0.0;
+  return free_space_.explained ? detail::freeSpacePenaltyBound(freeSpaceHitsOf(c), free_space_)
+                               : detail::freeSpacePenalty(freeSpaceHitsOf(c), free_space_);
+}
+
+double PathEvidence::freeSpaceMargin(const Candidate& p, const Candidate& q, const std::vector<std::pair<int, double>>* per_face) const {
+  if (!free_space_map_) return 0.0;
+  if (!free_space_.explained) return freeSpacePenalty(q) - freeSpacePenalty(p);
+  const auto at_p = freeSpaceHitsOf(p), at_q = freeSpaceHitsOf(q);
+  // The planes' per-face terms by wall, for each place's own faces.
+  std::vector<double> planes_p(free_space_walls_, 0.0), planes_q(free_space_walls_, 0.0);
+  if (per_face) {
+    for (const auto& [key, delta] : *per_face) {
+      // A face's key is its id (2 wall + side), Q's from faceKeys() on.
+      const bool of_p = key < faceKeys();
+      const int face = of_p ? key : key - faceKeys();
+      const auto wall = static_cast<std::size_t>(std::max(0, face) / 2);
+      if (face < 0 || wall >= free_space_walls_) continue;
+      (of_p ? planes_p : planes_q)[wall] += of_p ? delta : -delta;
+    }
+  }
+  // Q's open rays that end on P's walls count against Q, and P's that end on Q's against P.
+  const FreeSpaceCost against_q = detail::freeSpaceCostGiven(at_q, at_p, free_space_, planes_p);
+  const FreeSpaceCost against_p = detail::freeSpaceCostGiven(at_p, at_q, free_space_, planes_q);
+  double m = against_q.rest - against_p.rest;
+  for (const auto& e : against_q.explained) m += e.second;
+  for (const auto& e : against_p.explained) m -= e.second;
+  return m;
 }
 
 double PathEvidence::margin(const Candidate& p, const Candidate& q) const {
-  const double planes = distinctMargin(p, q);
-  return free_space_map_ ? planes + freeSpacePenalty(q) - freeSpacePenalty(p) : planes;
+  std::vector<std::pair<int, double>> per_face;
+  const double planes = distinctMargin(p, q, free_space_.explained ? &per_face : nullptr);
+  return planes + freeSpaceMargin(p, q, &per_face);
 }
 
 void PathEvidence::addFreeSpace(const Candidate& best, std::vector<std::pair<double, std::size_t>>& rivals) const {
@@ -80,7 +112,12 @@ void PathEvidence::addFreeSpace(const Candidate& best, std::vector<std::pair<dou
       m -= against_best;
       continue;
     }
-    m += freeSpacePenalty(candidates_[i]) - against_best;
+    if (free_space_.explained) {
+      std::vector<std::pair<int, double>> per_face;
+      m = distinctMargin(best, candidates_[i], &per_face) + freeSpaceMargin(best, candidates_[i], &per_face);
+    } else {
+      m += freeSpaceMargin(best, candidates_[i]);
+    }
     lowest = std::min(lowest, m);
   }
   std::sort(rivals.begin(), rivals.end());

@@ -109,6 +109,7 @@ struct ParticleFilterConfig {
   double free_space_open_m = 1.0;       // a ray ending this far short of the place's wall ...
   double free_space_open_wall_faces = 0.25;  // ... costs this (in faces) per wall it fell short of,
   double free_space_open_faces = 1.0;   // and all such rays together at most this
+  bool free_space_explained = false;    // experiment: an open ray the other place ends on its wall
   // Resampling and its guards.
   double resample_ess_fraction = 0.5;  // low-variance resampling when ESS < fraction * N
   double roughening_xy_m = 0.02;       // jitter after resampling, against depletion
