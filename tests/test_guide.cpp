@@ -4,6 +4,8 @@
 //   stands the door is hidden and the places look alike; the suggested goal is reachable in
 //   both and the doorway is in view from it in the room that has it (checked by a ray caster
 //   written here, not the guide's);
+// - two offices alike inside, off one corridor: the goal is in the corridor, walked to through
+//   the door (no straight line gets there), and asked again it is as informative;
 // - with one place left, no goal;
 // - the scenario key parses, and a misspelling is refused naming the line and the right word;
 // - a steered base walks towards the goal it is given.
@@ -90,13 +92,51 @@ TEST(Guide, TheGoalBringsTheDoorThatTellsTwinRoomsApartIntoView) {
   // The same motion in both places, and in the odom frame.
   EXPECT_NEAR((b - a - Eigen::Vector2d(20.0, 0.0)).norm(), 0.0, 1e-9);
   EXPECT_NEAR((compose(odom, goal->motion) - goal->T_odom_goal).norm(), 0.0, 1e-9);
-  // In both rooms, and walked to without crossing a wall.
-  EXPECT_TRUE(lineOfSight(s, {5.0, 1.5}, a) && lineOfSight(s, {25.0, 1.5}, b)) << a.transpose() << " / " << b.transpose();
+  // In both rooms (round the L's corner: walked there, not in a straight line), clear of the walls.
   EXPECT_TRUE(a.x() > 0.4 && a.x() < 5.6 && a.y() > 0.4 && a.y() < 7.6 && (a.x() < 2.6 || a.y() < 2.6)) << a.transpose();
+  EXPECT_TRUE(b.x() > 20.4 && b.x() < 25.6 && b.y() > 0.4 && b.y() < 7.6 && (b.x() < 22.6 || b.y() < 2.6)) << b.transpose();
+  EXPECT_GE(goal->walk_m, goal->distance_m - 0.2);
+  EXPECT_LE(goal->walk_m, config.goal_walk_max_m);
   // From the goal the doorway is in view in room A, and beyond it the corridor's wall.
   EXPECT_TRUE(lineOfSight(s, a, {1.4, 8.3})) << "goal " << a.transpose();
   EXPECT_GT(goal->information, 0.1);
   EXPECT_LE(goal->distance_m, config.goal_max_m + 1e-9);
+}
+
+// Two offices alike inside, [0, 4] x [0, 4] at x = 0 and x = 6, each with a doorway x 1.4-2.6
+// in its north wall onto one corridor y 4.2-6.2 from x = -2 to x = 20: only the corridor's ends
+// tell them apart, and they are seen from the corridor, not from inside.
+bim::Storey officesOnACorridor() {
+  bim::Storey s;
+  for (const double x : {0.0, 6.0}) {
+    const Eigen::Vector2d o(x, 0.0);
+    addGuideWall(s, {0, 0}, {4, 0}, o), addGuideWall(s, {4, 0}, {4, 4}, o), addGuideWall(s, {0, 4}, {0, 0}, o);
+    addGuideWall(s, {0, 4}, {1.2, 4}, o), addGuideWall(s, {2.8, 4}, {4, 4}, o);  // grown: a 1.2 m doorway
+  }
+  addGuideWall(s, {-2, 6.4}, {20, 6.4}, {0, 0});
+  addGuideWall(s, {-2, 4.2}, {-2, 6.4}, {0, 0}), addGuideWall(s, {20, 6.4}, {20, 4.2}, {0, 0});
+  addGuideWall(s, {4.2, 4.2}, {5.8, 4.2}, {0, 0}), addGuideWall(s, {10.2, 4.2}, {20, 4.2}, {0, 0});
+  return s;
+}
+
+TEST(Guide, TwinOfficesSendTheRobotThroughItsDoorIntoTheCorridor) {
+  const bim::Storey s = officesOnACorridor();
+  const guide::GuideConfig config;
+  const guide::GoalPlanner planner(s, config);
+  // At (1, 1) in either office: inside, the two scans are the same.
+  const std::vector<guide::Place> places{{PlanarPose(1.0, 1.0, 0.0), 0.0}, {PlanarPose(7.0, 1.0, 0.0), 2.0}};
+  const auto goal = planner.suggest(places, PlanarPose::Zero());
+  ASSERT_TRUE(goal.has_value());
+  const Eigen::Vector2d a = goal->T_map_goal[0].head<2>(), b = goal->T_map_goal[1].head<2>();
+  // In the corridor in both places, reached through the door: no straight line gets there.
+  EXPECT_TRUE(a.y() > 4.4 && a.y() < 6.2 && b.y() > 4.4 && b.y() < 6.2) << a.transpose() << " / " << b.transpose();
+  EXPECT_FALSE(lineOfSight(s, {1.0, 1.0}, a) && lineOfSight(s, {7.0, 1.0}, b)) << a.transpose();
+  EXPECT_GT(goal->walk_m, goal->distance_m);
+  EXPECT_GT(goal->information, 0.5);
+  // The goal's information, asked again for the same motion, is what the suggestion said.
+  const auto again = planner.informationOf(places, goal->motion);
+  ASSERT_TRUE(again.has_value());
+  EXPECT_NEAR(*again, goal->information, 1e-9);
 }
 
 TEST(Guide, OnePlaceLeftNeedsNoGoal) {

@@ -522,7 +522,15 @@ void Localizer::Impl::suggestGoal(const Eigen::Isometry3d& T_odom_base, Localiza
       planner = std::make_unique<guide::GoalPlanner>(building.storeys.at(places_storey), config.guide);
       planner_storey = places_storey;
     }
-    goal = planner->suggest(r.places, odom);
+    // A goal under way is kept while it still tells the places apart and stays within reach in
+    // each: the places change with nearly every weighing, and a new best goal each time had the
+    // base turn back and forth between two goals, walking 2 m in 40 s (site_office R104).
+    std::optional<double> still;
+    if (goal && !reached) still = planner->informationOf(r.places, between(odom, goal->T_odom_goal));
+    if (still && *still >= config.guide.min_information)
+      goal->information = *still;
+    else
+      goal = planner->suggest(r.places, odom);
     goal_places = places;
     goal_stamp_s = r.stamp_s;
   }

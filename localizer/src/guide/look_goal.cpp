@@ -1,5 +1,6 @@
 #include <bimloc/guide/look_goal.hpp>
 
+#include "walk_grid.hpp"
 #include "wall_slice.hpp"
 
 #include <algorithm>
@@ -12,36 +13,64 @@ struct GoalPlanner::Impl {
   const bim::Storey& storey;
   GuideConfig config;
   std::vector<detail::Segment2> walls;  // the slice at scan height, doors as gaps
+  detail::WalkGrid grid;                // where the body fits, for walking distances
 
-  // The scan from `pose` against `segments` (a subset of walls near it).
-  std::vector<double> scan(const std::vector<detail::Segment2>& segments, const PlanarPose& pose) const {
-    const int n = std::max(1, config.scan_rays);
-    std::vector<double> ranges(static_cast<std::size_t>(n));
-    for (int k = 0; k < n; ++k) {
-      const double a = pose.z() + 2.0 * M_PI * k / n;
-      ranges[static_cast<std::size_t>(k)] =
-          detail::castRay(segments, pose.head<2>(), Eigen::Vector2d(std::cos(a), std::sin(a)), config.scan_range_m);
-    }
-    return ranges;
+  // The walk from a place to `to`: its length, or infinity where the body cannot get there
+  // (not free, beyond goal_walk_max_m, or out of every room from a room).
+  double walk(const detail::WalkGrid::Distances& from_place, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
+    const double metres = grid.distance(from_place, to);
+    if (!std::isfinite(metres)) return metres;
+    return !storey.roomAt(from) || storey.roomAt(to) ? metres : std::numeric_limits<double>::infinity();
   }
 
-  // The mean over pairs of places of 1 - exp(-D), D the scans' expected log-likelihood ratio:
-  // per ray the KL divergence of two Gaussian ranges (equal sigma), capped where clutter
-  // explains either range, scaled to the scan's independent rays.
-  double information(const std::vector<std::vector<double>>& scans) const {
-    const double cap = -std::log(std::clamp(config.clutter_probability, 1e-6, 1.0));
-    const double inv = 1.0 / (2.0 * config.range_sigma_m * config.range_sigma_m);
+  // The scan from `pose` against `segments` (a subset of walls near it): per ray its range and
+  // the wall it ends on (-1: none within range).
+  struct Scan {
+    std::vector<double> ranges;
+    std::vector<int> walls;
+  };
+  Scan scan(const std::vector<detail::Segment2>& segments, const PlanarPose& pose) const {
+    const int n = std::max(1, config.scan_rays);
+    Scan out;
+    out.ranges.resize(static_cast<std::size_t>(n));
+    out.walls.resize(static_cast<std::size_t>(n));
+    for (int k = 0; k < n; ++k) {
+      const double a = pose.z() + 2.0 * M_PI * k / n;
+      const auto i = static_cast<std::size_t>(k);
+      out.ranges[i] = detail::castRay(segments, pose.head<2>(), Eigen::Vector2d(std::cos(a), std::sin(a)), config.scan_range_m, &out.walls[i]);
+    }
+    return out;
+  }
+
+  // The walls that tell two predicted scans apart, as the path evidence counts them (GuideConfig):
+  // per wall (the nearer of the two a ray ends on), the rays that differ beyond the gate; a wall
+  // counts once support_rays of them do.
+  int wallsApart(const Scan& a, const Scan& b) const {
+    std::vector<int> walls;
+    const double gate = config.gate_sigmas * config.range_sigma_m;
+    for (std::size_t k = 0; k < a.ranges.size() && k < b.ranges.size(); ++k) {
+      if (std::abs(a.ranges[k] - b.ranges[k]) <= gate) continue;
+      const int wall = a.ranges[k] < b.ranges[k] ? a.walls[k] : b.walls[k];
+      if (wall >= 0) walls.push_back(wall);
+    }
+    std::sort(walls.begin(), walls.end());
+    int apart = 0;
+    for (std::size_t i = 0; i < walls.size();) {
+      std::size_t j = i;
+      while (j < walls.size() && walls[j] == walls[i]) ++j;
+      apart += static_cast<int>(j - i) >= config.support_rays ? 1 : 0;
+      i = j;
+    }
+    return apart;
+  }
+
+  // The mean over pairs of places of min(1, walls apart / faces_to_decide).
+  double information(const std::vector<Scan>& scans) const {
     double sum = 0;
     int pairs = 0;
     for (std::size_t i = 0; i < scans.size(); ++i)
       for (std::size_t j = i + 1; j < scans.size(); ++j) {
-        double d = 0;
-        for (std::size_t k = 0; k < scans[i].size(); ++k) {
-          const double delta = scans[i][k] - scans[j][k];
-          d += std::min(cap, delta * delta * inv);
-        }
-        d *= config.independent_rays / static_cast<double>(std::max<std::size_t>(1, scans[i].size()));
-        sum += 1.0 - std::exp(-d);
+        sum += std::min(1.0, wallsApart(scans[i], scans[j]) / std::max(1e-9, config.faces_to_decide));
         ++pairs;
       }
     return pairs ? sum / pairs : 0.0;
@@ -65,13 +94,15 @@ struct GoalPlanner::Impl {
 };
 
 GoalPlanner::GoalPlanner(const bim::Storey& storey, const GuideConfig& config)
-    : impl_(std::make_unique<Impl>(Impl{storey, config, detail::sliceWalls(storey, config.scan_height_m)})) {}
+    : impl_(std::make_unique<Impl>(Impl{storey, config, detail::sliceWalls(storey, config.scan_height_m), detail::WalkGrid({}, 0.0)})) {
+  impl_->grid = detail::WalkGrid(impl_->walls, config.clearance_m);
+}
 GoalPlanner::~GoalPlanner() = default;
 GoalPlanner::GoalPlanner(GoalPlanner&&) noexcept = default;
 const GuideConfig& GoalPlanner::config() const { return impl_->config; }
 
 std::vector<double> GoalPlanner::predictScan(const PlanarPose& T_map_base) const {
-  return impl_->scan(detail::segmentsNear(impl_->walls, T_map_base.head<2>(), impl_->config.scan_range_m), T_map_base);
+  return impl_->scan(detail::segmentsNear(impl_->walls, T_map_base.head<2>(), impl_->config.scan_range_m), T_map_base).ranges;
 }
 
 bool GoalPlanner::reachable(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
@@ -79,22 +110,37 @@ bool GoalPlanner::reachable(const Eigen::Vector2d& from, const Eigen::Vector2d& 
 }
 
 double GoalPlanner::information(const std::vector<PlanarPose>& T_map_bases) const {
-  std::vector<std::vector<double>> scans;
-  for (const auto& p : T_map_bases) scans.push_back(predictScan(p));
+  std::vector<Impl::Scan> scans;
+  for (const auto& p : T_map_bases) scans.push_back(impl_->scan(detail::segmentsNear(impl_->walls, p.head<2>(), impl_->config.scan_range_m), p));
   return impl_->information(scans);
+}
+
+std::optional<double> GoalPlanner::informationOf(const std::vector<Place>& places, const PlanarPose& motion) const {
+  const Impl& m = *impl_;
+  std::vector<Impl::Scan> scans;
+  for (const auto& p : places) {
+    const PlanarPose there = compose(p.T_map_base, motion);
+    const auto from = m.grid.from(p.T_map_base.head<2>(), m.config.goal_walk_max_m);
+    if (!std::isfinite(m.walk(from, p.T_map_base.head<2>(), there.head<2>()))) return std::nullopt;
+    scans.push_back(m.scan(detail::segmentsNear(m.walls, there.head<2>(), m.config.scan_range_m), there));
+  }
+  return m.information(scans);
 }
 
 std::optional<LookGoal> GoalPlanner::suggest(const std::vector<Place>& places, const PlanarPose& T_odom_base) const {
   const Impl& m = *impl_;
   const GuideConfig& c = m.config;
   if (places.size() < 2 || c.goal_rings < 1 || c.goal_bearings < 1) return std::nullopt;
-  // Each place's walls within reach of any of its goals' scans: culled once.
+  // Each place's walls within reach of any of its goals' scans, and its walking distances: once.
   std::vector<std::vector<detail::Segment2>> near;
-  for (const auto& p : places)
+  std::vector<detail::WalkGrid::Distances> walks;
+  for (const auto& p : places) {
     near.push_back(detail::segmentsNear(m.walls, p.T_map_base.head<2>(), c.goal_max_m + c.scan_range_m));
+    walks.push_back(m.grid.from(p.T_map_base.head<2>(), c.goal_walk_max_m));
+  }
   std::optional<LookGoal> best;
   double best_score = -std::numeric_limits<double>::infinity();
-  std::vector<std::vector<double>> scans(places.size());
+  std::vector<Impl::Scan> scans(places.size());
   std::vector<PlanarPose> there(places.size());
   for (int ring = 0; ring < c.goal_rings; ++ring) {
     const double radius = c.goal_rings == 1 ? c.goal_max_m
@@ -103,15 +149,16 @@ std::optional<LookGoal> GoalPlanner::suggest(const std::vector<Place>& places, c
       const double bearing = 2.0 * M_PI * b / c.goal_bearings;
       // Facing the way it walked: the scan is all round, so the heading only says how it got there.
       const PlanarPose motion(radius * std::cos(bearing), radius * std::sin(bearing), wrapAngle(bearing));
-      bool free = true;
-      for (std::size_t i = 0; i < places.size() && free; ++i) {
+      // Reachable in every place (through doors: the walking distance), and walked the longest of those.
+      double walk_m = 0;
+      for (std::size_t i = 0; i < places.size() && std::isfinite(walk_m); ++i) {
         there[i] = compose(places[i].T_map_base, motion);
-        free = m.reachable(near[i], places[i].T_map_base.head<2>(), there[i].head<2>());
+        walk_m = std::max(walk_m, m.walk(walks[i], places[i].T_map_base.head<2>(), there[i].head<2>()));
       }
-      if (!free) continue;
+      if (!std::isfinite(walk_m)) continue;
       for (std::size_t i = 0; i < places.size(); ++i) scans[i] = m.scan(near[i], there[i]);
       const double info = m.information(scans);
-      const double score = info - c.travel_cost_per_m * radius;
+      const double score = info - c.travel_cost_per_m * walk_m;
       if (info < c.min_information || score <= best_score) continue;
       best_score = score;
       LookGoal g;
@@ -120,6 +167,7 @@ std::optional<LookGoal> GoalPlanner::suggest(const std::vector<Place>& places, c
       g.T_map_goal = there;
       g.information = info;
       g.distance_m = radius;
+      g.walk_m = walk_m;
       best = std::move(g);
     }
   }

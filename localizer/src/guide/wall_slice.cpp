@@ -21,8 +21,8 @@ bool segmentsCross(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, const E
 
 std::vector<Segment2> sliceWalls(const bim::Storey& storey, double height_m) {
   std::vector<Segment2> out;
-  for (const auto& wall : storey.walls)
-    for (const auto& face : wall.faces) {
+  for (std::size_t w = 0; w < storey.walls.size(); ++w)
+    for (const auto& face : storey.walls[w].faces) {
       const double length = face.length_m();
       if (!(length > 1e-3)) continue;
       const double z = face.start.z() + height_m;
@@ -34,7 +34,7 @@ std::vector<Segment2> sliceWalls(const bim::Storey& storey, double height_m) {
       const Eigen::Vector2d a = face.start.head<2>(), dir = (face.end - face.start).head<2>() / length;
       double from = 0;
       const auto solid = [&](double lo, double hi) {
-        if (hi - lo > 1e-3) out.push_back({a + lo * dir, a + hi * dir});
+        if (hi - lo > 1e-3) out.push_back({a + lo * dir, a + hi * dir, static_cast<int>(w)});
       };
       for (const auto& [lo, hi] : gaps) {
         if (hi <= from) continue;
@@ -54,15 +54,19 @@ std::vector<Segment2> segmentsNear(const std::vector<Segment2>& segments, const 
 }
 
 double castRay(const std::vector<Segment2>& segments, const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
-               double max_m) {
+               double max_m, int* wall) {
   double best = max_m;
+  if (wall) *wall = -1;
   for (const auto& s : segments) {
     const Eigen::Vector2d e = s.b - s.a;
     const double denom = cross2(direction, e);
     if (std::abs(denom) < 1e-12) continue;  // parallel: a grazing ray hits the neighbouring face
     const Eigen::Vector2d w = s.a - origin;
     const double t = cross2(w, e) / denom, u = cross2(w, direction) / denom;
-    if (t > 0 && t < best && u >= 0 && u <= 1) best = t;
+    if (t > 0 && t < best && u >= 0 && u <= 1) {
+      best = t;
+      if (wall) *wall = s.wall;
+    }
   }
   return best;
 }
@@ -76,7 +80,7 @@ double distanceTo(const Segment2& s, const Eigen::Vector2d& p) {
 
 bool walkClear(const std::vector<Segment2>& segments, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
                double clearance_m) {
-  const Segment2 walk{from, to};
+  const Segment2 walk{from, to, -1};
   for (const auto& s : segments) {
     if (segmentsCross(from, to, s.a, s.b)) return false;
     // Not crossing: the distance between the segments is at one of the four end points.

@@ -12,6 +12,7 @@ namespace bimloc::guide::detail {
 
 struct Segment2 {
   Eigen::Vector2d a = Eigen::Vector2d::Zero(), b = Eigen::Vector2d::Zero();
+  int wall = -1;  // the storey's wall it is a piece of
 };
 
 // The solid pieces of every face of the storey at `height_m` above the face's base.
@@ -20,9 +21,10 @@ std::vector<Segment2> sliceWalls(const bim::Storey& storey, double height_m);
 // The segments with a point within `radius_m` of `centre`.
 std::vector<Segment2> segmentsNear(const std::vector<Segment2>& segments, const Eigen::Vector2d& centre, double radius_m);
 
-// Distance from the ray's origin to the first segment along it, or max_m.
+// Distance from the ray's origin to the first segment along it, or max_m; with `wall`, that
+// segment's wall (-1: none within max_m).
 double castRay(const std::vector<Segment2>& segments, const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
-               double max_m);
+               double max_m, int* wall = nullptr);
 
 // The distance from p to segment s.
 double distanceTo(const Segment2& s, const Eigen::Vector2d& p);

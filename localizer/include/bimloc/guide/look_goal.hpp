@@ -22,26 +22,31 @@ struct GuideConfig {
   bool enabled = true;  // Localizer: suggest goals while searching (costs a planning every few seconds)
   // Candidate goals: rings around the robot, from min to max radius, each with `bearings` goals.
   double goal_min_m = 1.0;
-  double goal_max_m = 4.0;
-  int goal_rings = 4;
+  double goal_max_m = 6.0;
+  int goal_rings = 6;
+  // A goal must be walkable within this in every place: through doors, round walls (the
+  // body's clearance kept), from a room into a room.
+  double goal_walk_max_m = 10.0;
   int goal_bearings = 16;
   // The predicted scan: a 2D slice of the plan's wall faces at this height above the walls'
   // base (below window sills: only doors are gaps, as they are to the walking base too).
   int scan_rays = 90;
   double scan_range_m = 10.0;
   double scan_height_m = 0.6;
-  // The range model: plan versus site and a place's own pose error (far above the lidar's
-  // 8 mm), and the chance that a ray ends on something not in the plan (people, furniture,
-  // glass), which caps what one ray can say: a clutter return explains any range.
+  // What tells two places apart is what the localizer's path evidence counts: distinct walls
+  // (pf: FaceMargin, free space), each at most one face's worth, and it decides at
+  // evidence_faces (2) of them. A wall counts when at least support_rays rays of the two
+  // predicted scans differ on it by more than gate_sigmas range sigmas (plan versus site and a
+  // place's own pose error, far above the lidar's 8 mm); the wall is the nearer of the two the
+  // ray hits: the one seen in one place where the other has free space or a wall beyond.
   double range_sigma_m = 0.15;
-  double clutter_probability = 0.2;
-  // Rays of one scan are not independent (neighbours hit the same wall): the scan counts as
-  // this many independent rays.
-  double independent_rays = 10.0;
-  // The body: goals and the straight walk to them keep this far from every wall in every place.
+  double gate_sigmas = 3.0;
+  int support_rays = 3;
+  double faces_to_decide = 2.0;
+  // The body: goals and the walk to them keep this far from every wall in every place.
   double clearance_m = 0.4;
-  // Information is in [0, 1] (the mean, over pairs of places, of the probability that the goal's
-  // scan tells them apart); each metre of walk costs this much of it.
+  // Information is in [0, 1]: the mean, over pairs of places, of the walls that tell them apart
+  // over faces_to_decide, at most 1. Each metre of walk costs this much of it.
   double travel_cost_per_m = 0.02;
   // Below this much information, no goal: the places look alike from everywhere within reach.
   double min_information = 0.05;
@@ -63,7 +68,8 @@ struct LookGoal {
   PlanarPose T_odom_goal = PlanarPose::Zero();  // the goal in the odom frame: stays valid as the base moves
   std::vector<PlanarPose> T_map_goal;           // the goal in the map, for each place (in places' order)
   double information = 0;                       // expected information gain at the goal, 0..1
-  double distance_m = 0;                        // straight walk from the base now
+  double distance_m = 0;                        // straight line from the base now
+  double walk_m = 0;                            // the walk there, the longest over the places
 };
 
 class GoalPlanner {
@@ -83,6 +89,9 @@ class GoalPlanner {
   bool reachable(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
   // The information (0..1) of scans from these map poses, one per place.
   double information(const std::vector<PlanarPose>& T_map_bases) const;
+  // The information of one motion of the base (its frame now) for these places; nothing where
+  // the goal is out of reach (not free, or not a straight walk) in one of them.
+  std::optional<double> informationOf(const std::vector<Place>& places, const PlanarPose& motion) const;
   const GuideConfig& config() const;
 
  private:
