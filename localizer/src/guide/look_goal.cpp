@@ -12,6 +12,7 @@ struct GoalPlanner::Impl {
   const bim::Storey& storey;
   GuideConfig config;
   std::vector<detail::Segment2> walls;  // the slice at scan height, doors as gaps
+  detail::RoomBoxes rooms;              // storey.roomAt's answer, without testing every room's outline
 
   // The scan from `pose` against `segments` (a subset of walls near it).
   std::vector<double> scan(const std::vector<detail::Segment2>& segments, const PlanarPose& pose) const {
@@ -60,12 +61,12 @@ struct GoalPlanner::Impl {
     if (!detail::walkClear(segments, start, to, config.clearance_m)) return false;
     // the part skipped may not pass through a wall either
     if (!detail::walkClear(segments, from, start, 0.0)) return false;
-    return !storey.roomAt(from) || storey.roomAt(to);
+    return !rooms.inAnyRoom(from) || rooms.inAnyRoom(to);
   }
 };
 
 GoalPlanner::GoalPlanner(const bim::Storey& storey, const GuideConfig& config)
-    : impl_(std::make_unique<Impl>(Impl{storey, config, detail::sliceWalls(storey, config.scan_height_m)})) {}
+    : impl_(std::make_unique<Impl>(Impl{storey, config, detail::sliceWalls(storey, config.scan_height_m), detail::RoomBoxes(storey)})) {}
 GoalPlanner::~GoalPlanner() = default;
 GoalPlanner::GoalPlanner(GoalPlanner&&) noexcept = default;
 const GuideConfig& GoalPlanner::config() const { return impl_->config; }
