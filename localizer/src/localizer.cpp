@@ -94,6 +94,8 @@ struct Localizer::Impl {
   std::unique_ptr<sgraph::SGraphTracker> tracker;  // since the first hand-over
   std::optional<sgraph::SGraphResult> last_track;  // the tracker's last answer
   Eigen::Matrix3d track_covariance = Eigen::Matrix3d::Identity();  // of its last solved keyframe
+  // The filter's particle covariance under its particles' version (describe(), every step).
+  mutable std::optional<std::pair<std::uint64_t, Eigen::Matrix3d>> covariance_at;
   std::optional<double> convergence_stamp;
   std::optional<std::size_t> tracked_storey;
   int losses = 0;
@@ -437,7 +439,11 @@ void Localizer::Impl::describe(LocalizationResult& r) const {
     if (r.T_map_odom) *r.T_map_odom = *r.T_map_odom * Eigen::Translation3d(0, 0, -z_shift_m);
     r.storey = bank->storey();
     r.leading_storey = bank->leader();
-    r.covariance = particleCovariance(bank->filter());
+    // Asked at every step; the particles change only when weighed.
+    const pf::ParticleFilter& filter = bank->filter();
+    if (!covariance_at || covariance_at->first != filter.particlesVersion())
+      covariance_at.emplace(filter.particlesVersion(), particleCovariance(filter));
+    r.covariance = covariance_at->second;
   }
   if (converged_now && r.state == LocalizationState::Tracking) r.state = LocalizationState::Converged;
   placeInRoom(r);

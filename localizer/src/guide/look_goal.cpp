@@ -13,6 +13,7 @@ struct GoalPlanner::Impl {
   const bim::Storey& storey;
   GuideConfig config;
   std::vector<detail::Segment2> walls;  // the slice at scan height, doors as gaps
+  detail::RoomBoxes rooms;              // storey.roomAt's answer, without testing every room's outline
   detail::WalkGrid grid;                // where the body fits, for walking distances
 
   // The walk from a place to `to`: its length, or infinity where the body cannot get there
@@ -20,7 +21,7 @@ struct GoalPlanner::Impl {
   double walk(const detail::WalkGrid::Distances& from_place, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
     const double metres = grid.distance(from_place, to);
     if (!std::isfinite(metres)) return metres;
-    return !storey.roomAt(from) || storey.roomAt(to) ? metres : std::numeric_limits<double>::infinity();
+    return !rooms.inAnyRoom(from) || rooms.inAnyRoom(to) ? metres : std::numeric_limits<double>::infinity();
   }
 
   // The scan from `pose` against `segments` (a subset of walls near it): per ray its range and
@@ -89,12 +90,13 @@ struct GoalPlanner::Impl {
     if (!detail::walkClear(segments, start, to, config.clearance_m)) return false;
     // the part skipped may not pass through a wall either
     if (!detail::walkClear(segments, from, start, 0.0)) return false;
-    return !storey.roomAt(from) || storey.roomAt(to);
+    return !rooms.inAnyRoom(from) || rooms.inAnyRoom(to);
   }
 };
 
 GoalPlanner::GoalPlanner(const bim::Storey& storey, const GuideConfig& config)
-    : impl_(std::make_unique<Impl>(Impl{storey, config, detail::sliceWalls(storey, config.scan_height_m), detail::WalkGrid({}, 0.0)})) {
+    : impl_(std::make_unique<Impl>(
+          Impl{storey, config, detail::sliceWalls(storey, config.scan_height_m), detail::RoomBoxes(storey), detail::WalkGrid({}, 0.0)})) {
   impl_->grid = detail::WalkGrid(impl_->walls, config.clearance_m);
 }
 GoalPlanner::~GoalPlanner() = default;

@@ -1,5 +1,7 @@
 #include "wall_slice.hpp"
 
+#include <bimloc/bim/geometry2d.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -18,6 +20,28 @@ bool segmentsCross(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, const E
 }
 
 }  // namespace
+
+RoomBoxes::RoomBoxes(const bim::Storey& storey) : storey_(&storey) {
+  for (const auto& room : storey.rooms) {
+    // pointInPolygon counts a crossing only beyond the point within the outline's extent: a
+    // point outside the box is outside the room (1e-6 m covers the rounding of the crossing's x).
+    Eigen::Vector4d box(1e300, 1e300, -1e300, -1e300);
+    bool finite = true;
+    for (const auto& q : room.footprint)
+      finite &= q.allFinite(), box.head<2>() = box.head<2>().cwiseMin(q), box.tail<2>() = box.tail<2>().cwiseMax(q);
+    boxes_.push_back(finite ? Eigen::Vector4d(box.x() - 1e-6, box.y() - 1e-6, box.z() + 1e-6, box.w() + 1e-6)
+                            : Eigen::Vector4d(-1e300, -1e300, 1e300, 1e300));
+  }
+}
+
+bool RoomBoxes::inAnyRoom(const Eigen::Vector2d& p) const {
+  for (std::size_t r = 0; r < boxes_.size(); ++r) {
+    const Eigen::Vector4d& b = boxes_[r];
+    if (p.x() >= b.x() && p.y() >= b.y() && p.x() <= b.z() && p.y() <= b.w() && bim::pointInPolygon(storey_->rooms[r].footprint, p))
+      return true;
+  }
+  return false;
+}
 
 std::vector<Segment2> sliceWalls(const bim::Storey& storey, double height_m) {
   std::vector<Segment2> out;

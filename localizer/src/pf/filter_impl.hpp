@@ -13,6 +13,8 @@
 
 #include <bimloc/geometry/planar_pose.hpp>
 
+#include <atomic>
+#include <cstdint>
 #include <optional>
 #include <random>
 #include <string>
@@ -48,6 +50,15 @@ struct ParticleFilter::Impl {
   bool weighed_once = false;
   std::vector<std::string> pending_warnings;  // from predict(), reported by the next update()
   const RangeProfile* profile = nullptr;      // of the scan being weighed (update's argument)
+  // particles' version (ParticleFilter::particlesVersion), and their weighted mean under it:
+  // T_map_base() is asked at every step, the particles change only when weighed.
+  std::uint64_t particles_version = nextParticlesVersion();
+  mutable std::optional<std::pair<std::uint64_t, Eigen::Vector3d>> mean_at_version;
+  static std::uint64_t nextParticlesVersion();
+  Eigen::Vector3d currentMean() const {
+    if (!mean_at_version || mean_at_version->first != particles_version) mean_at_version.emplace(particles_version, mean(normalisedWeights()));
+    return mean_at_version->second;
+  }
 
   // AMCL-style gate: weigh after enough motion, or after enough scans standing still.
   bool shouldWeigh() const {

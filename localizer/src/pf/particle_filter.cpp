@@ -145,6 +145,7 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
     return report;  // too little to weigh by, or nothing new: predict only
   }
   report.weighed = true;
+  m.particles_version = Impl::nextParticlesVersion();  // they move, are weighed, drawn, resampled below
   m.applyMotion();
   m.odom_at_last_weighing = m.odom;
   m.scans_since_weighing = 0;
@@ -178,7 +179,7 @@ Eigen::Isometry3d ParticleFilter::T_map_base() const {
   if (m.T_map_odom) return *m.T_map_odom * m.odom;
   // The particles' mean, moved on by the odometry since they were last weighed.
   const detail::Pose2 pending = m.last_odom ? planarPose(m.last_odom->inverse() * m.odom) : detail::Pose2::Zero();
-  const detail::Pose2 now = detail::compose(m.mean(m.normalisedWeights()), pending);
+  const detail::Pose2 now = detail::compose(m.currentMean(), pending);
   Particle p;
   p.x = now.x(), p.y = now.y(), p.yaw = now.z();
   return m.poseOf(p);
@@ -186,6 +187,12 @@ Eigen::Isometry3d ParticleFilter::T_map_base() const {
 
 const std::vector<Particle>& ParticleFilter::particles() const { return impl_->particles; }  // as last weighed
 const Particle& ParticleFilter::best() const { return impl_->particles[impl_->best]; }
+std::uint64_t ParticleFilter::particlesVersion() const { return impl_->particles_version; }
+
+std::uint64_t ParticleFilter::Impl::nextParticlesVersion() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
 
 int ParticleFilter::estimateRoom() const {
   const Eigen::Vector3d t = T_map_base().translation();

@@ -209,6 +209,9 @@ class ParticleFilter {
   Eigen::Isometry3d T_map_base() const;
   // As last weighed: predict() moves them at the next weighing, as one increment.
   const std::vector<Particle>& particles() const;
+  // A number that changes whenever particles() does (a weighing) and is never the same for two
+  // filters of one process: a caller may keep what it derived from the particles under it.
+  std::uint64_t particlesVersion() const;
   const Particle& best() const;
   // Index of the room of the estimate, -1 when outside every room.
   int estimateRoom() const;
