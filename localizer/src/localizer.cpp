@@ -3,6 +3,7 @@
 #include <bimloc/geometry/planar_pose.hpp>
 
 #include "peers/peer.hpp"
+#include "pf/filter_access.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -268,6 +269,9 @@ void Localizer::Impl::track(double stamp_s, const Eigen::Isometry3d& T_odom_base
 
 void Localizer::Impl::search(const std::vector<planes::ObservedPlane>& walls, const pf::RangeProfile& profile, LocalizationResult& r) {
   pf::StoreyBankReport report = bank->update(walls, &profile);
+  // The places the report lists (while not converged), each a fitted pose, not a candidate of
+  // the path evidence's wide model: the filter has decided with the latter already.
+  if (report.filter.weighed) pf::detail::FilterAccess::fitPlaces(bank->filter(), report.filter);
   for (const auto& w : report.filter.warnings) r.warnings.push_back("pf: " + w);
   r.filter = std::move(report);
   if (bank->converged() && !convergence_stamp) convergence_stamp = r.stamp_s;

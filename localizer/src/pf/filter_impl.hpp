@@ -117,6 +117,9 @@ struct ParticleFilter::Impl {
   // settled (config.settle_pose).
   std::optional<detail::Pose2> settledPose(const Particle& top, UpdateReport& report) const;
   void resampleAfter(const std::vector<double>& w, UpdateReport& report);
+  // The report's places (path_best, then path_rivals) each fitted within itself on the latest
+  // scans (FilterAccess::fitPlaces).
+  void fitPlaces(UpdateReport& report) const;
   double yawTolerance() const { return config.converged_yaw_deg * M_PI / 180.0; }
   // Whether a pose is at the path evidence's best place (twice the convergence radius: the
   // window's fitted pose carries the drift of its half-window).

@@ -174,6 +174,34 @@ std::optional<detail::Pose2> ParticleFilter::Impl::settledPose(const Particle& t
   return fine;
 }
 
+void ParticleFilter::Impl::fitPlaces(UpdateReport& report) const {
+  // Each place the path leaves, fitted within itself as settledPose fits the converged one:
+  // what the path evidence ranks is which place, and its wide model (drift over the whole
+  // window) lets furniture before a wall pull the pose within the place.
+  if (T_map_odom || !report.path_best) return;
+  const detail::Pose2 now = planarPose(odom);
+  const auto scans = evidence.latestScans(refinement.window_m);
+  const auto model = detail::refinementModel(config, refinement);
+  // The grid at twice the step: the pattern search after it starts at half the grid's step, so
+  // a fit's basin (sigma_d about 0.07 m each way) is still reached from the nearest cell, at a
+  // quarter of the cost (this runs at every weighing while searching, for every place).
+  detail::PoseRefinementConfig listing = refinement;
+  listing.grid_step_m = 2.0 * refinement.grid_step_m;
+  std::vector<std::pair<Eigen::Vector3d, double>> coarse{{*report.path_best, 0.0}};
+  coarse.insert(coarse.end(), report.path_rivals.begin(), report.path_rivals.end());
+  std::vector<std::pair<Eigen::Vector3d, double>> fitted;
+  for (const auto& [pose, margin] : coarse) {
+    const detail::Pose2 fine = detail::refinePose(pose, now, scans, evidence.everyFace(), model, listing);
+    // Two candidates of one place (within the bounds that make another place) are listed once.
+    const bool listed = std::any_of(fitted.begin(), fitted.end(), [&](const auto& p) {
+      return near(p.first, fine, detail::kOtherPlaceM, detail::kOtherPlaceRad);
+    });
+    if (!listed) fitted.emplace_back(fine, margin);
+  }
+  report.path_best = fitted.front().first;
+  report.path_rivals.assign(fitted.begin() + 1, fitted.end());
+}
+
 void ParticleFilter::Impl::resampleAfter(const std::vector<double>& w, UpdateReport& report) {
   const auto tracking_count = static_cast<std::size_t>(std::max(1, config.tracking_particles));
   const double n = static_cast<double>(particles.size());

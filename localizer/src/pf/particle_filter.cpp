@@ -205,6 +205,8 @@ PathEvidence::WindowFit FilterAccess::windowFit(const ParticleFilter& f, const P
   return f.impl_->evidence.windowFit(map_pose, planarPose(f.impl_->odom));
 }
 
+void FilterAccess::fitPlaces(const ParticleFilter& f, UpdateReport& report) { f.impl_->fitPlaces(report); }
+
 PathVerdict FilterAccess::everyFitVerdict(ParticleFilter& f, const std::vector<planes::ObservedPlane>& walls) {
   auto& m = *f.impl_;
   const Pose2 odom = planarPose(m.odom);
