@@ -1,6 +1,7 @@
 // Where to look next (localizer/guide/, issue 28 §4) and the base that follows it
 // (sim/runner/guided_walk.hpp, motion `disambiguate`):
-// - two identical L-shaped rooms, one with a doorway onto a corridor: from where the robot
+// - two identical L-shaped rooms, one with a doorway onto a corridor (one wall apart: by default
+//   no goal, the base tours; asked for goals that only help): from where the robot
 //   stands the door is hidden and the places look alike; the suggested goal is reachable in
 //   both and the doorway is in view from it in the room that has it (checked by a ray caster
 //   written here, not the guide's);
@@ -78,10 +79,15 @@ bim::Storey twinRooms() {
 
 TEST(Guide, TheGoalBringsTheDoorThatTellsTwinRoomsApartIntoView) {
   const bim::Storey s = twinRooms();
+  // The rooms differ by one wall seen through the doorway: half the filter's bar. By default a
+  // goal must be predicted to decide, so there is none (the base tours); asked for goals that
+  // only help, the planner finds the one that brings the doorway into view.
+  const std::vector<guide::Place> places{{PlanarPose(5.0, 1.5, 0.0), 0.0}, {PlanarPose(25.0, 1.5, 0.0), 2.0}};
+  EXPECT_FALSE(guide::GoalPlanner(s, guide::GuideConfig{}).suggest(places, PlanarPose::Zero()).has_value());
   guide::GuideConfig config;
+  config.min_information = 0.3;
   const guide::GoalPlanner planner(s, config);
   // The robot at (5, 1.5) facing east: the wall at y = 3 hides the north wall and its doorway.
-  const std::vector<guide::Place> places{{PlanarPose(5.0, 1.5, 0.0), 0.0}, {PlanarPose(25.0, 1.5, 0.0), 2.0}};
   ASSERT_FALSE(lineOfSight(s, {5.0, 1.5}, {1.4, 8.0}));
   EXPECT_LT(planner.information({places[0].T_map_base, places[1].T_map_base}), config.min_information);
   const PlanarPose odom(-3.0, 7.0, 0.4);  // any odom frame: the goal is a motion of the base
@@ -99,7 +105,7 @@ TEST(Guide, TheGoalBringsTheDoorThatTellsTwinRoomsApartIntoView) {
   EXPECT_LE(goal->walk_m, config.goal_walk_max_m);
   // From the goal the doorway is in view in room A, and beyond it the corridor's wall.
   EXPECT_TRUE(lineOfSight(s, a, {1.4, 8.3})) << "goal " << a.transpose();
-  EXPECT_GT(goal->information, 0.1);
+  EXPECT_NEAR(goal->information, 0.5, 1e-9);  // one wall of the two
   EXPECT_LE(goal->distance_m, config.goal_max_m + 1e-9);
 }
 

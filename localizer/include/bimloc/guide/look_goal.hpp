@@ -48,8 +48,11 @@ struct GuideConfig {
   // Information is in [0, 1]: the mean, over pairs of places, of the walls that tell them apart
   // over faces_to_decide, at most 1. Each metre of walk costs this much of it.
   double travel_cost_per_m = 0.02;
-  // Below this much information, no goal: the places look alike from everywhere within reach.
-  double min_information = 0.05;
+  // Below this much information, no goal: no candidate is predicted to decide (the faces apart
+  // reach faces_to_decide for every pair). A goal that only helps had the base dither inside
+  // look-alike offices where the tour would have left them (site_office 8 -> 9 of 11; 45
+  // generated starts 24 -> 36 of 45, docs/results/2026-11-26-session14.md).
+  double min_information = 0.99;
   // Localizer: plan again after this long, when the goal was reached (within goal_reached_m),
   // or when the places change.
   double replan_interval_s = 5.0;
