@@ -37,25 +37,29 @@ std::optional<std::size_t> RunScore::floorStorey(const bim::Building& building, 
 }
 
 // The true storey by the base's height; the changes and whether the localizer followed them.
-void RunScore::followStorey(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth) {
+void RunScore::followStorey(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth, std::optional<bool> on_flight) {
   if (!start_z_) start_z_ = truth.translation().z();
   const std::optional<std::size_t> on = floorStorey(building_, start_storey_, *start_z_, truth.translation().z());
   on_stairs_ = !on;
   if (on && *on != storey_) {
     storey_ = *on;
     changed_at_ = t;
+    left_at_.reset();
     change_followed_ = false;
     ++storey_changes_;
   }
-  if (!change_followed_ && changed_at_ && t <= *changed_at_ + kFollowWindowS && step.storey == storey_) {
+  // The base within a riser or two of the new floor is still on the flight's last steps: the
+  // clock starts when it steps off (issue 31: "from leaving a flight").
+  if (changed_at_ && !left_at_ && !on_flight.value_or(false)) left_at_ = t;
+  if (!change_followed_ && changed_at_ && (!left_at_ || t <= *left_at_ + kFollowWindowS) && step.storey == storey_) {
     change_followed_ = true;
     ++storey_changes_followed_;
-    follow_lags_s_.push_back(t - *changed_at_);
+    follow_lags_s_.push_back(left_at_ ? t - *left_at_ : 0.0);  // 0: on the new storey before the base left the flight
   }
 }
 
-bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth) {
-  followStorey(t, step, truth);
+bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth, std::optional<bool> on_flight) {
+  followStorey(t, step, truth, on_flight);
   truth_ = truth;
   estimate_ = step.T_map_base;
   losses_ = step.losses;
@@ -73,7 +77,7 @@ bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isomet
   // Right place, wrong storey is a false convergence too: the plan's x, y repeat on every storey.
   const double error = (estimate_.translation() - truth.translation()).head<2>().norm();
   // The storey it left counts as wrong once the localizer had its window to follow.
-  const bool following = changed_at_ && t <= *changed_at_ + kFollowWindowS;
+  const bool following = changed_at_ && (!left_at_ || t <= *left_at_ + kFollowWindowS);
   const bool wrong_storey = *step.storey != storey_ && !on_stairs_ && !following;
   if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg || wrong_storey) false_convergence_ = true;
   sum_sq_ += error * error;
