@@ -39,7 +39,11 @@ std::optional<std::size_t> RunScore::floorStorey(const bim::Building& building, 
 // The true storey by the base's height; the changes and whether the localizer followed them.
 void RunScore::followStorey(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth, std::optional<bool> on_flight) {
   if (!start_z_) start_z_ = truth.translation().z();
-  const std::optional<std::size_t> on = floorStorey(building_, start_storey_, *start_z_, truth.translation().z());
+  // On a flight the base is on no storey, whatever its height: a flight passes the heights of
+  // other storeys of the plan (Jesse.1: its T.O. level 0 floor, 0.36 m under level 0, half way up
+  // the flight from Level -1), and the base on its last risers has not arrived yet.
+  const std::optional<std::size_t> on =
+      on_flight.value_or(false) ? std::nullopt : floorStorey(building_, start_storey_, *start_z_, truth.translation().z());
   on_stairs_ = !on;
   if (on && *on != storey_) {
     storey_ = *on;
@@ -48,8 +52,8 @@ void RunScore::followStorey(double t, const LocalizationResult& step, const Eige
     change_followed_ = false;
     ++storey_changes_;
   }
-  // The base within a riser or two of the new floor is still on the flight's last steps: the
-  // clock starts when it steps off (issue 31: "from leaving a flight").
+  // The clock starts when the base steps off the flight (issue 31: "from leaving a flight"); a
+  // recording's, when its height is on the new floor (within a riser or two of it).
   if (changed_at_ && !left_at_ && !on_flight.value_or(false)) left_at_ = t;
   if (!change_followed_ && changed_at_ && (!left_at_ || t <= *left_at_ + kFollowWindowS) && step.storey == storey_) {
     change_followed_ = true;
