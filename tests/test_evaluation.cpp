@@ -115,9 +115,9 @@ TEST(Evaluation, TheFollowLagRunsFromTheBaseLeavingTheFlightWhenTheSimulatorSays
   building.storeys.push_back(building.storeys[0]);
   building.storeys[1].elevation_m = building.storeys[0].elevation_m + 3.0;
   const auto truthAt = [](double t) { return test::pose(2.0 + 0.1 * t, 6.0, 0.0, 0.5 + std::clamp(t - 1.0, 0.0, 3.0)); };
-  const auto walk = [&](double switch_s) {
+  const auto walk = [&](double switch_s, int steps = 150) {
     sim::RunScore score(building, 0);
-    for (int k = 0; k <= 150; ++k) {
+    for (int k = 0; k <= steps; ++k) {
       const double t = 0.1 * k;
       LocalizationResult r = tracking(truthAt(t));
       r.storey = t >= switch_s - 1e-9 ? 1 : 0;
@@ -138,4 +138,10 @@ TEST(Evaluation, TheFollowLagRunsFromTheBaseLeavingTheFlightWhenTheSimulatorSays
   EXPECT_TRUE(missed.false_convergence);
   ASSERT_EQ(early.storey_follow_lags_s.size(), 1u) << "on the new storey before stepping off: followed";
   EXPECT_EQ(early.storey_follow_lags_s[0], 0.0);
+  // The run ends 2 s after the base stepped off, the localizer still on the old storey: the
+  // change is not judged (no change, none followed, no false convergence).
+  const sim::ScenarioResult cut = walk(100.0, 70);
+  EXPECT_EQ(cut.storey_changes, 0);
+  EXPECT_EQ(cut.storey_changes_followed, 0);
+  EXPECT_FALSE(cut.false_convergence);
 }

@@ -64,6 +64,7 @@ void RunScore::followStorey(double t, const LocalizationResult& step, const Eige
 
 bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth, std::optional<bool> on_flight) {
   followStorey(t, step, truth, on_flight);
+  last_t_ = t;
   truth_ = truth;
   estimate_ = step.T_map_base;
   losses_ = step.losses;
@@ -120,7 +121,10 @@ void RunScore::finish(ScenarioResult& r) const {
   r.converged = converged_;
   r.false_convergence = false_convergence_;
   r.losses = losses_;
-  r.storey_changes = storey_changes_;
+  // A change the run ended on before the localizer had its window (the tour's last flight, a
+  // few seconds before the end) and not followed yet is not judged: it is no change missed.
+  const bool cut_short = !change_followed_ && left_at_ && last_t_ < *left_at_ + kFollowWindowS;
+  r.storey_changes = storey_changes_ - (cut_short ? 1 : 0);
   r.storey_changes_followed = storey_changes_followed_;
   r.storey_follow_lags_s = follow_lags_s_;
   if (converged_) {

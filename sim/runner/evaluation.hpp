@@ -53,6 +53,7 @@ class RunScore {
   bool on_stairs_ = false;
   std::optional<double> changed_at_;  // the base's height reached storey_'s floor then (the last change)
   std::optional<double> left_at_;     // ... and it left the flight then: the follow lag's clock
+  double last_t_ = 0;                 // the last step's time
   bool change_followed_ = true;
   int storey_changes_ = 0, storey_changes_followed_ = 0;
   std::vector<double> follow_lags_s_;
