@@ -104,3 +104,44 @@ TEST(Evaluation, TheTrueStoreyFollowsTheBaseUpTheStairsAndTheLocalizerHasFiveSec
   EXPECT_TRUE(missed.false_convergence);
   EXPECT_EQ(sim::RunScore::floorStorey(building, 0, 0.5, 2.0), std::nullopt) << "half way up: on no floor";
 }
+
+TEST(Evaluation, TheFollowLagRunsFromTheBaseLeavingTheFlightWhenTheSimulatorSaysSo) {
+  // The same climb (1 m a second, on the new floor's height from t = 4 s), the simulator saying
+  // the base is on the flight until t = 5 s (it walks its last tread and steps off): the clock
+  // starts at 5 s, not at 3.7-3.8 s (within 0.3 m of the floor). The window runs from there too:
+  // on the new storey at 9.5 s is followed (4.5 s), at 10.5 s is not.
+  bim::Building building = test::officeWorld().building();
+  building.storeys.resize(1);
+  building.storeys.push_back(building.storeys[0]);
+  building.storeys[1].elevation_m = building.storeys[0].elevation_m + 3.0;
+  const auto truthAt = [](double t) { return test::pose(2.0 + 0.1 * t, 6.0, 0.0, 0.5 + std::clamp(t - 1.0, 0.0, 3.0)); };
+  const auto walk = [&](double switch_s, int steps = 150) {
+    sim::RunScore score(building, 0);
+    for (int k = 0; k <= steps; ++k) {
+      const double t = 0.1 * k;
+      LocalizationResult r = tracking(truthAt(t));
+      r.storey = t >= switch_s - 1e-9 ? 1 : 0;
+      score.add(t, r, truthAt(t), /*on_flight=*/t > 1.0 - 1e-9 && t < 5.0 - 1e-9);
+    }
+    sim::ScenarioResult out;
+    score.finish(out);
+    return out;
+  };
+  const sim::ScenarioResult soon = walk(6.0), late = walk(9.5), missed = walk(10.5), early = walk(4.5);
+  ASSERT_EQ(soon.storey_follow_lags_s.size(), 1u);
+  EXPECT_NEAR(soon.storey_follow_lags_s[0], 1.0, 1e-6);
+  EXPECT_FALSE(soon.false_convergence);
+  ASSERT_EQ(late.storey_follow_lags_s.size(), 1u);
+  EXPECT_NEAR(late.storey_follow_lags_s[0], 4.5, 1e-6);
+  EXPECT_FALSE(late.false_convergence) << "the old storey within 5 s of stepping off is no error";
+  EXPECT_EQ(missed.storey_changes_followed, 0);
+  EXPECT_TRUE(missed.false_convergence);
+  ASSERT_EQ(early.storey_follow_lags_s.size(), 1u) << "on the new storey before stepping off: followed";
+  EXPECT_EQ(early.storey_follow_lags_s[0], 0.0);
+  // The run ends 2 s after the base stepped off, the localizer still on the old storey: the
+  // change is not judged (no change, none followed, no false convergence).
+  const sim::ScenarioResult cut = walk(100.0, 70);
+  EXPECT_EQ(cut.storey_changes, 0);
+  EXPECT_EQ(cut.storey_changes_followed, 0);
+  EXPECT_FALSE(cut.false_convergence);
+}

@@ -267,20 +267,34 @@ TEST(StairsMotion, MultiStoreyTourVisitsEveryStoreyReachable) {
 // something straight up from (3, 1, 1.5) (World::fromBuilding adds more than this test's mesh,
 // or the flight's steps), and the all-storeys scene reports a hit at range 0 (instancing: the
 // hit's range not carried back). Not diagnosed in the time; the tours' lidar runs on it.
-TEST(StairsMotion, DISABLED_LidarSeesEveryStoreyThroughTheOpening) {
-  // Straight up through the opening from the ground floor: the ground storey's scene has
-  // nothing there; the whole building's has the upper storey's roof at z 6.
-  const Eigen::Vector3f origin(3.0f, 1.0f, 1.5f), up(0.0f, 0.0f, 1.0f);
+TEST(StairsMotion, LidarSeesEveryStoreyThroughTheOpening) {
+  // Straight up through the opening from above the flight (step 7's tread, at x = 3, is 1.5 m
+  // high: a ray from z = 1.5 starts on it and hits it at range 0, which is what this test, so
+  // written, failed on): the ground storey's scene has nothing above; the whole building's has
+  // the upper storey's roof at z 6.
+  const Eigen::Vector3f origin(3.0f, 1.0f, 2.0f), up(0.0f, 0.0f, 1.0f), down(0.0f, 0.0f, -1.0f);
   EXPECT_FALSE(house().castRay(0, origin, up, 0.0f, 100.0f).hit());
   const sim::RayHit all = house().castRay(World::kAllStoreys, origin, up, 0.0f, 100.0f);
   ASSERT_TRUE(all.hit());
-  EXPECT_NEAR(all.range_m, 2.0 * kStoreyHeight_m - 1.5, 1e-4);
+  EXPECT_NEAR(all.range_m, 2.0 * kStoreyHeight_m - origin.z(), 1e-4);
+  // Down through the opening from the upper storey: its own scene has no floor there; the whole
+  // building's has step 7's tread at 8 risers.
+  const Eigen::Vector3f above(3.0f, 1.0f, 4.0f);
+  EXPECT_FALSE(house().castRay(1, above, down, 0.0f, 100.0f).hit());
+  const sim::RayHit tread = house().castRay(World::kAllStoreys, above, down, 0.0f, 100.0f);
+  ASSERT_TRUE(tread.hit());
+  EXPECT_NEAR(tread.range_m, above.z() - 8 * kRiser_m, 1e-4);
+  // Beside the opening, the upper storey's floor slab (its top at z 3) in both scenes.
+  const Eigen::Vector3f beside(3.0f, 3.0f, 4.0f);
+  EXPECT_NEAR(house().castRay(1, beside, down, 0.0f, 100.0f).range_m, beside.z() - kStoreyHeight_m, 1e-4);
+  EXPECT_NEAR(house().castRay(World::kAllStoreys, beside, down, 0.0f, 100.0f).range_m, beside.z() - kStoreyHeight_m, 1e-4);
   // The packet path agrees.
   Eigen::Vector3f origins[16], dirs[16];
   sim::RayHit hits[16];
-  for (int i = 0; i < 16; ++i) origins[i] = origin, dirs[i] = up;
+  for (int i = 0; i < 16; ++i) origins[i] = i % 2 ? above : origin, dirs[i] = i % 2 ? down : up;
   house().castRays16(World::kAllStoreys, origins, dirs, 0.0f, 100.0f, hits, 16);
-  EXPECT_NEAR(hits[7].range_m, all.range_m, 1e-5);
+  EXPECT_NEAR(hits[6].range_m, all.range_m, 1e-5);
+  EXPECT_NEAR(hits[7].range_m, tread.range_m, 1e-5);
 }
 
 // Odometry on a flight: the height it reports is off by a scale error of the height climbed

@@ -1,4 +1,4 @@
-// bimloc bench loop [SCENARIO...] [--rounds N] [--json]
+// bimloc bench loop [SCENARIO...] [--plan P --storey S] [--multi-storey] [--altitude] [--rounds N] [--json]
 // The whole loop on one core: simulator and localizer (plane extraction, particle filter, path
 // evidence) as `bimloc run --jobs 1` runs them, against the simulator alone on the same
 // scenario in the same run. Real-time factors, and the localizer's share of the loop; the
@@ -28,6 +28,8 @@ struct LoopBenchArgs {
   int rooms_per_plan = 3;
   std::string method = "sgraph";
   double duration_s = 0;  // 0: each scenario's own
+  bool multi_storey = false;  // the --plan runs tour every storey the stairs reach (docs/multi_storey.md)
+  bool altitude = false;      // ... with the barometer's altitude given to the localizer
   int rounds = 2;
   bool json = false;
 };
@@ -42,7 +44,8 @@ std::vector<Scenario> planScenarios(const LoopBenchArgs& args) {
     const auto all = roomScenarios(world, o);
     const std::size_t step = std::max<std::size_t>(1, all.size() / static_cast<std::size_t>(std::max(1, args.rooms_per_plan)));
     for (std::size_t i = 0, taken = 0; i < all.size() && static_cast<int>(taken) < args.rooms_per_plan; i += step, ++taken) {
-      out.push_back(all[i]);
+      out.push_back(args.multi_storey ? multiStoreyTour(all[i]) : all[i]);
+      out.back().barometer.enabled = out.back().barometer.enabled || args.altitude;
       out.back().name = std::filesystem::path(plan).stem().string() + " " + out.back().name;
     }
   }
@@ -182,6 +185,10 @@ void addBenchLoopCommand(CLI::App& bench) {
       ->check(bimloc::cli::methodCheck())->capture_default_str();
   cmd->add_option("--duration", args->duration_s, "seconds of every run (over the scenarios' own; longer tours explore on)")
       ->check(CLI::Range(1.0, 7200.0));
+  cmd->add_flag("--multi-storey", args->multi_storey,
+                "the --plan runs tour every storey the plan's stairs reach from their start, up and down the flights, as "
+                "`bimloc run --multi-storey` (docs/multi_storey.md); the scenario files' runs are unchanged: the reference");
+  cmd->add_flag("--altitude", args->altitude, "the --plan runs give the localizer the base's altitude as a barometer reads it");
   cmd->add_option("--rounds", args->rounds, "measurements of each, the best kept")->capture_default_str()->check(CLI::Range(1, 100));
   cmd->add_flag("--json", args->json, "print one JSON object");
   cmd->callback([args] { run(*args); });

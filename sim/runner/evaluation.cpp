@@ -37,25 +37,34 @@ std::optional<std::size_t> RunScore::floorStorey(const bim::Building& building, 
 }
 
 // The true storey by the base's height; the changes and whether the localizer followed them.
-void RunScore::followStorey(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth) {
+void RunScore::followStorey(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth, std::optional<bool> on_flight) {
   if (!start_z_) start_z_ = truth.translation().z();
-  const std::optional<std::size_t> on = floorStorey(building_, start_storey_, *start_z_, truth.translation().z());
+  // On a flight the base is on no storey, whatever its height: a flight passes the heights of
+  // other storeys of the plan (Jesse.1: its T.O. level 0 floor, 0.36 m under level 0, half way up
+  // the flight from Level -1), and the base on its last risers has not arrived yet.
+  const std::optional<std::size_t> on =
+      on_flight.value_or(false) ? std::nullopt : floorStorey(building_, start_storey_, *start_z_, truth.translation().z());
   on_stairs_ = !on;
   if (on && *on != storey_) {
     storey_ = *on;
     changed_at_ = t;
+    left_at_.reset();
     change_followed_ = false;
     ++storey_changes_;
   }
-  if (!change_followed_ && changed_at_ && t <= *changed_at_ + kFollowWindowS && step.storey == storey_) {
+  // The clock starts when the base steps off the flight (issue 31: "from leaving a flight"); a
+  // recording's, when its height is on the new floor (within a riser or two of it).
+  if (changed_at_ && !left_at_ && !on_flight.value_or(false)) left_at_ = t;
+  if (!change_followed_ && changed_at_ && (!left_at_ || t <= *left_at_ + kFollowWindowS) && step.storey == storey_) {
     change_followed_ = true;
     ++storey_changes_followed_;
-    follow_lags_s_.push_back(t - *changed_at_);
+    follow_lags_s_.push_back(left_at_ ? t - *left_at_ : 0.0);  // 0: on the new storey before the base left the flight
   }
 }
 
-bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth) {
-  followStorey(t, step, truth);
+bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth, std::optional<bool> on_flight) {
+  followStorey(t, step, truth, on_flight);
+  last_t_ = t;
   truth_ = truth;
   estimate_ = step.T_map_base;
   losses_ = step.losses;
@@ -73,7 +82,7 @@ bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isomet
   // Right place, wrong storey is a false convergence too: the plan's x, y repeat on every storey.
   const double error = (estimate_.translation() - truth.translation()).head<2>().norm();
   // The storey it left counts as wrong once the localizer had its window to follow.
-  const bool following = changed_at_ && t <= *changed_at_ + kFollowWindowS;
+  const bool following = changed_at_ && (!left_at_ || t <= *left_at_ + kFollowWindowS);
   const bool wrong_storey = *step.storey != storey_ && !on_stairs_ && !following;
   if (error > kFalsePositionM || yawErrorDeg(estimate_, truth) > kFalseYawDeg || wrong_storey) false_convergence_ = true;
   sum_sq_ += error * error;
@@ -112,7 +121,10 @@ void RunScore::finish(ScenarioResult& r) const {
   r.converged = converged_;
   r.false_convergence = false_convergence_;
   r.losses = losses_;
-  r.storey_changes = storey_changes_;
+  // A change the run ended on before the localizer had its window (the tour's last flight, a
+  // few seconds before the end) and not followed yet is not judged: it is no change missed.
+  const bool cut_short = !change_followed_ && left_at_ && last_t_ < *left_at_ + kFollowWindowS;
+  r.storey_changes = storey_changes_ - (cut_short ? 1 : 0);
   r.storey_changes_followed = storey_changes_followed_;
   r.storey_follow_lags_s = follow_lags_s_;
   if (converged_) {

@@ -6,8 +6,9 @@
 // is not wrong with confidence), RPE and losses of track. The true storey follows the base
 // (issue 31): the storey whose floor its z stands on, from the start storey's floor and the
 // truth's height change; a change of storey is followed when the localizer is on the new
-// storey within kFollowWindowS of the base leaving the flight, and until then (and while the
-// base is on the stairs) the old storey is not a false convergence.
+// storey within kFollowWindowS of the base leaving the flight (the simulator says when; a
+// recording: its height on the new floor), and until then (and while the base is on the
+// stairs) the old storey is not a false convergence.
 #pragma once
 
 #include "sim/runner/run_scenario.hpp"
@@ -25,7 +26,10 @@ class RunScore {
 
   // After each localizer step at time t, with the true pose at that time. Returns true on
   // the step where the localizer declared convergence.
-  bool add(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth);
+  // `on_flight`: whether the base is on a flight of stairs then, when the source knows (the
+  // simulator does): the follow lag is timed from the base leaving the flight. Without it
+  // (a recording), from the base's height reaching the new floor (floorStorey).
+  bool add(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth, std::optional<bool> on_flight = std::nullopt);
   bool converged() const { return converged_; }
   // Whether the ATE counts the step: converged (or tracking) on a storey, and not lost.
   static bool scored(const LocalizationResult& step) {
@@ -41,13 +45,15 @@ class RunScore {
   static std::optional<std::size_t> floorStorey(const bim::Building& building, std::size_t start_storey, double start_z, double z);
 
  private:
-  void followStorey(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth);
+  void followStorey(double t, const LocalizationResult& step, const Eigen::Isometry3d& truth, std::optional<bool> on_flight);
 
   const bim::Building& building_;
   std::size_t storey_, start_storey_;
   std::optional<double> start_z_;
   bool on_stairs_ = false;
-  std::optional<double> changed_at_;  // the base stepped onto storey_ then (the last change)
+  std::optional<double> changed_at_;  // the base's height reached storey_'s floor then (the last change)
+  std::optional<double> left_at_;     // ... and it left the flight then: the follow lag's clock
+  double last_t_ = 0;                 // the last step's time
   bool change_followed_ = true;
   int storey_changes_ = 0, storey_changes_followed_ = 0;
   std::vector<double> follow_lags_s_;

@@ -105,7 +105,7 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
   if (snapshot && updates_ == kClusteringUpdate && step.state == LocalizationState::Searching)
     snapshotNow("clustering", t, truth, snapshot);
   map_error_.step(step, scenario_.sensor.T_base_lidar, points);
-  const bool converged_now = score_.add(t, step, truth);
+  const bool converged_now = score_.add(t, step, truth, sim_.trajectory().onStairs(t));
   r_.error_series.back().true_storey = score_.trueStorey();
   r_.error_series.back().on_stairs = score_.onStairs();
   if (poses) poses->back().true_storey = score_.trueStorey(), poses->back().on_stairs = score_.onStairs();

@@ -45,6 +45,37 @@ std::optional<Eigen::Matrix3d> newestCovariance(ceres::Problem& problem, const s
   return Eigen::Matrix3d(0.5 * (covariance + covariance.transpose()));
 }
 
+// Whether the newest keyframe's correction carried the plan walls it sees along with it: across
+// every seen wall the robot moved by more than 3 sigma of the wall priors, that wall moved in
+// this solve the same way, by at least half as much and more than 3 sigma. The walls then no
+// longer say where the robot is: the robust (Cauchy) priors let the few walls that hold an axis
+// go, and the window slid with them into another basin (AC90R1-Jasmin-Sun, Erdgeschoss/101 seed
+// 2 of a multi-storey tour: walls 1 and 3, the only x walls in view, and the robot 0.35 m in
+// one keyframe while turning in place, then 0.1 m more: a false convergence). A correction
+// the plan makes moves the robot against its walls, not with them.
+bool carriedItsWalls(const Graph& g, const Keyframe& newest, const std::set<int>& nodes, const std::vector<std::array<double, 3>>& before,
+                     const SGraphConfig& c) {
+  const Eigen::Vector2d move = (newest.planar() - newest.predicted).head<2>();
+  const double bar_m = 3.0 * c.wall_prior_sigma_m;
+  if (!(move.norm() > bar_m)) return false;
+  std::map<int, double> shifted;  // node -> the change of its shift s (along faces[0]'s normal e) in this solve
+  std::size_t i = 0;
+  for (int n : nodes) shifted[n] = g.nodes[static_cast<std::size_t>(n)].params[0] - before[i++][0];
+  int across = 0, carried = 0;
+  std::set<int> seen;
+  for (const PlaneMeasurement& m : newest.planes) {
+    const WallNode& node = g.nodes[static_cast<std::size_t>(m.node)];
+    if (node.kind != WallNode::Kind::Plan || !node.active || !seen.insert(m.node).second) continue;
+    const double robot = move.dot(node.face[0].e);  // the robot's move across the wall
+    if (!(std::abs(robot) > bar_m)) continue;
+    ++across;
+    const auto it = shifted.find(m.node);
+    const double wall = it == shifted.end() ? 0.0 : it->second;
+    if (wall * robot > 0 && std::abs(wall) >= 0.5 * std::abs(robot) && std::abs(wall) > bar_m) ++carried;
+  }
+  return across > 0 && carried == across;
+}
+
 // A plan wall's rotation about its centre (alpha) moves its ends by alpha L / 2. An as-built
 // tolerance is on where a wall stands, at its ends as at its middle, so a long wall's angle is
 // known to sigma_m over half its length, and never worse than wall_prior_sigma_deg. Without the
@@ -190,9 +221,11 @@ SolveReport optimizeWindow(Graph& g, const SGraphConfig& c) {
   const Keyframe& newest = g.window.back();
   const double correction = (newest.planar() - newest.predicted).head<2>().norm();
   const bool jumped = finite && !newest.odometry_jump && correction > c.loss_correction_m;
-  if (!summary.IsSolutionUsable() || !finite || jumped) {
+  const bool slid = finite && !jumped && !newest.odometry_jump && carriedItsWalls(g, newest, nodes, params, c);
+  if (!summary.IsSolutionUsable() || !finite || jumped || slid) {
     report.usable = false;
     report.message = jumped ? "it moved the keyframe " + std::to_string(correction).substr(0, 4) + " m from its odometry prediction"
+                     : slid ? "it moved the keyframe " + std::to_string(correction).substr(0, 4) + " m with the plan walls it sees"
                             : summary.message;
     std::size_t i = 0;
     for (Keyframe& kf : g.window) kf.pose = poses[i++];

@@ -31,8 +31,10 @@ struct StoreyFollowConfig {
   double settled_window_s = 1.0;
   double settled_rise_m = 0.08;
   // A flight's footprint (its run line, +- half its width) grown by this: the base on it is
-  // on the stairs, not on a storey, whatever its height.
-  double flight_margin_m = 0.3;
+  // on the stairs, not on a storey, whatever its height. Two tracking errors (a few cm): a base
+  // whose estimate overshoots the flight (odometry slipping on it) is still climbing, which the
+  // settled height catches. 0.3 m held the arrival 0.4-0.6 s longer (docs/results/2026-11-26-h31tours.md).
+  double flight_margin_m = 0.1;
   // Off the tracked floor for longer than this is no climb (a flight takes 10-30 s) but the
   // odometry's height drifting (lidar odometry drifts in z on long runs): the localizer stops
   // treating the robot as climbing (its search runs again).
