@@ -199,7 +199,9 @@ TEST(Oracle, BranchAndBoundFindsWhatEveryCellGives) {
     const SearchAnswer bnb = searchPlaces(context, region, -std::numeric_limits<float>::infinity(), false);
     ASSERT_GT(every.cells, 0u);
     EXPECT_EQ(bnb.best, every.best) << (region == Region::Rivals ? "rivals" : "truth");
-    if (region == Region::Rivals) EXPECT_LT(bnb.cells, every.cells / 10);  // it looked at far fewer cells
+    if (region == Region::Rivals) {
+      EXPECT_LT(bnb.cells, every.cells / 10);  // it looked at far fewer cells
+    }
     // The decision form: a bar just above / below the best.
     EXPECT_FALSE(searchPlaces(context, region, every.best + 0.01f, true).reached);
     EXPECT_TRUE(searchPlaces(context, region, every.best - 0.01f, true).reached);

@@ -202,7 +202,9 @@ TEST(RealFrames, WholeFrameWallsOfTheRoomAgreeBetweenSensors) {
         // 64 and the QT64 only) 4.4 cm. Angles up to 1.6 degrees: 5 of the 31 pairs over the
         // brief's 1 degree (east: 64 vs VLP-16 and QT64; shelf front: 40P vs VLP-16, 64, XT32).
         EXPECT_LE(angle, kWholeAgreeAngle_deg);
-        if (seen.size() >= 3) EXPECT_LE(offset, kAgreeOffset_m);
+        if (seen.size() >= 3) {
+          EXPECT_LE(offset, kAgreeOffset_m);
+        }
       }
   }
   std::cout << "[ real ] whole frames: " << compared << " pairs of room walls, worst " << worst_angle << " deg, "

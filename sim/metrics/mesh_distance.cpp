@@ -83,13 +83,13 @@ double MeshDistance::distance(const Eigen::Vector3d& p) const {
   Query q{&m.vertices, &m.triangles, p};
   // Each candidate triangle: its exact closest point; a closer one shrinks the search radius.
   const auto visit = [](RTCPointQueryFunctionArguments* args) -> bool {
-    auto* q = static_cast<Query*>(args->userPtr);
-    const auto& tri = (*q->triangles)[args->primID];
-    const auto& v = *q->vertices;
-    const Eigen::Vector3d c = closestPointOnTriangle(q->p, v[tri[0]], v[tri[1]], v[tri[2]]);
-    const double d_sq = (c - q->p).squaredNorm();
-    if (d_sq >= q->best_sq) return false;
-    q->best_sq = d_sq;
+    auto* at = static_cast<Query*>(args->userPtr);
+    const auto& tri = (*at->triangles)[args->primID];
+    const auto& v = *at->vertices;
+    const Eigen::Vector3d c = closestPointOnTriangle(at->p, v[tri[0]], v[tri[1]], v[tri[2]]);
+    const double d_sq = (c - at->p).squaredNorm();
+    if (d_sq >= at->best_sq) return false;
+    at->best_sq = d_sq;
     args->query->radius = static_cast<float>(std::sqrt(d_sq)) * (1.0f + 1e-6f) + 1e-6f;
     return true;
   };
