@@ -16,12 +16,6 @@
 namespace bimloc::sim {
 namespace {
 
-struct Pending {
-  std::uint64_t log_time_ns;
-  int channel;  // 0: tf, 1: localization
-  std::vector<std::uint8_t> data;
-};
-
 // The storey's walls (their axes, as lines at the wall's base and top) and rooms (outline at
 // the floor, name at the centroid), in map = the plan's frame.
 ros2::MarkerArray planMarkers(const bim::Storey& storey, const std::string& map_frame, std::uint64_t stamp_ns) {
@@ -75,6 +69,13 @@ ros2::MarkerArray planMarkers(const bim::Storey& storey, const std::string& map_
 }  // namespace
 
 struct LocalizedMcapWriter::Impl {
+  // A message of ours, written in time order among the input's (a member type: a field of a
+  // type in an anonymous namespace has no linkage to share, -Wsubobject-linkage in unity builds).
+  struct Pending {
+    std::uint64_t log_time_ns;
+    int channel;  // 0: tf, 1: localization
+    std::vector<std::uint8_t> data;
+  };
   std::string path, input, map_frame, odom_frame, base_frame, tf_topic;
   std::unique_ptr<ros2::McapWriter> out;
   std::vector<Pending> pending;
@@ -138,7 +139,7 @@ void LocalizedMcapWriter::close(const bim::Storey& storey) {
   const std::uint16_t plan = out.addChannel(schemaFor("visualization_msgs/msg/MarkerArray", "", ""), kPlanTopic, "cdr",
                                             {{"offered_qos_profiles", ros2::qosProfileYaml(true)}});
   std::stable_sort(impl_->pending.begin(), impl_->pending.end(),
-                   [](const Pending& a, const Pending& b) { return a.log_time_ns < b.log_time_ns; });
+                   [](const Impl::Pending& a, const Impl::Pending& b) { return a.log_time_ns < b.log_time_ns; });
   std::size_t next = 0;
   bool plan_written = false;
   auto writePending = [&](std::uint64_t until) {
