@@ -195,7 +195,8 @@ TEST(FreeSpace, ARayGrazingAWallFromItsDoorwayCrossesItWhereThePositionAllows) {
   // known to sigma_m (5 cm), moves that crossing by sigma_m / cos(incidence) along the wall:
   // it may have left through the doorway. No verdict.
   const FreeSpaceParams params = defaultParams();
-  const FreeSpaceMap map(oneWall(std::make_pair(-1.0, 1.0)));
+  const bim::Storey storey = oneWall(std::make_pair(-1.0, 1.0));  // the map points at its openings: kept alive
+  const FreeSpaceMap map(storey);
   const Eigen::Vector3d in_doorway(4.8, 0.5, 0.0);
   const Eigen::Vector2d u = Eigen::Vector2d(0.1, 0.65).normalized();
   const auto grazing = freeSpaceHits(map, params, in_doorway, 0.0, profileOf({(0.66 + 3.0) * u}));
@@ -371,7 +372,8 @@ TEST(FreeSpace, AnOpenRayThatTheOtherPlaceEndsOnItsWallCountsPerThatWallAndOnceW
   FreeSpaceParams params = defaultParams();
   params.explained = true;
   const std::vector<Eigen::Vector2d> ends{{1.9, 0.0}, {1.9, 0.3}, {1.9, -0.3}, {0.9, 1.0}};
-  const FreeSpaceMap map(oneWall());
+  const bim::Storey storey = oneWall();  // the map points at its faces' openings: kept alive
+  const FreeSpaceMap map(storey);
   const auto at_x = freeSpaceHits(map, params, Eigen::Vector3d::Zero(), 0.0, profileOf(ends));
   const auto at_y = freeSpaceHits(map, params, Eigen::Vector3d(3.0, 0.0, 0.0), 0.0, profileOf(ends));
   ASSERT_EQ(at_x.size(), 4u);  // all open

@@ -68,7 +68,9 @@ double throughCost(double beyond_m, double sigma_m, double cap);
 // The plan's wall faces in a grid, for rays: the first solid face a ray crosses.
 class FreeSpaceMap {
  public:
+  // The storey must outlive the map (its faces' openings are pointed at, not copied).
   explicit FreeSpaceMap(const bim::Storey& storey, double cell_m = 1.0);
+  FreeSpaceMap(bim::Storey&&, double = 1.0) = delete;
   struct Crossing {
     double t = 0;             // along the ray, metres
     int wall = -1;            // the storey's wall index
