@@ -219,8 +219,11 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
 
 namespace {
 
-double penaltyOf(std::vector<FreeSpaceHit>& all, const FreeSpaceParams& params) {
-  std::sort(all.begin(), all.end(), [](const FreeSpaceHit& a, const FreeSpaceHit& b) { return a.key < b.key; });
+bool byKey(const FreeSpaceHit& a, const FreeSpaceHit& b) { return a.key < b.key; }
+
+// Per key of `all` (sorted by key) the mean cost of its rays times the support ramp; the open
+// keys add up to at most open_faces faces, the others (through; on-wall marks cost nothing) add up.
+double penaltyOf(const std::vector<FreeSpaceHit>& all, const FreeSpaceParams& params) {
   double through = 0, open = 0;
   for (std::size_t i = 0; i < all.size();) {
     std::size_t j = i;
@@ -228,11 +231,7 @@ double penaltyOf(std::vector<FreeSpaceHit>& all, const FreeSpaceParams& params) 
     for (; j < all.size() && all[j].key == all[i].key; ++j) sum += all[j].cost;
     const double n = static_cast<double>(j - i);
     const double worth = sum / n * std::min(1.0, n / static_cast<double>(params.support_rays));
-    const std::int32_t key = all[i].key;
-    if (key >= kOpenKeyBase && key < kOnWallBase)
-      open += worth;
-    else if (key < kOnWallBase || key >= kExplainedBase)
-      through += worth;
+    (all[i].key >= kOpenKeyBase && all[i].key < kOnWallBase ? open : through) += worth;
     i = j;
   }
   return through + std::min(open, params.open_faces * params.face_worth);
@@ -244,6 +243,7 @@ double freeSpacePenalty(const std::vector<const std::vector<FreeSpaceHit>*>& per
   std::vector<FreeSpaceHit> all;
   for (const auto* scan : per_scan)
     if (scan) all.insert(all.end(), scan->begin(), scan->end());
+  std::sort(all.begin(), all.end(), byKey);
   return penaltyOf(all, params);
 }
 
@@ -270,7 +270,7 @@ FreeSpaceCost freeSpaceCostGiven(const std::vector<const std::vector<FreeSpaceHi
     }
   }
   FreeSpaceCost cost;
-  std::sort(all.begin(), all.end(), [](const FreeSpaceHit& a, const FreeSpaceHit& b) { return a.key < b.key; });
+  std::sort(all.begin(), all.end(), byKey);
   const auto first_explained =
       std::lower_bound(all.begin(), all.end(), kExplainedBase, [](const FreeSpaceHit& h, std::int32_t k) { return h.key < k; });
   for (auto i = first_explained; i != all.end();) {

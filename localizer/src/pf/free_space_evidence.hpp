@@ -119,7 +119,8 @@ struct FreeSpaceCost {
 // whatever saw it: that much is taken off; its rays stay in the bounded open term as well).
 FreeSpaceCost freeSpaceCostGiven(const std::vector<const std::vector<FreeSpaceHit>*>& x, const std::vector<const std::vector<FreeSpaceHit>*>& y,
                                  const FreeSpaceParams& params, const std::vector<double>& counted);
-// An upper bound of freeSpacePenaltyGiven(x, y) over every y.
+// An upper bound, over every y and `counted`, of what freeSpaceCostGiven(x, y) counts against x
+// (its rest and its explained worths).
 double freeSpacePenaltyBound(const std::vector<const std::vector<FreeSpaceHit>*>& x, const FreeSpaceParams& params);
 
 }  // namespace bimloc::pf::detail

@@ -44,12 +44,15 @@ Observation seenFrom(const Observation& o, const Pose2& rel);
 // The margin of a place P over a place Q, counted once per distinct wall face (the rule of
 // PathEvidence::distinctMargin, shared by the storey bank's cross-storey margin): the
 // observations P explains differently from Q are grouped by the face they match at P (where P
-// matches none, by the face at Q, keyed from `rival_keys` on), each face contributes the mean
+// matches none, by the face at Q, keyed from kRivalKeys on), each face contributes the mean
 // difference of its observations, the faces add up, and the room prior is worth at most one
 // clutter plane over the window.
 class FaceMargin {
  public:
-  explicit FaceMargin(int rival_keys) : rival_keys_(rival_keys) {}
+  // A face is keyed by its id (2 wall + side) at P, by kRivalKeys + its id at Q: above any face
+  // id of a storey, so no face of P shares a key with one of Q (on one storey or two; the count
+  // of a storey's faces is no bound, buried faces have none and their ids are skipped).
+  static constexpr int kRivalKeys = 1 << 24;
   // One scan's room prior: whether P's and Q's poses were in no room.
   void addScan(bool p_out_of_rooms, bool q_out_of_rooms) {
     out_of_rooms_ += (q_out_of_rooms ? 1.0 : 0.0) - (p_out_of_rooms ? 1.0 : 0.0);
@@ -57,12 +60,10 @@ class FaceMargin {
   // One observation, as matched at P and at Q.
   void add(const ObservationMatch& at_p, const ObservationMatch& at_q);
   // The margin, the room prior spread over a window of `scans` scans. With `per_face`, each
-  // face's contribution too, under its key (P's faces, then Q's from rival_keys on).
+  // face's contribution too, under its key.
   double total(double gate, double scans, std::vector<std::pair<int, double>>* per_face = nullptr);
-  int rivalKeys() const { return rival_keys_; }
 
  private:
-  int rival_keys_;
   std::vector<std::pair<int, double>> deltas_;
   double out_of_rooms_ = 0;
 };
@@ -221,8 +222,6 @@ class PathEvidence {
   ParticleFilterConfig config_;  // with the sigmas of the window's error model
   std::shared_ptr<const FreeSpaceMap> free_space_map_;  // null without free-space evidence
   FreeSpaceParams free_space_;
-  // FaceMargin's keys: P's faces by id (2 wall + side), Q's after every id.
-  int faceKeys() const { return static_cast<int>(face_normals_.size()) + 1; }
   std::size_t free_space_walls_ = 0;  // the storey's walls (keys of explained rays)
   std::deque<Scan> scans_;
   std::vector<Candidate> candidates_;

@@ -15,7 +15,7 @@ void FaceMargin::add(const ObservationMatch& at_p, const ObservationMatch& at_q)
   if (delta == 0.0) return;
   // By P's face where P matched one (the signed differences of one face average out when
   // both places explain it alike), else by the face Q matched.
-  const int key = at_p.face >= 0 ? at_p.face : (at_q.face >= 0 ? rival_keys_ + at_q.face : -1);
+  const int key = at_p.face >= 0 ? at_p.face : (at_q.face >= 0 ? kRivalKeys + at_q.face : -1);
   if (key >= 0) deltas_.emplace_back(key, delta);
 }
 
@@ -35,7 +35,7 @@ double FaceMargin::total(double gate, double scans, std::vector<std::pair<int, d
 
 double PathEvidence::distinctMargin(const Candidate& p, const Candidate& q, std::vector<std::pair<int, double>>* per_face) const {
   // Faces of P as keys 0 ... ; faces of Q (observations Q explains and P does not) after them.
-  FaceMargin margin(faceKeys());
+  FaceMargin margin;
   for (std::size_t k = 0; k < p.per_scan.size() && k < q.per_scan.size(); ++k) {
     const ScanScore& a = p.per_scan[k];
     const ScanScore& b = q.per_scan[k];
@@ -75,9 +75,8 @@ double PathEvidence::freeSpaceMargin(const Candidate& p, const Candidate& q, con
   std::vector<double> planes_p(free_space_walls_, 0.0), planes_q(free_space_walls_, 0.0);
   if (per_face) {
     for (const auto& [key, delta] : *per_face) {
-      // A face's key is its id (2 wall + side), Q's from faceKeys() on.
-      const bool of_p = key < faceKeys();
-      const int face = of_p ? key : key - faceKeys();
+      const bool of_p = key < FaceMargin::kRivalKeys;
+      const int face = of_p ? key : key - FaceMargin::kRivalKeys;
       const auto wall = static_cast<std::size_t>(std::max(0, face) / 2);
       if (face < 0 || wall >= free_space_walls_) continue;
       (of_p ? planes_p : planes_q)[wall] += of_p ? delta : -delta;
@@ -112,12 +111,8 @@ void PathEvidence::addFreeSpace(const Candidate& best, std::vector<std::pair<dou
       m -= against_best;
       continue;
     }
-    if (free_space_.explained) {
-      std::vector<std::pair<int, double>> per_face;
-      m = distinctMargin(best, candidates_[i], &per_face) + freeSpaceMargin(best, candidates_[i], &per_face);
-    } else {
-      m += freeSpaceMargin(best, candidates_[i]);
-    }
+    // The planes' margin again with its per-face terms where the free space needs them.
+    m = free_space_.explained ? margin(best, candidates_[i]) : m + freeSpaceMargin(best, candidates_[i]);
     lowest = std::min(lowest, m);
   }
   std::sort(rivals.begin(), rivals.end());

@@ -31,14 +31,10 @@ LocalMargin localMargin(const Eigen::Vector3d& refined, const Eigen::Vector3d& o
   // poses are the likeliest to explain the window alike).
   const std::vector<Eigen::Vector2d> offsets = gridOffsets(r, min_m);
   const auto at_p = windowMatches(refined, odom_now, scans, every_face, model, r.opening_margin_m);
-  // FaceMargin's keys: P's faces by id (2 wall + side; buried faces have none, so ids run past
-  // the count), Q's after every id.
-  int rival_keys = 1;
-  for (const auto& l : every_face.landmarks(0)) rival_keys = std::max(rival_keys, l.id + 2);
   for (const auto& o : offsets) {
     const Eigen::Vector3d q(refined.x() + o.x(), refined.y() + o.y(), refined.z());
     const auto at_q = windowMatches(q, odom_now, scans, every_face, model, r.opening_margin_m);
-    FaceMargin margin(rival_keys);
+    FaceMargin margin;
     for (std::size_t k = 0; k < scans.size(); ++k)
       for (std::size_t m = 0; m < at_p[k].size() && m < at_q[k].size(); ++m) margin.add(at_p[k][m], at_q[k][m]);
     const double total = margin.total(model.gate_mahalanobis2, static_cast<double>(scans.size()));

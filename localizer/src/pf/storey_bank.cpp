@@ -34,8 +34,7 @@ double roomArea(const bim::Storey& storey) {
 // per-face rule (detail::FaceMargin). The faces of the two storeys are different faces: Q's
 // are keyed apart.
 double crossMargin(const PathEvidence::WindowFit& p, const PathEvidence::WindowFit& q, double gate) {
-  constexpr int kRivalKeys = 1 << 24;  // above any face id of a storey (2 * walls)
-  detail::FaceMargin margin(kRivalKeys);
+  detail::FaceMargin margin;  // Q's faces keyed apart from P's (FaceMargin::kRivalKeys)
   const std::size_t scans = std::min(p.matches.size(), q.matches.size());
   for (std::size_t k = 0; k < scans; ++k) {
     margin.addScan(p.out_of_rooms[k], q.out_of_rooms[k]);
