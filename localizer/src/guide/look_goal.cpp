@@ -24,6 +24,11 @@ struct GoalPlanner::Impl {
     return !rooms.inAnyRoom(from) || rooms.inAnyRoom(to) ? metres : std::numeric_limits<double>::infinity();
   }
 
+  // The walk from `from` to `to` (its own walking distances): as walk() with them.
+  double walkFrom(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
+    return walk(grid.from(from, config.goal_walk_max_m), from, to);
+  }
+
   // The scan from `pose` against `segments` (a subset of walls near it): per ray its range and
   // the wall it ends on (-1: none within range).
   struct Scan {
@@ -42,6 +47,8 @@ struct GoalPlanner::Impl {
     }
     return out;
   }
+  // The same against the walls within the scan's range of the pose.
+  Scan scanAt(const PlanarPose& pose) const { return scan(detail::segmentsNear(walls, pose.head<2>(), config.scan_range_m), pose); }
 
   // The walls that tell two predicted scans apart, as the path evidence counts them (GuideConfig):
   // per wall (the nearer of the two a ray ends on), the rays that differ beyond the gate; a wall
@@ -76,22 +83,6 @@ struct GoalPlanner::Impl {
       }
     return pairs ? sum / pairs : 0.0;
   }
-
-  // The body fits at `to` and walks there straight from `from`; inside a room when `from` is.
-  bool reachable(const std::vector<detail::Segment2>& segments, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
-    const Eigen::Vector2d step = to - from;
-    const double length = step.norm();
-    if (!(length > 1e-9)) return true;
-    // The walk is checked from a body's width out: a place that puts the robot nearer a wall
-    // than the clearance (a rival's pose is only as good as its fit) may still walk away.
-    const Eigen::Vector2d start = from + std::min(config.clearance_m, 0.5 * length) / length * step;
-    for (const auto& s : segments)
-      if (detail::distanceTo(s, to) < config.clearance_m) return false;
-    if (!detail::walkClear(segments, start, to, config.clearance_m)) return false;
-    // the part skipped may not pass through a wall either
-    if (!detail::walkClear(segments, from, start, 0.0)) return false;
-    return !rooms.inAnyRoom(from) || rooms.inAnyRoom(to);
-  }
 };
 
 GoalPlanner::GoalPlanner(const bim::Storey& storey, const GuideConfig& config)
@@ -104,16 +95,16 @@ GoalPlanner::GoalPlanner(GoalPlanner&&) noexcept = default;
 const GuideConfig& GoalPlanner::config() const { return impl_->config; }
 
 std::vector<double> GoalPlanner::predictScan(const PlanarPose& T_map_base) const {
-  return impl_->scan(detail::segmentsNear(impl_->walls, T_map_base.head<2>(), impl_->config.scan_range_m), T_map_base).ranges;
+  return impl_->scanAt(T_map_base).ranges;
 }
 
 bool GoalPlanner::reachable(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
-  return impl_->reachable(impl_->walls, from, to);
+  return std::isfinite(impl_->walkFrom(from, to));
 }
 
 double GoalPlanner::information(const std::vector<PlanarPose>& T_map_bases) const {
   std::vector<Impl::Scan> scans;
-  for (const auto& p : T_map_bases) scans.push_back(impl_->scan(detail::segmentsNear(impl_->walls, p.head<2>(), impl_->config.scan_range_m), p));
+  for (const auto& p : T_map_bases) scans.push_back(impl_->scanAt(p));
   return impl_->information(scans);
 }
 
@@ -122,9 +113,8 @@ std::optional<double> GoalPlanner::informationOf(const std::vector<Place>& place
   std::vector<Impl::Scan> scans;
   for (const auto& p : places) {
     const PlanarPose there = compose(p.T_map_base, motion);
-    const auto from = m.grid.from(p.T_map_base.head<2>(), m.config.goal_walk_max_m);
-    if (!std::isfinite(m.walk(from, p.T_map_base.head<2>(), there.head<2>()))) return std::nullopt;
-    scans.push_back(m.scan(detail::segmentsNear(m.walls, there.head<2>(), m.config.scan_range_m), there));
+    if (!std::isfinite(m.walkFrom(p.T_map_base.head<2>(), there.head<2>()))) return std::nullopt;
+    scans.push_back(m.scanAt(there));
   }
   return m.information(scans);
 }

@@ -10,15 +10,6 @@ namespace {
 
 double cross2(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
 
-// Whether segments p0-p1 and q0-q1 cross (touching counts).
-bool segmentsCross(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, const Eigen::Vector2d& q0,
-                   const Eigen::Vector2d& q1) {
-  const double d1 = cross2(p1 - p0, q0 - p0), d2 = cross2(p1 - p0, q1 - p0);
-  const double d3 = cross2(q1 - q0, p0 - q0), d4 = cross2(q1 - q0, p1 - q0);
-  return ((d1 > 0) != (d2 > 0) || d1 == 0 || d2 == 0) && ((d3 > 0) != (d4 > 0) || d3 == 0 || d4 == 0) &&
-         !(d1 == 0 && d2 == 0);  // collinear: left to the distance test
-}
-
 }  // namespace
 
 RoomBoxes::RoomBoxes(const bim::Storey& storey) : storey_(&storey) {
@@ -100,18 +91,6 @@ double distanceTo(const Segment2& s, const Eigen::Vector2d& p) {
   const double l2 = e.squaredNorm();
   const double u = l2 > 0 ? std::clamp((p - s.a).dot(e) / l2, 0.0, 1.0) : 0.0;
   return (s.a + u * e - p).norm();
-}
-
-bool walkClear(const std::vector<Segment2>& segments, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
-               double clearance_m) {
-  const Segment2 walk{from, to, -1};
-  for (const auto& s : segments) {
-    if (segmentsCross(from, to, s.a, s.b)) return false;
-    // Not crossing: the distance between the segments is at one of the four end points.
-    const double d = std::min(std::min(distanceTo(s, from), distanceTo(s, to)), std::min(distanceTo(walk, s.a), distanceTo(walk, s.b)));
-    if (d < clearance_m) return false;
-  }
-  return true;
 }
 
 }  // namespace bimloc::guide::detail

@@ -43,9 +43,4 @@ double castRay(const std::vector<Segment2>& segments, const Eigen::Vector2d& ori
 // The distance from p to segment s.
 double distanceTo(const Segment2& s, const Eigen::Vector2d& p);
 
-// Whether the straight walk from `from` to `to` keeps `clearance_m` from every segment
-// (the distance between the two segments, which is 0 when they cross).
-bool walkClear(const std::vector<Segment2>& segments, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
-               double clearance_m);
-
 }  // namespace bimloc::guide::detail

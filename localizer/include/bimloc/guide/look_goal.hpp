@@ -88,12 +88,13 @@ class GoalPlanner {
   // The predicted scan from a map pose: range per ray (ray k at yaw + 2 pi k / scan_rays),
   // scan_range_m where it hits nothing. For tests and pictures.
   std::vector<double> predictScan(const PlanarPose& T_map_base) const;
-  // Whether the body fits at `to` and walks there in a straight line from `from` (map frame).
+  // Whether the body walks from `from` to `to` (map frame) as a goal must be walked: with its
+  // clearance, through doors, within goal_walk_max_m, from a room into a room.
   bool reachable(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
   // The information (0..1) of scans from these map poses, one per place.
   double information(const std::vector<PlanarPose>& T_map_bases) const;
   // The information of one motion of the base (its frame now) for these places; nothing where
-  // the goal is out of reach (not free, or not a straight walk) in one of them.
+  // the goal is out of reach (reachable() is false) in one of them.
   std::optional<double> informationOf(const std::vector<Place>& places, const PlanarPose& motion) const;
   const GuideConfig& config() const;
 
