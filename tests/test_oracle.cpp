@@ -207,3 +207,45 @@ TEST(Oracle, BranchAndBoundFindsWhatEveryCellGives) {
     EXPECT_TRUE(searchPlaces(context, region, every.best - 0.01f, true).reached);
   }
 }
+
+TEST(Oracle, PathBoundIsNeverBelowTheScoreOfAnyStartInItsBox) {
+  // The branch-and-bound is exact only if its bound never underestimates: over random boxes of
+  // start poses, from a cell to a root block, the bound against the score of many starts drawn
+  // in each box (and its corners), and the distance code against the exact minimum of at().
+  bim::Storey s;
+  lRoom(s, {0, 0}, true);
+  addWall(s, {-1, -1}, {6, -1}), addWall(s, {6, -1}, {6, 5});
+  OracleConfig c;
+  std::mt19937 rng(11);
+  const std::vector<Eigen::Vector3f> scan = scanFrom(s, {1.0, 0.8, 0.3}, 30.0, rng);
+  const DistanceField field(wallSegmentsInBand(s, c.band_low_m, c.band_high_m), c.raster_m, c.clamp_m, c.margin_m);
+  const PointModel model(c, c.clamp_m);
+  PathCloud path;
+  for (const auto& p : bandPoints(scan, Eigen::Isometry3d::Identity(), -0.2, 1.3, c)) path.add(p.x(), p.y());
+  path.finish();
+  ASSERT_GE(path.size(), 30u);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  int boxes = 0;
+  for (const double half_m : {0.05, 0.2, 0.8, 1.6})
+    for (const double half_deg : {1.0, 4.0, 16.0})
+      for (int trial = 0; trial < 20; ++trial, ++boxes) {
+        const Eigen::Vector3d centre(-0.5 + 6.0 * u01(rng), -0.5 + 5.0 * u01(rng), 2.0 * M_PI * u01(rng));
+        const double half_rad = half_deg * M_PI / 180.0;
+        const float bound = pathBound(field, model, path, centre.x(), centre.y(), centre.z(), half_m, half_m, half_rad);
+        for (int k = 0; k < 40; ++k) {
+          const double sx = k < 8 ? (k & 1 ? 1.0 : -1.0) : 2.0 * u01(rng) - 1.0;  // the corners first
+          const double sy = k < 8 ? (k & 2 ? 1.0 : -1.0) : 2.0 * u01(rng) - 1.0;
+          const double st = k < 8 ? (k & 4 ? 1.0 : -1.0) : 2.0 * u01(rng) - 1.0;
+          const float score = pathScore(field, model, path, centre.x() + sx * half_m, centre.y() + sy * half_m, centre.z() + st * half_rad);
+          ASSERT_GE(bound, score) << "box " << boxes << " start " << k;
+        }
+        // The code is a lower bound of the field over a box, as minOver is.
+        const float x0 = static_cast<float>(centre.x() - half_m), y0 = static_cast<float>(centre.y() - half_m);
+        const float x1 = static_cast<float>(centre.x() + half_m), y1 = static_cast<float>(centre.y() + half_m);
+        float least = field.at(x0, y0);
+        for (int a = 0; a <= 20; ++a)
+          for (int b = 0; b <= 20; ++b) least = std::min(least, field.at(x0 + (x1 - x0) * a / 20.0f, y0 + (y1 - y0) * b / 20.0f));
+        ASSERT_LE(field.codeDistance(field.minCodeOver(x0, y0, x1, y1)), least) << "box " << boxes;
+        ASSERT_LE(field.codeDistance(field.minCodeOver(x0, y0, x1, y1)), field.minOver(x0, y0, x1, y1) + 2.0f * c.clamp_m / 255.0f);
+      }
+}

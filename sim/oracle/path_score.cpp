@@ -14,14 +14,12 @@ PointModel::PointModel(const OracleConfig& c, double clamp_m) {
     table_[k] = static_cast<float>(std::log(hit_peak * std::exp(-0.5 * d * d / (c.sigma_m * c.sigma_m)) + clutter) -
                                    std::log(hit_peak + clutter));
   }
-}
-
-float PointModel::score(float d) const {
-  const float f = std::max(0.0f, d) / step_;
-  const auto k = static_cast<std::size_t>(f);
-  if (k + 1 >= table_.size()) return table_.back();
-  const float u = f - static_cast<float>(k);
-  return (1 - u) * table_[k] + u * table_[k + 1];
+  // DistanceField::codeDistance's rule (code * clamp / 255), bounded as upperBound bounds, a
+  // micrometre lower: the code's distance, rounded in float, may come out an ulp above the cell
+  // value it stands for.
+  for (int code = 0; code < 256; ++code)
+    code_bounds_[static_cast<std::size_t>(code)] =
+        upperBound(std::max(0.0f, static_cast<float>(code) * static_cast<float>(clamp_m) / 255.0f - 1e-6f));
 }
 
 float PointModel::upperBound(float d) const {
@@ -63,7 +61,7 @@ float pathBound(const DistanceField& field, const PointModel& model, const PathC
   for (std::size_t i = 0; i < path.size(); ++i) {
     const float px = c * path.x[i] - s * path.y[i] + tx, py = s * path.x[i] + c * path.y[i] + ty;
     const float turn = chord * path.r[i] + 1e-4f;  // and float rounding
-    sum += model.upperBound(field.minOver(px - hx - turn, py - hy - turn, px + hx + turn, py + hy + turn));
+    sum += model.boundOfCode(field.minCodeOver(px - hx - turn, py - hy - turn, px + hx + turn, py + hy + turn));
     if (sum < stop_below) return sum;
   }
   return sum;

@@ -7,6 +7,9 @@
 #include "sim/oracle/wall_field.hpp"
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -19,11 +22,14 @@ class PointModel {
   PointModel(const OracleConfig& config, double clamp_m);
   float score(float d) const;       // linear between table entries
   float upperBound(float d) const;  // >= score(d') for every d' >= d
+  // upperBound of a DistanceField code (a distance in units of clamp / 255): a table.
+  float boundOfCode(std::uint8_t code) const { return code_bounds_[code]; }
   float floor() const { return table_.back(); }
 
  private:
   std::vector<float> table_;
   float step_ = 0.001f;
+  std::array<float, 256> code_bounds_{};
 };
 
 // The points of a path in its start frame: each keyframe's points composed with the
@@ -46,5 +52,13 @@ float pathScore(const DistanceField& field, const PointModel& model, const PathC
 // Stops early below `stop_below` as pathScore does.
 float pathBound(const DistanceField& field, const PointModel& model, const PathCloud& path, double cx, double cy, double yaw,
                 double half_x, double half_y, double half_yaw, float stop_below = -std::numeric_limits<float>::infinity());
+
+inline float PointModel::score(float d) const {
+  const float f = std::max(0.0f, d) / step_;
+  const auto k = static_cast<std::size_t>(f);
+  if (k + 1 >= table_.size()) return table_.back();
+  const float u = f - static_cast<float>(k);
+  return (1 - u) * table_[k] + u * table_[k + 1];
+}
 
 }  // namespace bimloc::sim::oracle

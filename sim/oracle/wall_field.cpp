@@ -59,8 +59,11 @@ DistanceField::DistanceField(const std::vector<Segment2>& walls, double cell_m, 
       }
   }
   // The min-pyramid, quantized downwards (still a lower bound).
+  inv_cell_ = 1.0f / cell_;
   levels_.resize(kLevels);
   const float scale = 255.0f / clamp_;
+  codes_.resize(values_.size());
+  for (std::size_t k = 0; k < values_.size(); ++k) codes_[k] = static_cast<std::uint8_t>(std::min(255.0f, std::floor(values_[k] * scale)));
   for (int k = 1; k <= kLevels; ++k) {
     auto& level = levels_[k - 1];
     level.assign(values_.size(), 0);
@@ -78,16 +81,6 @@ DistanceField::DistanceField(const std::vector<Segment2>& walls, double cell_m, 
         }
       }
   }
-}
-
-float DistanceField::at(float x, float y) const {
-  const float fx = (x - static_cast<float>(lower_.x())) / cell_, fy = (y - static_cast<float>(lower_.y())) / cell_;
-  const int i = static_cast<int>(std::floor(fx)), j = static_cast<int>(std::floor(fy));
-  if (i < 0 || j < 0 || i >= nx_ - 1 || j >= ny_ - 1) return clamp_;
-  const float u = fx - static_cast<float>(i), v = fy - static_cast<float>(j);
-  const float* row = &values_[static_cast<std::size_t>(j) * nx_ + i];
-  const float* next = row + nx_;
-  return (1 - v) * ((1 - u) * row[0] + u * row[1]) + v * ((1 - u) * next[0] + u * next[1]);
 }
 
 float DistanceField::minOver(float x0, float y0, float x1, float y1) const {
@@ -115,7 +108,7 @@ float DistanceField::minOver(float x0, float y0, float x1, float y1) const {
 }
 
 std::size_t DistanceField::bytes() const {
-  std::size_t n = values_.size() * sizeof(float);
+  std::size_t n = values_.size() * sizeof(float) + codes_.size();
   for (const auto& l : levels_) n += l.size();
   return n;
 }

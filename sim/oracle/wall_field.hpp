@@ -7,10 +7,17 @@
 #include <bimloc/bim/building.hpp>
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 namespace bimloc::sim::oracle {
+
+// floor(v) for |v| < 2^20, exactly (v is a float, exact in double): std::floor is a libm call
+// on the baseline x86-64 this is built for, and these run once per point per node.
+inline int floorIndex(float v) { return static_cast<int>(static_cast<double>(v) + 1048576.0) - 1048576; }
+
 
 struct Segment2 {
   Eigen::Vector2d a = Eigen::Vector2d::Zero(), b = Eigen::Vector2d::Zero();
@@ -31,6 +38,11 @@ class DistanceField {
   // A lower bound of at() over the box [x0, x1] x [y0, y1]: the least cell value among the cells
   // whose centres surround any point of the box.
   float minOver(float x0, float y0, float x1, float y1) const;
+  // The same bound as a code: the least value over the box in units of clamp / 255, rounded
+  // down (codeDistance(code) <= minOver's value). What the branch-and-bound's inner loop reads:
+  // a table lookup per point instead of a division and a search (PointModel::boundOfCode).
+  std::uint8_t minCodeOver(float x0, float y0, float x1, float y1) const;
+  float codeDistance(std::uint8_t code) const { return static_cast<float>(code) * clamp_ / 255.0f; }
 
   float clamp() const { return clamp_; }
   const Eigen::Vector2d& lower() const { return lower_; }  // the raster's extent
@@ -43,10 +55,47 @@ class DistanceField {
   float cell_ = 0.05f, clamp_ = 0.5f;
   int nx_ = 0, ny_ = 0;
   std::vector<float> values_;  // cell (i, j) centre at lower + (i, j) * cell
+  std::vector<std::uint8_t> codes_;  // values_ in units of clamp / 255, rounded down
+  float inv_cell_ = 20.0f;
   // levels_[k - 1][j * nx + i]: the least value over cells [i, i + 2^k) x [j, j + 2^k), in
   // units of clamp / 255 rounded down (a lower bound), for k = 1..kLevels.
   static constexpr int kLevels = 7;
   std::vector<std::vector<std::uint8_t>> levels_;
 };
+
+// Inline: the search calls these once per point per pose or node.
+inline float DistanceField::at(float x, float y) const {
+  const float fx = (x - static_cast<float>(lower_.x())) / cell_, fy = (y - static_cast<float>(lower_.y())) / cell_;
+  if (!(std::abs(fx) < 1e6f && std::abs(fy) < 1e6f)) return clamp_;  // far off the raster (or not finite)
+  const int i = floorIndex(fx), j = floorIndex(fy);
+  if (i < 0 || j < 0 || i >= nx_ - 1 || j >= ny_ - 1) return clamp_;
+  const float u = fx - static_cast<float>(i), v = fy - static_cast<float>(j);
+  const float* row = &values_[static_cast<std::size_t>(j) * nx_ + i];
+  const float* next = row + nx_;
+  return (1 - v) * ((1 - u) * row[0] + u * row[1]) + v * ((1 - u) * next[0] + u * next[1]);
+}
+
+inline std::uint8_t DistanceField::minCodeOver(float x0, float y0, float x1, float y1) const {
+  // As minOver, but the box's cells found by multiplying with 1 / cell, which may round across
+  // a cell's edge: the box is grown by a thousandth of a cell each way first, so that every cell
+  // minOver would read is read (one more, at worst: a bound a little looser, never wrong).
+  const float lx = static_cast<float>(lower_.x()), ly = static_cast<float>(lower_.y());
+  const float fx0 = (x0 - lx) * inv_cell_ - 1e-3f, fx1 = (x1 - lx) * inv_cell_ + 1e-3f;
+  const float fy0 = (y0 - ly) * inv_cell_ - 1e-3f, fy1 = (y1 - ly) * inv_cell_ + 1e-3f;
+  if (!(fx0 > -1e6f && fy0 > -1e6f && fx1 < 1e6f && fy1 < 1e6f)) return 0;  // no useful bound: the least
+  const int i0 = std::max(floorIndex(fx0), 0), i1 = std::min(floorIndex(fx1) + 1, nx_ - 1);
+  const int j0 = std::max(floorIndex(fy0), 0), j1 = std::min(floorIndex(fy1) + 1, ny_ - 1);
+  if (i0 > i1 || j0 > j1) return 255;  // wholly off the raster: clamp
+  const int size = std::max(i1 - i0 + 1, j1 - j0 + 1);
+  if (size == 1) return codes_[static_cast<std::size_t>(j0) * nx_ + i0];
+  const int k = 31 - __builtin_clz(static_cast<unsigned>(size));  // 2^k <= size < 2^(k+1)
+  const int side = 1 << k;
+  if (k > kLevels || side > nx_ || side > ny_) return 0;
+  const int a0 = std::clamp(i0, 0, nx_ - side), a1 = std::clamp(i1 - side + 1, 0, nx_ - side);
+  const int b0 = std::clamp(j0, 0, ny_ - side), b1 = std::clamp(j1 - side + 1, 0, ny_ - side);
+  const std::uint8_t* level = levels_[k - 1].data();
+  const std::size_t r0 = static_cast<std::size_t>(b0) * nx_, r1 = static_cast<std::size_t>(b1) * nx_;
+  return std::min(std::min(level[r0 + a0], level[r0 + a1]), std::min(level[r1 + a0], level[r1 + a1]));
+}
 
 }  // namespace bimloc::sim::oracle
