@@ -24,8 +24,11 @@ nlohmann::json placesJson(const std::vector<sim::ScenarioResult::Place>& places)
 
 nlohmann::json storeysJson(const std::vector<sim::ScenarioResult::StoreyOption>& storeys) {
   nlohmann::json out = nlohmann::json::array();
-  for (const auto& s : storeys)
-    out.push_back({{"storey", s.storey}, {"converged", s.converged}, {"path_log_likelihood", s.path_log_likelihood}});
+  for (const auto& s : storeys) {
+    nlohmann::json j = {{"storey", s.storey}, {"converged", s.converged}, {"path_log_likelihood", s.path_log_likelihood}};
+    if (s.best) j["best"] = {{"x", s.best->x()}, {"y", s.best->y()}, {"yaw_deg", s.best->z() * 180.0 / M_PI}};
+    out.push_back(std::move(j));
+  }
   return out;
 }
 

@@ -41,6 +41,7 @@ struct ScenarioResult {
     std::string storey;
     bool converged = false;
     double path_log_likelihood = 0;
+    std::optional<Eigen::Vector3d> best;  // its path evidence's best place (map x, y, yaw in rad)
   };
   std::vector<StoreyOption> storey_candidates;
   std::uint64_t seed = 0;
