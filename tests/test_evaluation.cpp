@@ -145,3 +145,33 @@ TEST(Evaluation, TheFollowLagRunsFromTheBaseLeavingTheFlightWhenTheSimulatorSays
   EXPECT_EQ(cut.storey_changes_followed, 0);
   EXPECT_FALSE(cut.false_convergence);
 }
+
+TEST(Evaluation, AChangeMadeWhileTheLocalizerStillSearchesIsCountedApart) {
+  // The same climb (on the flight from 1 s to 5 s), the localizer searching until t = 8 s and
+  // then converged on the new storey: it tracked no storey when the base changed, so the change
+  // is no change followed or missed, it is counted apart; a second climb back down after
+  // convergence is a change to follow. One that converges first and then misses is still judged.
+  bim::Building building = test::officeWorld().building();
+  building.storeys.resize(1);
+  building.storeys.push_back(building.storeys[0]);
+  building.storeys[1].elevation_m = building.storeys[0].elevation_m + 3.0;
+  const auto zAt = [](double t) { return 0.5 + std::clamp(t - 1.0, 0.0, 3.0) - std::clamp(t - 11.0, 0.0, 3.0); };
+  const auto truthAt = [&](double t) { return test::pose(2.0 + 0.1 * t, 6.0, 0.0, zAt(t)); };
+  const auto onFlight = [](double t) { return (t > 1.0 - 1e-9 && t < 5.0 - 1e-9) || (t > 11.0 - 1e-9 && t < 15.0 - 1e-9); };
+  sim::RunScore score(building, 0);
+  for (int k = 0; k <= 250; ++k) {
+    const double t = 0.1 * k;
+    LocalizationResult r = tracking(truthAt(t));
+    if (t < 8.0 - 1e-9) r.state = LocalizationState::Searching, r.storey = std::nullopt;
+    else r.storey = t < 16.0 - 1e-9 ? 1 : 0;
+    score.add(t, r, truthAt(t), onFlight(t));
+  }
+  sim::ScenarioResult out;
+  score.finish(out);
+  EXPECT_EQ(out.storey_changes_searching, 1);
+  EXPECT_EQ(out.storey_changes, 1) << "the climb down, after convergence";
+  EXPECT_EQ(out.storey_changes_followed, 1);
+  ASSERT_EQ(out.storey_follow_lags_s.size(), 1u);
+  EXPECT_NEAR(out.storey_follow_lags_s[0], 1.0, 1e-6);
+  EXPECT_FALSE(out.false_convergence);
+}

@@ -24,8 +24,11 @@ nlohmann::json placesJson(const std::vector<sim::ScenarioResult::Place>& places)
 
 nlohmann::json storeysJson(const std::vector<sim::ScenarioResult::StoreyOption>& storeys) {
   nlohmann::json out = nlohmann::json::array();
-  for (const auto& s : storeys)
-    out.push_back({{"storey", s.storey}, {"converged", s.converged}, {"path_log_likelihood", s.path_log_likelihood}});
+  for (const auto& s : storeys) {
+    nlohmann::json j = {{"storey", s.storey}, {"converged", s.converged}, {"path_log_likelihood", s.path_log_likelihood}};
+    if (s.best) j["best"] = {{"x", s.best->x()}, {"y", s.best->y()}, {"yaw_deg", s.best->z() * 180.0 / M_PI}};
+    out.push_back(std::move(j));
+  }
   return out;
 }
 
@@ -87,7 +90,7 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
           {"yaw_error_deg", r.yaw_error_deg}, {"ate_m", valueOrNull(r.ate_m)},
           {"rpe_m_per_m", valueOrNull(r.rpe_m_per_m)}, {"map_rmse_m", valueOrNull(r.map_rmse_m)}, {"losses", r.losses},
           {"storey_changes", r.storey_changes}, {"storey_changes_followed", r.storey_changes_followed},
-          {"storey_follow_lags_s", r.storey_follow_lags_s}, {"path_length_m", r.path_length_m}, {"wall_deviations", wallsJson(r.wall_deviations)}, {"site", r.site},
+          {"storey_changes_searching", r.storey_changes_searching}, {"storey_follow_lags_s", r.storey_follow_lags_s}, {"path_length_m", r.path_length_m}, {"wall_deviations", wallsJson(r.wall_deviations)}, {"site", r.site},
           {"wall_offset_error_m", valueOrNull(r.wall_offset_error_m)},
           {"false_convergence", r.false_convergence}, {"convergence_margin", valueOrNull(r.convergence_margin)},
           {"hypotheses", placesJson(r.hypotheses)}, {"storey_auto", r.storey_auto},
@@ -100,7 +103,8 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
 }
 
 nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) {
-  int localized = 0, false_convergences = 0, losses = 0, storey_changes = 0, storey_changes_followed = 0;
+  int localized = 0, false_convergences = 0, losses = 0, storey_changes = 0, storey_changes_followed = 0,
+      storey_changes_searching = 0;
   double sim_seconds = 0;
   std::vector<double> times, ates, follow_lags;
   for (const auto& s : scenarios) {
@@ -111,6 +115,7 @@ nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) 
     losses += s.at("losses").get<int>();
     storey_changes += s.value("storey_changes", 0);
     storey_changes_followed += s.value("storey_changes_followed", 0);
+    storey_changes_searching += s.value("storey_changes_searching", 0);
     if (s.contains("storey_follow_lags_s"))
       for (const auto& lag : s["storey_follow_lags_s"]) follow_lags.push_back(lag.get<double>());
     if (!s.at("convergence_time_s").is_null()) times.push_back(s["convergence_time_s"].get<double>());
@@ -121,6 +126,7 @@ nlohmann::json runSummary(const nlohmann::json& scenarios, double wall_seconds) 
   nlohmann::json summary = {{"runs", scenarios.size()}, {"localized", localized}, {"false_convergences", false_convergences},
                             {"median_convergence_s", median_time}, {"median_ate_m", median_ate}, {"losses", losses},
                             {"storey_changes", storey_changes}, {"storey_changes_followed", storey_changes_followed},
+                            {"storey_changes_searching", storey_changes_searching},
                             {"median_storey_follow_lag_s", follow_lags.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(follow_lags))},
                             {"sim_seconds", sim_seconds}, {"wall_seconds", wall_seconds}};
   if (nlohmann::json dropped = recordingTotal(scenarios); !dropped.is_null()) summary["recording"] = std::move(dropped);
@@ -198,7 +204,10 @@ void printRunTable(const nlohmann::json& report, std::ostream& out) {
       << ", " << s["losses"].get<int>() << " losses of track; "
       << (s.value("storey_changes", 0) > 0 ? std::to_string(s.value("storey_changes_followed", 0)) + " of " +
                                                   std::to_string(s.value("storey_changes", 0)) + " storey changes followed; "
-                                            : std::string()) << fixed(s["sim_seconds"].get<double>(), 0) << " s simulated in " << fixed(s["wall_seconds"].get<double>(), 1)
+                                            : std::string())
+      << (s.value("storey_changes_searching", 0) > 0
+              ? std::to_string(s.value("storey_changes_searching", 0)) + " storey changes while still searching; "
+              : std::string()) << fixed(s["sim_seconds"].get<double>(), 0) << " s simulated in " << fixed(s["wall_seconds"].get<double>(), 1)
       << " s\n";
   if (oracle) printOracleSummary(s, out);
   for (const auto& r : results)

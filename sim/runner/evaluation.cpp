@@ -49,8 +49,11 @@ void RunScore::followStorey(double t, const LocalizationResult& step, const Eige
     storey_ = *on;
     changed_at_ = t;
     left_at_.reset();
-    change_followed_ = false;
-    ++storey_changes_;
+    // Before the first convergence the localizer tracks no storey: there is nothing to follow
+    // (its search is scored by the convergence, which must then be on the storey the base is
+    // on). Such a change is counted apart, not as one followed or missed.
+    change_followed_ = !converged_;
+    ++(converged_ ? storey_changes_ : storey_changes_searching_);
   }
   // The clock starts when the base steps off the flight (issue 31: "from leaving a flight"); a
   // recording's, when its height is on the new floor (within a riser or two of it).
@@ -126,6 +129,7 @@ void RunScore::finish(ScenarioResult& r) const {
   const bool cut_short = !change_followed_ && left_at_ && last_t_ < *left_at_ + kFollowWindowS;
   r.storey_changes = storey_changes_ - (cut_short ? 1 : 0);
   r.storey_changes_followed = storey_changes_followed_;
+  r.storey_changes_searching = storey_changes_searching_;
   r.storey_follow_lags_s = follow_lags_s_;
   if (converged_) {
     r.convergence_time_s = convergence_time_;

@@ -55,7 +55,7 @@ class RunScore {
   std::optional<double> left_at_;     // ... and it left the flight then: the follow lag's clock
   double last_t_ = 0;                 // the last step's time
   bool change_followed_ = true;
-  int storey_changes_ = 0, storey_changes_followed_ = 0;
+  int storey_changes_ = 0, storey_changes_followed_ = 0, storey_changes_searching_ = 0;
   std::vector<double> follow_lags_s_;
   Eigen::Isometry3d truth_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d estimate_ = Eigen::Isometry3d::Identity();

@@ -122,7 +122,7 @@ ScenarioResult MethodRun::finish(double t_end, const Eigen::Isometry3d& truth_en
   if (!converged && last_verdict_) r_.hypotheses = pathPlaces(*last_verdict_, building.storeys[verdict_storey_]);
   if (localizer_->filter() && !localizer_->filter()->storey() && r_.storey_auto && last_bank_)
     for (const auto& c : last_bank_->candidates)
-      r_.storey_candidates.push_back({building.storeys[c.storey].name, c.converged, c.path_log_likelihood});
+      r_.storey_candidates.push_back({building.storeys[c.storey].name, c.converged, c.path_log_likelihood, c.path_best});
   // The last picture shows where the particles were left and why, or the graph the tracker built.
   if (snapshot && updates_ > 0 && (!converged || localizer_->tracker())) snapshotNow("end", t_end, truth_end, snapshot);
   score_.finish(r_);

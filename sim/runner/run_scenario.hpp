@@ -41,6 +41,7 @@ struct ScenarioResult {
     std::string storey;
     bool converged = false;
     double path_log_likelihood = 0;
+    std::optional<Eigen::Vector3d> best;  // its path evidence's best place (map x, y, yaw in rad)
   };
   std::vector<StoreyOption> storey_candidates;
   std::uint64_t seed = 0;
@@ -58,6 +59,9 @@ struct ScenarioResult {
   // Changes of the true storey (the base climbed a flight onto another floor), and how many of
   // them the localizer followed: on the new storey within 5 s of the base leaving the flight.
   int storey_changes = 0, storey_changes_followed = 0;
+  // Changes the base made before the localizer's first convergence (it tracked no storey yet):
+  // not in storey_changes, nothing to follow.
+  int storey_changes_searching = 0;
   // Of each change followed, the time from the base leaving the flight (standing on the new
   // floor) to the first step the localizer was on the new storey: 0 when it was there first.
   std::vector<double> storey_follow_lags_s;
