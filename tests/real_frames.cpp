@@ -302,7 +302,7 @@ const std::vector<RealFrame>* nebulaFrames() {
   return loaded.empty() ? nullptr : &loaded;
 }
 
-Eigen::Vector3d poseInRoom(const RealFrame& frame, const RealFrame& vlp16, double room_width_m) {
+Eigen::Vector3d poseInRoom(const RealFrame& frame, const RealFrame& vlp16, double shelf_from_south_m) {
   // The plan's +x is the west wall's normal (pointing into the room, towards the sensor); its
   // -y the shelf front's. Their directions in the VLP-16's frame, averaged.
   const planes::ObservedPlane* west = nullptr;
@@ -318,7 +318,7 @@ Eigen::Vector3d poseInRoom(const RealFrame& frame, const RealFrame& vlp16, doubl
   const double west_d = west->d, shelf_d = shelf->d;
   const double room_yaw_in_vlp = std::atan2(x_axis.y(), x_axis.x());
   const double vlp_yaw = -room_yaw_in_vlp;  // the VLP-16's heading in the plan
-  const Eigen::Vector2d vlp_xy(west_d, room_width_m - shelf_d);
+  const Eigen::Vector2d vlp_xy(west_d, shelf_from_south_m - shelf_d);
   const Eigen::Vector2d xy = vlp_xy + Eigen::Rotation2Dd(vlp_yaw) * frame.in_vlp.pose.head<2>();
   return {xy.x(), xy.y(), std::remainder(vlp_yaw + frame.in_vlp.pose.z(), 2 * M_PI)};
 }

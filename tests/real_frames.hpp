@@ -80,8 +80,9 @@ const std::vector<RealFrame>* nebulaFrames();
 
 // The sensor's pose (x, y, yaw) in the plan of worlds/nebula_room.ifc, from its walls alone:
 // the VLP-16 from its west wall and shelf front (docs/realdata_room.md, section 3), the others
-// through their alignment on it. `room_width_m`: the plan's width (the VLP-16 does not see the
-// south wall).
-Eigen::Vector3d poseInRoom(const RealFrame& frame, const RealFrame& vlp16, double room_width_m);
+// through their alignment on it. `shelf_from_south_m`: the shelving's front from the room's south
+// wall, as measured (6.56 m, docs/realdata_room.md section 3: the VLP-16 does not see the south
+// wall).
+Eigen::Vector3d poseInRoom(const RealFrame& frame, const RealFrame& vlp16, double shelf_from_south_m);
 
 }  // namespace bimloc::test

@@ -121,9 +121,9 @@ TEST(RealFrames, TheRectanglesSymmetryIsResolved) {
   }
 }
 
-// The room measured from the planes (the VLP-16's ends, the shelf front seen by four
-// sensors, the QT64's far side) is the plan committed as worlds/nebula_room.ifc, read back by
-// the project's IFC reader: 14.17 m x 6.56 m within 3 cm.
+// The room measured from the planes (the VLP-16's ends, the wall behind the shelving seen by all
+// five, the QT64's far side) is the plan committed as worlds/nebula_room.ifc, read back by the
+// project's IFC reader: 14.17 m x 7.12 m within 3 cm.
 TEST(RealFrames, TheCommittedPlanIsTheMeasuredRoom) {
   REQUIRE_FRAMES(f);
   // The long axis: every sensor that sees both ends (mutual-nearest walls, VLP-16's frame).
@@ -143,71 +143,144 @@ TEST(RealFrames, TheCommittedPlanIsTheMeasuredRoom) {
   Eigen::AlignedBox2d box;
   for (const auto& p : plan.storeys[0].rooms[0].footprint) box.extend(p);
   for (const auto& [sensor, l] : length) EXPECT_NEAR(l, box.sizes().x(), kAgreeOffset_m) << sensor;
-  // Across: the shelf front (VLP-16) to the QT64's far side, the one sensor that sees it. Of
-  // its two planes there (2.19 and 2.35 m from the VLP-16), the one nearer to vertical: the
-  // other leans 7.4 degrees (a panel against the wall, not the wall).
+  // Across: the QT64's far side, the one sensor that sees it, to the wall behind the shelving.
+  // Of the QT64's two planes there (2.19 and 2.35 m from the VLP-16), the one nearer to
+  // vertical: the other leans 7.4 degrees (a panel against the wall, not the wall).
   const auto qt64 = inVlp(f->back());
   double far = 0, far_lean = 1;
   for (std::size_t p = 0; p < qt64.size(); ++p) {
     const double lean = std::abs(f->back().walls[p].normal.z());
     if (angleDeg(qt64[p].n, -Eigen::Vector2d::UnitX()) < 5 && lean < far_lean) far = qt64[p].d, far_lean = lean;
   }
-  double shelf = 0;
-  for (const auto& w : inVlp(f->front()))
-    if (angleDeg(w.n, Eigen::Vector2d::UnitX()) < 5) shelf = std::max(shelf, w.d);
-  EXPECT_NEAR(far + shelf, box.sizes().y(), kAgreeOffset_m);
+  // The wall behind the shelving: in each whole frame, the best-supported plane facing the room
+  // 0.4-0.7 m behind the shelving's front (4.367 m from the VLP-16), seen between and above the
+  // shelves; the median of the five frames' (measured 4.89-4.99 m: 4.93).
+  std::vector<double> north;
+  for (const Frame& frame : *f) {
+    Frame whole = frame;
+    whole.walls = frame.whole_walls;
+    const auto walls = inVlp(whole);
+    int best = -1;
+    for (int p = 0; p < int(walls.size()); ++p)
+      if (angleDeg(walls[p].n, Eigen::Vector2d::UnitX()) < 5 && walls[p].d > 4.367 + 0.4 && walls[p].d < 4.367 + 0.7 &&
+          (best < 0 || whole.walls[p].inliers > whole.walls[best].inliers))
+        best = p;
+    if (best >= 0) north.push_back(walls[best].d);
+  }
+  ASSERT_EQ(north.size(), f->size());
+  std::sort(north.begin(), north.end());
+  EXPECT_NEAR(far + north[north.size() / 2], box.sizes().y(), kAgreeOffset_m);
   EXPECT_NEAR(plan.storeys[0].rooms[0].height_m, 3.5, 1e-6);
 }
 
 // The same comparison on the whole frames (no standing points chosen in the test: the
-// extractor's own standing stage, wholeFrameConfig()), for the room's four sides as measured
-// (docs/realdata_room.md, section 3; VLP-16's frame): each sensor's wall nearest to each side
+// extractor's own standing stage, wholeFrameConfig()), for the room's sides as measured
+// (docs/realdata_room.md, section 3; VLP-16's frame): each sensor's plane nearest to each side
 // (within 3 degrees and 0.10 m once aligned), compared between every two sensors that have it.
 // A whole frame also gives the clutter's planes (desks, cabinets: up to 40 in the QT64's), which
 // are parts of surfaces seen differently from each sensor: they are not compared.
-// Short of the brief's 1 degree on the whole frames (see below): what holds is asserted.
-constexpr double kWholeAgreeAngle_deg = 2.0;
+//
+// Where the 1.6 degrees of the first version came from (docs/results/2026-11-27-h29place2.md):
+// - the north side's shelving is no plane: one frame's pieces of it, 4 mm apart in offset, differ
+//   by 2.6 degrees (the Pandar40P's at 4.364 and 4.368 m: -0.4 and -2.9 degrees), so the piece
+//   nearest the side's offset is a draw among them; every pair over 1 degree involved it or
+//   the second cause;
+// - the alignment (alignWalls, on the standing points' walls) fixes the yaw of the Pandar64 and
+//   the QT64 from two walls, one of them a piece of that shelving: the 64's ends came out turned
+//   0.6-1.1 degrees from every other sensor's.
+// So the sensors are aligned here by the room's walls, not its furniture: the yaw of each Hesai
+// sensor on the VLP-16 from the two end walls all five see (long, plane: 3-9 mm RMS), each
+// pair's angle weighted by the inverse of the two fits' azimuth variances (the extractor's own
+// covariance: the maximum-likelihood yaw of independent fits); the translation stays
+// alignWalls'. The walls are then held to the brief's 1 degree, and to its 3 cm where three or
+// more sensors see them (see the south wall below); the shelf front, furniture, to 3 cm and to
+// the 2 degrees the spread of its pieces allows. Measured: the walls within 0.59 degrees (21
+// pairs), the ends' offsets within 2.4 cm, the shelf front within 1.54 degrees.
+constexpr double kShelfAgreeAngle_deg = 2.0;
+
+struct RoomSide {
+  const char* name;
+  WallInVlp at;   // as measured, VLP-16's frame
+  bool wall;      // false: the shelving's front (furniture)
+};
+const RoomSide kRoomSides[] = {{"west end", {Eigen::Vector2d::UnitY(), 6.328}, true},
+                               {"east end", {-Eigen::Vector2d::UnitY(), 7.845}, true},
+                               {"south wall", {-Eigen::Vector2d::UnitX(), 2.189}, true},
+                               {"shelf front", {Eigen::Vector2d::UnitX(), 4.367}, false}};
+
+// The whole frame's walls in the VLP-16's frame at alignment `pose` (x, y, yaw).
+std::vector<WallInVlp> wholeInVlp(const Frame& frame, const Eigen::Vector3d& pose) {
+  Frame whole = frame;
+  whole.walls = frame.whole_walls;
+  whole.in_vlp.pose = pose;
+  return inVlp(whole);
+}
+
+// The sensor's yaw on the VLP-16 from the end walls both see (whole frames), weighted by the
+// inverse of the sum of the two fits' azimuth variances; alignWalls' translation kept.
+Eigen::Vector3d alignedOnTheEnds(const Frame& frame, const Frame& vlp) {
+  Eigen::Vector3d pose = frame.in_vlp.pose;
+  const auto ref = wholeInVlp(vlp, Eigen::Vector3d::Zero()), mine = wholeInVlp(frame, pose);
+  double sum = 0, weights = 0;
+  for (int s = 0; s < 2; ++s) {
+    const int r = nearest(kRoomSides[s].at, ref), m = nearest(kRoomSides[s].at, mine);
+    if (r < 0 || m < 0) continue;
+    const Eigen::Vector2d a = mine[m].n, b = ref[r].n;
+    const double w = 1.0 / (vlp.whole_walls[r].covariance(0, 0) + frame.whole_walls[m].covariance(0, 0));
+    sum += w * std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)), weights += w;
+  }
+  if (weights > 0) pose.z() += sum / weights;
+  return pose;
+}
+
 TEST(RealFrames, WholeFrameWallsOfTheRoomAgreeBetweenSensors) {
   REQUIRE_FRAMES(f);
-  const WallInVlp sides[4] = {{Eigen::Vector2d::UnitY(), 6.328},    // west end
-                              {-Eigen::Vector2d::UnitY(), 7.845},   // east end
-                              {Eigen::Vector2d::UnitX(), 4.367},    // shelf front (north)
-                              {-Eigen::Vector2d::UnitX(), 2.189}};  // south wall
-  const char* names[4] = {"west", "east", "shelf front", "south"};
   for (const Frame& frame : *f) {
     std::cout << "[ real ] " << frame.sensor << ": " << frame.whole_walls.size() << " walls on the whole frame\n";
     EXPECT_GE(frame.whole_walls.size(), 4u) << frame.sensor;
   }
+  std::vector<std::vector<WallInVlp>> walls;
+  for (const Frame& frame : *f) {
+    const Eigen::Vector3d pose = &frame == &f->front() ? Eigen::Vector3d::Zero() : alignedOnTheEnds(frame, f->front());
+    std::cout << "[ real ] " << frame.sensor << " aligned on the ends: yaw " << pose.z() * 180 / M_PI << " deg (alignWalls "
+              << frame.in_vlp.pose.z() * 180 / M_PI << ")\n";
+    walls.push_back(wholeInVlp(frame, pose));
+  }
   int compared = 0;
-  double worst_angle = 0, worst_offset = 0;
-  for (int s = 0; s < 4; ++s) {
+  double worst_angle = 0, worst_offset = 0, worst_shelf_angle = 0;
+  for (const RoomSide& side : kRoomSides) {
     std::vector<std::pair<std::string, WallInVlp>> seen;
-    for (const Frame& frame : *f) {
-      Frame whole = frame;
-      whole.walls = frame.whole_walls;
-      const auto walls = inVlp(whole);
-      const int k = nearest(sides[s], walls);
-      if (k >= 0) seen.emplace_back(frame.sensor, walls[k]);
+    for (std::size_t k = 0; k < f->size(); ++k) {
+      const int w = nearest(side.at, walls[k]);
+      if (w >= 0) seen.emplace_back((*f)[k].sensor, walls[k][w]);
     }
-    std::cout << "[ real ] " << names[s] << ":";
-    for (const auto& [sensor, w] : seen) std::cout << " " << sensor << " " << w.d;
+    std::cout << "[ real ] " << side.name << ":";
+    for (const auto& [sensor, w] : seen)
+      std::cout << " " << sensor << " " << w.d << " m " << std::atan2(w.n.y(), w.n.x()) * 180 / M_PI << " deg";
     std::cout << "\n";
     for (std::size_t i = 0; i < seen.size(); ++i)
       for (std::size_t k = i + 1; k < seen.size(); ++k) {
-        SCOPED_TRACE(std::string(names[s]) + ": " + seen[i].first + " vs " + seen[k].first);
-        ++compared;
+        SCOPED_TRACE(std::string(side.name) + ": " + seen[i].first + " vs " + seen[k].first);
         const double angle = angleDeg(seen[i].second.n, seen[k].second.n), offset = std::abs(seen[i].second.d - seen[k].second.d);
-        worst_angle = std::max(worst_angle, angle), worst_offset = std::max(worst_offset, offset);
-        // Measured: offsets within 2.4 cm on the three sides all five see; the south wall (the
-        // 64 and the QT64 only) 4.4 cm. Angles up to 1.6 degrees: 5 of the 31 pairs over the
-        // brief's 1 degree (east: 64 vs VLP-16 and QT64; shelf front: 40P vs VLP-16, 64, XT32).
-        EXPECT_LE(angle, kWholeAgreeAngle_deg);
+        if (!side.wall) {
+          worst_shelf_angle = std::max(worst_shelf_angle, angle);
+          EXPECT_LE(angle, kShelfAgreeAngle_deg);
+          EXPECT_LE(offset, kAgreeOffset_m);
+          continue;
+        }
+        ++compared;
+        worst_angle = std::max(worst_angle, angle);
+        EXPECT_LE(angle, kAgreeAngle_deg);
+        // The south wall is seen by the 64 and the QT64 only, and neither shares a wall across
+        // the room with the VLP-16: alignWalls places them across it by the shelving's pieces
+        // (4.24-4.47 m), whose spread their offsets there carry (measured 4.2 cm apart).
         if (seen.size() >= 3) {
+          worst_offset = std::max(worst_offset, offset);
           EXPECT_LE(offset, kAgreeOffset_m);
         }
       }
   }
-  std::cout << "[ real ] whole frames: " << compared << " pairs of room walls, worst " << worst_angle << " deg, "
-            << worst_offset << " m\n";
-  EXPECT_GE(compared, 10) << compared;
+  std::cout << "[ real ] whole frames: " << compared << " pairs of room walls, worst " << worst_angle << " deg, " << worst_offset
+            << " m (sides seen by three or more); shelf front worst " << worst_shelf_angle << " deg\n";
+  EXPECT_GE(compared, 20) << compared;
 }

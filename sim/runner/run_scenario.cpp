@@ -12,15 +12,14 @@
 #include <ctime>
 
 namespace bimloc::sim {
-namespace {
 
-// CPU seconds of the process (all its threads): on a shared machine wall time also counts
-// waiting for a core.
 double processCpuSeconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
+
+namespace {
 
 // The turn's x, y, z; non-finite and out-of-range points are the plane extraction's to drop.
 std::vector<Eigen::Vector3f> scanPoints(const LidarScan& scan) {

@@ -177,4 +177,8 @@ std::vector<ScenarioResult> runScenarioMethods(const Scenario& scenario, const W
                                                const std::vector<std::string>& methods,
                                                const std::vector<SnapshotHook>& snapshots = {});
 
+// CPU seconds of the process (all its threads): on a shared machine wall time also counts
+// waiting for a core (bench loop's and bench bags' CPU columns).
+double processCpuSeconds();
+
 }  // namespace bimloc::sim

@@ -209,15 +209,16 @@ WorldSpec twoStorey() {
 // Room A of the nebula driver's real recordings (../shared/realdata/nebula/): measured from the
 // wall planes the project's extractor finds in the five real frames, not designed
 // (docs/realdata_room.md has the planes, the sensors and the numbers). The clear interior is
-// the rectangle the lidars see between 0.2 and 1.8 m above them: the east end is the far wall
-// (a pilaster or door frame 0.15 m in front of it is not modelled), and the north side is the
-// front of the shelving along that wall (the wall itself, 0.59 m behind, shows only above the
-// shelves). No door: none was measured.
+// wall to wall: the east end is the far wall (a pilaster or door frame 0.15 m in front of it is
+// not modelled), and the north side is the wall behind the shelving, which every sensor sees
+// between and above the shelves (4.93 m from the VLP-16, the median of the five): the shelving's
+// front, 0.56 m before it, is furniture, which a plan does not hold (a lidar sees through it).
+// No door: none was measured.
 WorldSpec nebulaRoom() {
-  const double w = 14.17, h = 6.56, t = 0.20, clear = 3.50, slab = 0.2;
+  const double w = 14.17, h = 7.12, t = 0.20, clear = 3.50, slab = 0.2;
   WorldSpec world;
   world.name = "nebula_room";
-  world.description = "Room A of the nebula lidar recordings: one 14.17 m x 6.56 m room, measured from real scans";
+  world.description = "Room A of the nebula lidar recordings: one 14.17 m x 7.12 m room, measured from real scans";
   world.roof_thickness_m = slab;
   world.space_boundaries = true;
   StoreyBuilder b("Room A", 0.0, clear + slab, slab, clear);

@@ -71,6 +71,11 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   const auto faceAt = [&](const Landmark& l) { return static_cast<std::uint32_t>(&l - index->faces().data()); };
   // A point of the yaw-free base frame, in the map at the particle's pose.
   const auto inMap = [&](const Eigen::Vector2d& b) { return Eigen::Vector2d(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y()); };
+  // The local search's unexplained surfaces so far (see below): azimuth, d, the cost counted.
+  struct Unexplained {
+    double azimuth, d, cost;
+  };
+  std::vector<Unexplained> unexplained;
   for (const auto& o : observations) {
     // The observed normal in the map (a plane moves with a pose: n' = R n).
     const double nx = cy * o.normal_base.x() - sy * o.normal_base.y(), ny = sy * o.normal_base.x() + cy * o.normal_base.y();
@@ -155,7 +160,25 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     // An observation that matches nothing is clutter (the site does not look like the plan
     // yet): it costs what a match at the gate would, so it cannot destroy a good particle.
     if (best < gate) ++result.associated;
-    result.log_likelihood += -0.5 * best;
+    // In the local search, pieces of one unexplained surface (coplanar within the gate's reach:
+    // a shelving's front cut into pieces by what stands on it, a wall seen between them) are one
+    // piece of clutter, not several independent ones: counted once, at the dearest piece's cost.
+    // Counted per piece, a surface weighed by how many pieces the extractor cut it into, and a
+    // shelf front in five pieces outvoted the wall behind it seen in two (docs/realdata_room.md).
+    double cost = best;
+    if (opening_margin_m >= 0.0 && best >= gate) {
+      const double reach = std::sqrt(gate);
+      const auto same = std::find_if(unexplained.begin(), unexplained.end(), [&](const Unexplained& u) {
+        return std::abs(wrapAngle(o.azimuth_base - u.azimuth)) <= reach / inv_az && std::abs(o.d_offset - u.d) <= reach * c.sigma_d_m;
+      });
+      if (same == unexplained.end()) {
+        unexplained.push_back({o.azimuth_base, o.d_offset, best});
+      } else {
+        cost = std::max(0.0, best - same->cost);
+        same->cost = std::max(same->cost, best);
+      }
+    }
+    result.log_likelihood += -0.5 * cost;
     if (per_observation) per_observation->push_back({best_face, static_cast<float>(best)});
     if (result.log_likelihood < floor) {
       result.below_floor = true;
