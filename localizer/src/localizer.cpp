@@ -217,10 +217,8 @@ LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_od
       profile = pf::rangeProfile(points, m.T_base_lidar, pf::profileConfig(m.config.pf));
       // The turn spans the interval since the last step, stamped at its middle: its rays are off
       // the stamp's pose by up to half the motion over it (range_profile.hpp).
-      if (m.last_odom) {
-        const PlanarPose moved = between(*m.last_odom, odom_now);
-        profile.skew_yaw_rad = 0.5 * std::abs(moved.z()), profile.skew_m = 0.5 * moved.head<2>().norm();
-      }
+      // De-skewed, only the odometry's own error over it is left.
+      if (m.last_odom) pf::setTurnSkew(profile, between(*m.last_odom, odom_now), m.config.points_deskewed, m.config.pf);
     }
     r.used_points = true;
     r.walls_observed = static_cast<int>(walls.size());
