@@ -2,11 +2,14 @@
 // standing still and turning (motion distortion).
 #include "sim_fixtures.hpp"
 
+#include "sim/dataset/deskew.hpp"
 #include "sim/lidar/vlp16.hpp"
+#include "sim/odometry/odometry_model.hpp"
 #include "sim/world/world.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -21,6 +24,13 @@ sim::Vlp16Config noiseFree() {
   c.range_noise_sigma_m = 0.0;
   c.T_base_lidar = Eigen::Isometry3d::Identity();
   return c;
+}
+
+// Distance from p to the nearest face of the box [0, size] (inside or out).
+double boxFaceDistance(const Eigen::Vector3d& size, const Eigen::Vector3d& p) {
+  double d = 1e9;
+  for (int k = 0; k < 3; ++k) d = std::min({d, std::abs(p[k]), std::abs(size[k] - p[k])});
+  return d;
 }
 
 // The base standing (or turning at yaw_rate) at the box's centre, 1.2 m above the floor.
@@ -141,4 +151,46 @@ TEST(Vlp16, NoiseDropoutAndRangeLimitsBehaveAsConfigured) {
   config.max_range_m = 4.0;
   for (const auto& p : sim::Vlp16(config).scan(world, 0, turningBase(0.0), 0.0, 7, 3).points)
     EXPECT_LE(std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z), 4.0 + 0.02);
+}
+
+// The bench's loop de-skews each turn with the base's noisy odometry (run_scenario.cpp,
+// dataset/deskew.hpp): a base turning at 1 rad/s while walking 0.5 m/s, in a box room. Placed
+// with the true mid-turn pose, the de-skewed points lie on the box's faces within the range
+// noise (and the odometry's error over one turn); the turn as cast does not.
+TEST(Vlp16, DeskewWithTheNoisyOdometryPutsATurningWalkingBasesTurnBackOnTheWalls) {
+  const sim::World world = sim::World::fromMesh(test::boxRoomFile(kBox.cast<float>()));
+  const double yaw_rate = 1.0, speed = 0.5, t0 = 1.0;
+  const auto truth = [&](double t) {  // an arc from (3, 3) heading +x
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    const double a = yaw_rate * t;
+    T.translation() = Eigen::Vector3d(3 + speed / yaw_rate * std::sin(a), 3 + speed / yaw_rate * (1 - std::cos(a)), 1.2);
+    T.linear() = Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return T;
+  };
+  sim::Vlp16Config config;  // range noise 0.008 m
+  config.T_base_lidar = Eigen::Translation3d(0.1, 0.0, 0.25) * Eigen::Isometry3d::Identity();
+  const sim::Vlp16 lidar(config);
+  const auto scan = lidar.scan(world, 0, truth, t0, 7, 0);
+  // The legged preset's odometry at 50 Hz from the start: the only motion the de-skew knows.
+  sim::NoisyOdometry model(sim::odometryPreset("legged"), 11, 0.0);
+  std::vector<sim::StampedPose> odometry;
+  for (int k = 0; k <= 60; ++k) odometry.push_back({k / 50.0, model.step(k / 50.0, truth(k / 50.0)).T_odom_base});
+  const double reference = t0 + 0.06;  // a reading's stamp (k = 53), near the turn's middle
+  // Placed in the box with the truth at the reference: odom -> map is the odometry's own error there.
+  const Eigen::Isometry3d T_map_lidar = truth(reference) * config.T_base_lidar;
+  const auto onWalls = [&](const std::vector<Eigen::Vector3f>& points) {
+    std::vector<double> d;
+    for (const auto& p : points) d.push_back(boxFaceDistance(kBox, T_map_lidar * p.cast<double>()));
+    std::sort(d.begin(), d.end());
+    return std::make_pair(d[d.size() / 2], d[d.size() * 99 / 100]);  // median, p99
+  };
+  const auto raw = onWalls(sim::deskewedTurn(scan, {}, reference, config.T_base_lidar));
+  const auto fixed = onWalls(sim::deskewedTurn(scan, odometry, reference, config.T_base_lidar));
+  // 3 sigma of the range noise, plus the odometry's error over 0.06 s (legged: a few mm).
+  EXPECT_LT(fixed.second, 0.03) << "p99 " << fixed.second;
+  EXPECT_LT(fixed.first, 0.01) << "median " << fixed.first;
+  // As cast, the first and last firings are 0.05 rad and 2.5 cm off the reference pose: at
+  // 5 m, a quarter of a metre off the walls.
+  EXPECT_GT(raw.second, 0.15) << "p99 " << raw.second;
+  EXPECT_GT(raw.second, 5 * fixed.second);
 }

@@ -81,6 +81,7 @@ struct Recording {
   // Keeps what `turns` reads from alive.
   std::shared_ptr<RecordedDataset> dataset;
   std::shared_ptr<BagInput> bag;
+  bool deskewed = false;  // the turns are de-skewed (a per-point time field, no --no-deskew)
 };
 
 Recording openDataset(const std::string& dir, const SensorRange& range) {
@@ -131,6 +132,7 @@ Recording openBag(const std::string& path, const BagInputOptions& options) {
   rec.checks.odometry_jumps = findJumps(bag.odometry());
   rec.checks.ground_truth = bag.groundTruthDrops();
   rec.input_bag = path;
+  rec.deskewed = bag.timed() && options.deskew;
   for (const auto& w : bag.warnings()) std::cerr << "warning: " << w << "\n";
   rec.notes = {"odometry: " + bag.odometrySource(), "mount: " + bag.mountSource(),
                deskewNote(bag, options)};
@@ -181,6 +183,7 @@ void run(const LocalizeArgs& args) {
   bimloc::LocalizerConfig config = settings.config;
   if (!args.method.empty()) config.method = *bimloc::methodFromString(args.method);
   config.seed = args.seed;
+  config.points_deskewed = rec.deskewed;  // the free space then leaves the turns' skew out
   config.storey = storey_auto || settings.storey_auto ? std::string() : storeyKey(building, truth_storey);
   bimloc::Localizer localizer(building, rec.T_base_lidar, config);
   ScenarioResult r;

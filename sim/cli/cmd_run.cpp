@@ -39,6 +39,7 @@ struct RunArgs {
   bool multi_storey = false;  // --multi-storey: every storey the stairs reach (docs/multi_storey.md)
   bool altitude = false;      // --altitude: the localizer is given a barometer's altitude
   std::string motion = "tour";  // --motion tour|disambiguate (docs/disambiguate.md)
+  bool no_deskew = false;        // --no-deskew: the turns as cast (sensor.deskew false)
 };
 
 void run(const RunArgs& args) {
@@ -71,6 +72,8 @@ void run(const RunArgs& args) {
     s.barometer.enabled = s.barometer.enabled || args.altitude;
   }
   bimloc::cli::applyMotion(scenarios, args.motion);
+  if (args.no_deskew)
+    for (auto& s : scenarios) s.sensor.deskew = false;
 
   std::vector<bool> generated(scenarios.size());
   for (std::size_t i = args.scenarios.size(); i < scenarios.size(); ++i) generated[i] = generate;
@@ -193,6 +196,7 @@ void addRunCommand(CLI::App& app) {
                 "the localizer is given the base's altitude as a barometer reads it (noise, offset, drift: "
                 "docs/multi_storey.md)");
   cmd->add_option("--motion", args->motion, bimloc::cli::kMotionHelp)->check(bimloc::cli::motionCheck())->capture_default_str();
+  cmd->add_flag("--no-deskew", args->no_deskew, bimloc::cli::kNoDeskewHelp);
   cmd->add_flag("--oracle", args->oracle,
                 "also each run's information limit (docs/oracle.md): decidable_at_s (from when the scans ruled out every "
                 "place but the true one), decision_lag_s and decision_ratio; slow (its cost is in the JSON)");

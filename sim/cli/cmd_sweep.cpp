@@ -45,6 +45,7 @@ struct SweepArgs {
   bool multi_storey = false;  // --multi-storey: every storey the stairs reach (docs/multi_storey.md)
   bool altitude = false;      // --altitude: the localizer is given a barometer's altitude
   std::string motion = "tour";  // --motion tour|disambiguate (docs/disambiguate.md)
+  bool no_deskew = false;        // --no-deskew: the turns as cast (sensor.deskew false)
 };
 
 // One row: a group of runs (a plan's storey, or all of them).
@@ -97,6 +98,8 @@ void run(const SweepArgs& args) {
     s.barometer.enabled = s.barometer.enabled || args.altitude;
   }
   bimloc::cli::applyMotion(scenarios, args.motion);
+  if (args.no_deskew)
+    for (auto& s : scenarios) s.sensor.deskew = false;
   if (!args.sites.empty() || !args.methods.empty() || !args.plot.empty()) {
     bimloc::cli::RobustnessOptions o;
     o.sites = args.sites.empty() ? std::vector<std::string>{args.site.empty() ? "exact" : args.site} : args.sites;
@@ -237,6 +240,7 @@ void addSweepCommand(CLI::App& app) {
   cmd->add_flag("--altitude", args->altitude,
                 "the localizer is given the base's altitude as a barometer reads it (docs/multi_storey.md)");
   cmd->add_option("--motion", args->motion, bimloc::cli::kMotionHelp)->check(bimloc::cli::motionCheck())->capture_default_str();
+  cmd->add_flag("--no-deskew", args->no_deskew, bimloc::cli::kNoDeskewHelp);
   cmd->add_flag("--oracle", args->oracle,
                 "also each run's information limit (docs/oracle.md): from when the scans ruled out every place but the "
                 "true one (decidable_at_s), the localizer's lag and ratio beyond it, and the summary's quantiles; slow");

@@ -31,6 +31,9 @@ inline constexpr const char* kMotionHelp =
     "how the base moves: tour (the scenarios' own motion; generated starts tour their rooms) or disambiguate (while "
     "the localizer searches, it walks where the localizer suggests looking, then tours; docs/disambiguate.md)";
 inline CLI::IsMember motionCheck() { return CLI::IsMember({"tour", "disambiguate"}); }
+inline constexpr const char* kNoDeskewHelp =
+    "give the localizer each lidar turn as cast, skewed by the base's motion over it (default: de-skewed with the "
+    "base's noisy odometry, as a robot's driver does; the scenarios' sensor.deskew)";
 
 // `--site PRESET`: one of sim/world/site_config.hpp's presets; a typo gets the nearest one.
 CLI::Validator siteCheck();

@@ -35,4 +35,17 @@ void deskew(std::vector<Eigen::Vector3f>& points, const std::vector<double>& tim
   }
 }
 
+std::vector<Eigen::Vector3f> deskewedTurn(const LidarScan& scan, const std::vector<StampedPose>& odometry, double reference_s,
+                                          const Eigen::Isometry3d& T_base_lidar) {
+  std::vector<Eigen::Vector3f> points;
+  points.reserve(scan.points.size());
+  for (const auto& p : scan.points) points.emplace_back(p.x, p.y, p.z);
+  if (odometry.empty()) return points;
+  std::vector<double> time_s;
+  time_s.reserve(scan.points.size());
+  for (const auto& p : scan.points) time_s.push_back(p.time);
+  deskew(points, time_s, scan.stamp_s, reference_s, odometry, T_base_lidar);
+  return points;
+}
+
 }  // namespace bimloc::sim

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "sim/dataset/dataset_reader.hpp"
+#include "sim/lidar/lidar_scan.hpp"
 
 #include <Eigen/Geometry>
 #include <vector>
@@ -22,5 +23,11 @@ Eigen::Isometry3d interpolatePose(const std::vector<StampedPose>& samples, doubl
 // T_odom_lidar(t) = T_odom_base(t) T_base_lidar. `time_s` has one value per point.
 void deskew(std::vector<Eigen::Vector3f>& points, const std::vector<double>& time_s, double stamp_s, double reference_s,
             const std::vector<StampedPose>& odometry, const Eigen::Isometry3d& T_base_lidar);
+
+// A simulated turn's x, y, z (the bench's loop), de-skewed with its per-point `time` into the
+// lidar frame at reference_s; `odometry`: the base's readings over the turn (never the truth).
+// As the turn is cast when `odometry` is empty.
+std::vector<Eigen::Vector3f> deskewedTurn(const LidarScan& scan, const std::vector<StampedPose>& odometry, double reference_s,
+                                          const Eigen::Isometry3d& T_base_lidar);
 
 }  // namespace bimloc::sim

@@ -15,6 +15,10 @@ struct Vlp16Config {
   double dropout_probability = 0.0;  // each return independently lost
   bool motion_distortion = true;     // cast every firing from the sensor pose at its own instant
   bool use_packets = true;           // cast each firing's 16 rays as one Embree packet
+  // The loop de-skews each turn with the base's noisy odometry before the localizer sees it,
+  // as a robot's driver or LIO does (and `bimloc localize` with a per-point time field):
+  // every point moved into the lidar frame at the mid-turn stamp (run_scenario.cpp).
+  bool deskew = true;
   // Mount: T_base_lidar. Default on top of Spot's body, as on the paper's robot.
   Eigen::Isometry3d T_base_lidar = Eigen::Translation3d(0.0, 0.0, 0.25) * Eigen::Isometry3d::Identity();
 };

@@ -56,6 +56,7 @@ MethodRun::MethodRun(const Scenario& s, const World& plan, const Simulator& sim,
   r_.storey_auto = settings.storey_auto;
   r_.method = toString(config.method);
   if (!r_.storey_auto) config.storey = storeyKey(building, sim.storey());
+  config.points_deskewed = s.sensor.deskew && s.sensor.motion_distortion;  // as the loop gives them (run_scenario.cpp)
   if (s.barometer.enabled) barometer_.emplace(s.barometer, s.seed);
   try {
     localizer_.emplace(building, s.sensor.T_base_lidar, config);

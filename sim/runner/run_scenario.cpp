@@ -1,5 +1,6 @@
 #include "sim/runner/run_scenario.hpp"
 
+#include "sim/dataset/deskew.hpp"
 #include "sim/runner/guided_walk.hpp"
 #include "sim/runner/method_run.hpp"
 #include "sim/base/outside_rooms.hpp"
@@ -20,14 +21,6 @@ double processCpuSeconds() {
 }
 
 namespace {
-
-// The turn's x, y, z; non-finite and out-of-range points are the plane extraction's to drop.
-std::vector<Eigen::Vector3f> scanPoints(const LidarScan& scan) {
-  std::vector<Eigen::Vector3f> points;
-  points.reserve(scan.points.size());
-  for (const auto& p : scan.points) points.emplace_back(p.x, p.y, p.z);
-  return points;
-}
 
 // One simulation, every localizer stepped on each turn in turn: the same scans, the same
 // odometry. hooks[k] takes localizer k's snapshots (none past the end of `hooks`, or empty);
@@ -65,13 +58,28 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   std::vector<OdometrySample> odometry = walk ? std::vector<OdometrySample>() : sim.odometry();
   std::optional<NoisyOdometry> odometry_model;
   if (walk) odometry_model.emplace(sim.odometryModel(sim.trajectory().floor_z(0.0)));
-  const auto odometryAt = [&](double t) {
-    const auto k = static_cast<std::size_t>(std::llround(t * s.odometry.rate_hz));
+  // The reading k (at k / rate_hz); a guided walk's are drawn as the base goes, up to k.
+  const auto readingAt = [&](std::size_t k) {
     while (odometry_model && odometry.size() <= k) {
       const double tk = static_cast<double>(odometry.size()) / s.odometry.rate_hz;
       odometry.push_back(odometry_model->step(tk, walk->T_map_base(tk)));
     }
-    return odometry[std::min(k, odometry.size() - 1)].T_odom_base;
+    return odometry[std::min(k, odometry.size() - 1)];
+  };
+  const auto readingIndex = [&](double t) { return static_cast<std::size_t>(std::llround(t * s.odometry.rate_hz)); };
+  // De-skew (sensor.deskew): the readings from the turn's first firing to its last, never past
+  // its end (a guided walk's poses after it are not decided yet), and never the truth.
+  const bool deskew_turns = s.sensor.deskew && s.sensor.motion_distortion;
+  const auto readingsOver = [&](double t0_s, double t1_s) {
+    std::vector<StampedPose> span;
+    const double rate = s.odometry.rate_hz;
+    const auto k0 = static_cast<std::size_t>(std::max(0.0, std::floor(t0_s * rate + 1e-6)));
+    const auto k1 = static_cast<std::size_t>(std::max(0.0, std::floor(t1_s * rate + 1e-6)));
+    for (std::size_t k = k0; k <= k1; ++k) {
+      const OdometrySample o = readingAt(k);
+      if (span.empty() || o.stamp_s > span.back().stamp_s) span.push_back({o.stamp_s, o.T_odom_base});
+    }
+    return span;
   };
   // The oracle's record of the run (bounded: keyframes of a few hundred band points), and the
   // floor under the start and the true start it needs.
@@ -89,13 +97,18 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
         walk ? sim.turnAlong(i, [&walk](double t) { return walk->T_map_base(t); }) : sim.turn(i);
     // The turn sweeps for a whole period: its planes are best explained by the mid-turn pose.
     const double t = scan.stamp_s + half_turn;
-    const Eigen::Isometry3d T_odom_base = odometryAt(t);
+    const OdometrySample reading = readingAt(readingIndex(t));
+    const Eigen::Isometry3d T_odom_base = reading.T_odom_base;
     const Eigen::Isometry3d truth = truthAt(t);
     if (i > 0) path_length_m += (truth.translation() - previous_truth.translation()).head<2>().norm();
     previous_truth = truth;
     std::optional<std::vector<Eigen::Vector3f>> points;  // made once a turn, when a localizer reads them
     const Localizer::PointSource source = [&] {
-      if (!points) points = scanPoints(scan);
+      // De-skewed into the lidar frame at the reading the localizer is given with the turn.
+      // Non-finite and out-of-range points are the plane extraction's to drop.
+      if (!points)
+        points = deskewedTurn(scan, deskew_turns ? readingsOver(scan.stamp_s, scan.stamp_s + 2 * half_turn) : std::vector<StampedPose>{},
+                              reading.stamp_s, s.sensor.T_base_lidar);
       return *points;
     };
     if (with_oracle) {

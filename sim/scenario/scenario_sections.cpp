@@ -164,7 +164,7 @@ MotionConfig readMotion(const Mapping& top, std::map<std::string, int>& lines) {
 
 Vlp16Config readSensor(const Mapping& top) {
   const Mapping m = top.mapping("sensor", {"rpm", "min_range_m", "max_range_m", "range_noise_sigma_m",
-                                           "dropout_probability", "motion_distortion", "packets", "mount"});
+                                           "dropout_probability", "motion_distortion", "deskew", "packets", "mount"});
   Vlp16Config sensor;
   m.read("rpm", sensor.rpm, Range::closed(300.0, 1200.0));
   if (std::fmod(sensor.rpm, 60.0) != 0.0)
@@ -176,6 +176,7 @@ Vlp16Config readSensor(const Mapping& top) {
   m.read("range_noise_sigma_m", sensor.range_noise_sigma_m, Range::closed(0.0, 1.0));
   m.read("dropout_probability", sensor.dropout_probability, Range::closed(0.0, 1.0));
   m.read("motion_distortion", sensor.motion_distortion);
+  m.read("deskew", sensor.deskew);
   m.read("packets", sensor.use_packets);
 
   const Mapping mount = m.mapping("mount", {"xyz", "rpy_deg"});

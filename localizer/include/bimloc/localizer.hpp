@@ -69,6 +69,11 @@ struct LocalizerConfig {
   // storey; the tracker goes on there. With an altitude, the first search leaves out the
   // storeys it rules out (storey unknown).
   storeys::StoreyFollowConfig storeys;
+  // The points given to step() are de-skewed: every point moved into the lidar frame at the
+  // step's stamp with the odometry over the turn (a driver's or LIO's de-skew; the bench's
+  // loop and `bimloc localize` with a per-point time field). The free-space evidence then
+  // leaves the turn's skew out, but for the odometry's own error over it (range_profile.hpp).
+  bool points_deskewed = false;
 };
 
 enum class LocalizationState {

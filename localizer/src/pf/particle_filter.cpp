@@ -131,6 +131,13 @@ RangeProfileConfig profileConfig(const ParticleFilterConfig& config) {
   return c;
 }
 
+void setTurnSkew(RangeProfile& profile, const Eigen::Vector3d& moved, bool deskewed, const ParticleFilterConfig& config) {
+  const double half_m = 0.5 * moved.head<2>().norm(), half_rad = 0.5 * std::abs(moved.z());
+  profile.skew_m = deskewed ? config.motion_noise_xy_per_m * half_m : half_m;
+  profile.skew_yaw_rad =
+      deskewed ? config.motion_noise_yaw_per_rad * half_rad + config.motion_noise_yaw_per_m_rad * half_m : half_rad;
+}
+
 UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& walls, const RangeProfile* profile) {
   auto& m = *impl_;
   m.profile = profile;

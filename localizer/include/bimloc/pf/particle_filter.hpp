@@ -146,6 +146,11 @@ struct ParticleFilterConfig {
 
 // The range profile's settings of a filter configuration (its free_space_band_*, _bin_deg).
 RangeProfileConfig profileConfig(const ParticleFilterConfig& config);
+// Sets profile.skew_* (range_profile.hpp) for a turn over which the odometry moved `moved`
+// (x, y, yaw since the last step): half of it for a turn as the lidar gave it; for a
+// de-skewed one, what is left is the odometry's own error over that half, as the filter's
+// motion model states it (motion_noise_*: sigma per metre and per radian of the increment).
+void setTurnSkew(RangeProfile& profile, const Eigen::Vector3d& moved, bool deskewed, const ParticleFilterConfig& config);
 
 struct Particle {
   double x = 0, y = 0, yaw = 0;  // map frame

@@ -31,7 +31,8 @@ struct RangeProfile {
   // spans the interval between steps, and a robot turning at 60 deg/s turns 6 deg in it, so a
   // turn not de-skewed puts its first and last rays up to 3 deg (1 m at 20 m) off the
   // mid-turn pose. Half the odometry's heading and position change since the last step
-  // (Localizer::step); 0 for a de-skewed turn or a standing robot.
+  // (Localizer::step, setTurnSkew); for a de-skewed turn, the odometry's error over that half
+  // (LocalizerConfig::points_deskewed); 0 for a standing robot.
   double skew_yaw_rad = 0.0;
   double skew_m = 0.0;
   bool empty() const { return ends_base.empty(); }
