@@ -115,3 +115,23 @@ TEST(FaceShortlist, ARegionHoldsOnlyItsPoses) {
   p.yaw = 3.1, p.x = 10.45;
   EXPECT_FALSE(list.holds(p));
 }
+
+// The match radius with its range-free part worked out once (MatchReach) is the formula of
+// face_index.hpp, written out here, to the bit.
+TEST(FaceShortlist, TheMatchReachIsTheMatchRadiusFormula) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> sigma_d(0.01, 1.0), angle(0.001, 0.5), gate(1.0, 30.0), margin(0.0, 1.0), range(0.0, 40.0);
+  int finite = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const double s = sigma_d(rng), a = k % 50 == 0 ? 1.5 : angle(rng), g = gate(rng), m = margin(rng), r = range(rng);
+    const double kk = std::sqrt(g), turn = std::sqrt(2.0) * kk * a;
+    const double formula = turn >= M_PI ? std::numeric_limits<double>::infinity()
+                                        : std::hypot(kk * s + 2.0 * std::sin(0.5 * turn) * r + 0.1, m);
+    const MatchReach reach(s, a, g, m);
+    EXPECT_EQ(reach.at(r), formula);
+    EXPECT_EQ(matchRadius(r, s, a, g, m), formula);
+    finite += std::isfinite(formula);
+  }
+  EXPECT_GT(finite, 15000);
+  EXPECT_LT(finite, 20000);
+}

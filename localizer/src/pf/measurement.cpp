@@ -68,6 +68,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   const double margin_m = c.segment_margin_m;
   const double max_angle_rad = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
   const FaceIndex* fine = rooms.fineIndex();
+  const MatchReach reach_of(c.sigma_d_m, max_angle_rad, gate, margin_m);
   const auto faceAt = [&](const Landmark& l) { return static_cast<std::uint32_t>(&l - index->faces().data()); };
   // A point of the yaw-free base frame, in the map at the particle's pose.
   const auto inMap = [&](const Eigen::Vector2d& b) { return Eigen::Vector2d(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y()); };
@@ -88,7 +89,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const double span_half = 0.5 * (span_known ? o.wall_span_m : o.extent_m);
     // Without the room factor, only the faces that pass near the plane's points can match it
     // (face_index.hpp): the same best match as over every face, at the cost of what is near.
-    const double radius = via_index ? matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, margin_m) : 0.0;
+    const double radius = shortlist ? shortlist->radius_m[k] : via_index ? reach_of.at(o.range_m) : 0.0;
     const bool indexed = via_index && radius < kIndexedRadiusM;
     const bool cell_ordered = indexed && fine;
     double best = gate;
@@ -179,7 +180,7 @@ FaceShortlist shortlistFaces(const Eigen::Vector3d& centre, double xy_radius_m, 
   s.centre = centre, s.xy_radius_m = xy_radius_m, s.yaw_radius = yaw_radius;
   const FaceIndex* index = every_face.faceIndex();
   if (!index || !every_face.seesEveryFace()) return s;  // not a local search's faces: no shortlist
-  s.match.resize(observations.size()), s.hide.resize(observations.size());
+  s.match.resize(observations.size()), s.hide.resize(observations.size()), s.radius_m.resize(observations.size());
   const double gate = c.gate_mahalanobis2, reach = std::sqrt(gate);
   const double sigma_az = c.sigma_azimuth_deg * M_PI / 180.0;
   const double max_angle_rad = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
@@ -199,7 +200,7 @@ FaceShortlist shortlistFaces(const Eigen::Vector3d& centre, double xy_radius_m, 
     const double azimuth = o.azimuth_base + centre.z();
     // matchObservations' candidates: the faces within the match radius of the centroid, of
     // the wall's heights, whose angle alone does not put them beyond the gate at every yaw.
-    const double radius = matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, c.segment_margin_m);
+    const double radius = s.radius_m[k] = matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, c.segment_margin_m);
     if (radius < kIndexedRadiusM)
       index->forEachNear(inMap(o.centroid_base), radius + moves(o.centroid_base), [&](const Landmark& l) {
         const double e_az = leastAngle(azimuth, l) / sigma_az;

@@ -65,6 +65,7 @@ struct FaceShortlist {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double xy_radius_m = 0, yaw_radius = 0;
   std::vector<std::vector<const Landmark*>> match, hide;  // per observation
+  std::vector<double> radius_m;  // per observation: its match radius (matchRadius), the same at every pose
   bool holds(const Particle& p) const {
     return std::hypot(p.x - centre.x(), p.y - centre.y()) <= xy_radius_m && std::abs(wrapAngle(p.yaw - centre.z())) <= yaw_radius;
   }
