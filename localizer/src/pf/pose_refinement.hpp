@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace bimloc::pf::detail {
@@ -46,13 +47,14 @@ struct RefinementScan {
 
 // One scan of the window matched with the base at map <- odom `T_map_odom`, as the local
 // search scores it (with a `shortlist` of this scan's faces, through it where it holds the pose:
-// the same result), as the local
+// the same result; with a finite `floor`, stopped below it as matchObservations is), as the local
 // search scores it: every face a candidate, out of rooms not penalised (a doorway is no worse
 // a place), a plane in a face's openings grown by `opening_margin_m` not the face, one seen
 // through a solid face a contradiction (measurement.hpp). With `per_observation`, each match.
 MatchResult matchScanAt(const Eigen::Vector3d& T_map_odom, const RefinementScan& scan, const RoomIndex& every_face,
                         const ParticleFilterConfig& model, double opening_margin_m,
-                        std::vector<ObservationMatch>* per_observation = nullptr, const FaceShortlist* shortlist = nullptr);
+                        std::vector<ObservationMatch>* per_observation = nullptr, const FaceShortlist* shortlist = nullptr,
+                        double floor = -std::numeric_limits<double>::infinity());
 
 // Each scan's faces (FaceShortlist) for every pose now within r.search_m of `centre` and
 // kShortlistYawRad of its heading: a pose beyond (the pattern search may turn farther) is
