@@ -44,7 +44,7 @@ bool behindSolidFace(const Observation& o, const Landmark& l, const Eigen::Vecto
 
 MatchResult matchObservations(const Particle& p, double z_base, const std::vector<Observation>& observations,
                               const RoomIndex& rooms, const ParticleFilterConfig& c, std::vector<ObservationMatch>* per_observation,
-                              bool out_of_rooms_penalised, double floor, double opening_margin_m) {
+                              bool out_of_rooms_penalised, double floor, double opening_margin_m, const FaceShortlist* shortlist) {
   MatchResult result;
   const double gate = c.gate_mahalanobis2;
   if (per_observation) per_observation->clear();
@@ -68,6 +68,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   const double margin_m = c.segment_margin_m;
   const double max_angle_rad = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
   const FaceIndex* fine = rooms.fineIndex();
+  const MatchReach reach_of(c.sigma_d_m, max_angle_rad, gate, margin_m);
   const auto faceAt = [&](const Landmark& l) { return static_cast<std::uint32_t>(&l - index->faces().data()); };
   // A point of the yaw-free base frame, in the map at the particle's pose.
   const auto inMap = [&](const Eigen::Vector2d& b) { return Eigen::Vector2d(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y()); };
@@ -76,7 +77,10 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     double azimuth, d, cost;
   };
   std::vector<Unexplained> unexplained;
-  for (const auto& o : observations) {
+  // The shortlist stands for the index only where the index would be asked: every face a candidate.
+  if (shortlist && !(index && rooms.seesEveryFace() && shortlist->match.size() == observations.size())) shortlist = nullptr;
+  for (std::size_t k = 0; k < observations.size(); ++k) {
+    const Observation& o = observations[k];
     // The observed normal in the map (a plane moves with a pose: n' = R n).
     const double nx = cy * o.normal_base.x() - sy * o.normal_base.y(), ny = sy * o.normal_base.x() + cy * o.normal_base.y();
     const double azimuth = o.azimuth_base + p.yaw, elevation = o.elevation;
@@ -90,7 +94,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const double span_half = 0.5 * (span_known ? o.wall_span_m : o.extent_m);
     // Without the room factor, only the faces that pass near the plane's points can match it
     // (face_index.hpp): the same best match as over every face, at the cost of what is near.
-    const double radius = via_index ? matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, margin_m) : 0.0;
+    const double radius = shortlist ? shortlist->radius_m[k] : via_index ? reach_of.at(o.range_m) : 0.0;
     const bool indexed = via_index && radius < kIndexedRadiusM;
     const bool cell_ordered = indexed && fine;
     double best = gate;
@@ -133,7 +137,9 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       best_face = l.id;
       best_landmark = &l;
     };
-    if (indexed)
+    if (indexed && shortlist)
+      for (const Landmark* l : shortlist->match[k]) consider(*l);
+    else if (indexed)
       index->forEachNear(centroid, radius, consider);
     else
       for (const auto& l : landmarks) consider(l);
@@ -151,7 +157,9 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       // A face that hides the plane crosses the rays from the sensor to its support, all of
       // which lie within half the distance plus half the span of their middle: what the robot
       // sees, not the building.
-      if (index)
+      if (shortlist)
+        for (const Landmark* l : shortlist->hide[k]) hides(*l);
+      else if (index)
         index->forEachNear(0.5 * (sensor + span_middle), 0.5 * (span_middle - sensor).norm() + span_half, hides);
       else
         for (const auto& l : landmarks) hides(l);
@@ -186,6 +194,55 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     }
   }
   return result;
+}
+
+FaceShortlist shortlistFaces(const Eigen::Vector3d& centre, double xy_radius_m, double yaw_radius, double z_base,
+                             const std::vector<Observation>& observations, const RoomIndex& every_face, const ParticleFilterConfig& c,
+                             double opening_margin_m) {
+  FaceShortlist s;
+  s.centre = centre, s.xy_radius_m = xy_radius_m, s.yaw_radius = yaw_radius;
+  const FaceIndex* index = every_face.faceIndex();
+  if (!index || !every_face.seesEveryFace()) return s;  // not a local search's faces: no shortlist
+  s.match.resize(observations.size()), s.hide.resize(observations.size()), s.radius_m.resize(observations.size());
+  const double gate = c.gate_mahalanobis2, reach = std::sqrt(gate);
+  const double sigma_az = c.sigma_azimuth_deg * M_PI / 180.0;
+  const double max_angle_rad = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
+  const double cy = std::cos(centre.z()), sy = std::sin(centre.z());
+  const auto inMap = [&](const Eigen::Vector2d& b) {
+    return Eigen::Vector2d(centre.x() + cy * b.x() - sy * b.y(), centre.y() + sy * b.x() + cy * b.y());
+  };
+  // How far a point of the base frame moves over the region (a turn by yaw_radius moves it at
+  // most |b| yaw_radius), with a centimetre for rounding: the shortlist may hold more, never less.
+  const auto moves = [&](const Eigen::Vector2d& b) { return xy_radius_m + b.norm() * yaw_radius + 0.01; };
+  // The angle between the plane and a face at the region's best yaw for it, less a hair.
+  const auto leastAngle = [&](double azimuth, const Landmark& l) {
+    return std::max(0.0, std::abs(wrapAngle(azimuth - l.azimuth)) - yaw_radius - 1e-9);
+  };
+  for (std::size_t k = 0; k < observations.size(); ++k) {
+    const Observation& o = observations[k];
+    const double azimuth = o.azimuth_base + centre.z();
+    // matchObservations' candidates: the faces within the match radius of the centroid, of
+    // the wall's heights, whose angle alone does not put them beyond the gate at every yaw.
+    const double radius = s.radius_m[k] = matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, c.segment_margin_m);
+    if (radius < kIndexedRadiusM)
+      index->forEachNear(inMap(o.centroid_base), radius + moves(o.centroid_base), [&](const Landmark& l) {
+        const double e_az = leastAngle(azimuth, l) / sigma_az;
+        if (atFaceHeight(o, l, z_base) && e_az * e_az <= gate + 1e-9) s.match[k].push_back(&l);
+      });
+    if (opening_margin_m < 0.0) continue;
+    // The faces that may hide it (behindSolidFace): near the rays from the sensor to its
+    // support, parallel to it within the gate and as high as it.
+    const bool span_known = o.wall_span_m > 0.0 && o.span_middle_base.allFinite();
+    const Eigen::Vector2d middle = span_known ? o.span_middle_base : o.centroid_base;
+    const double half = 0.5 * (span_known ? o.wall_span_m : o.extent_m);
+    const Eigen::Vector2d sensor(centre.x(), centre.y());
+    index->forEachNear(0.5 * (sensor + inMap(middle)), 0.5 * middle.norm() + half + moves(middle), [&](const Landmark& l) {
+      if (z_base + o.z_low < l.z_bottom - kVerticalMarginM || z_base + o.z_high > l.z_top + kVerticalMarginM) return;
+      if (leastAngle(azimuth, l) > reach * sigma_az) return;
+      s.hide[k].push_back(&l);
+    });
+  }
+  return s;
 }
 
 }  // namespace bimloc::pf::detail

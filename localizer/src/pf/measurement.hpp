@@ -7,7 +7,9 @@
 
 #include <bimloc/pf/particle_filter.hpp>
 
+#include <cmath>
 #include <limits>
+#include <vector>
 
 namespace bimloc::pf::detail {
 
@@ -50,6 +52,28 @@ struct ObservationMatch {
   float m2 = 0;
 };
 
+// The faces one scan's observations can match, or be hidden behind, at any pose of a region
+// (within xy_radius_m of centre's x y and yaw_radius of its yaw), for a local search that
+// scores many poses of one scan (the refinement's grid and pattern search): the faces near
+// each observation found once for the region, less those its angle or height rules out at
+// every pose of it, instead of a query of the face index per pose. A superset of what
+// matchObservations visits at each such pose, and its choice among faces does not depend on
+// their order (ties go to the fine index's order, visitsBefore), so the match is the same
+// bits. Only for a RoomIndex without the room factor (every face a candidate), as the local
+// search's is.
+struct FaceShortlist {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double xy_radius_m = 0, yaw_radius = 0;
+  std::vector<std::vector<const Landmark*>> match, hide;  // per observation
+  std::vector<double> radius_m;  // per observation: its match radius (matchRadius), the same at every pose
+  bool holds(const Particle& p) const {
+    return std::hypot(p.x - centre.x(), p.y - centre.y()) <= xy_radius_m && std::abs(wrapAngle(p.yaw - centre.z())) <= yaw_radius;
+  }
+};
+FaceShortlist shortlistFaces(const Eigen::Vector3d& centre, double xy_radius_m, double yaw_radius, double z_base,
+                             const std::vector<Observation>& observations, const RoomIndex& every_face,
+                             const ParticleFilterConfig& config, double opening_margin_m);
+
 // With `out_of_rooms_penalised` false, a pose outside every room is matched like any other
 // (against every face, which needs a RoomIndex without the room factor).
 // With opening_margin_m >= 0, a face does not match a plane whose support (centroid -+ half
@@ -63,10 +87,12 @@ struct ObservationMatch {
 // With a finite `floor`, the match stops (below_floor) as soon as the log-likelihood summed so
 // far is below it: each observation adds a term <= 0, and in floating point a sum never grows
 // by adding one, so the whole would be below it too. Otherwise the result is the same bits.
+// With a `shortlist` (built from these observations, z_base, rooms and config, holding the
+// particle), the faces are taken from it: the same result, faster (see FaceShortlist).
 MatchResult matchObservations(const Particle& particle, double z_base, const std::vector<Observation>& observations,
                               const RoomIndex& rooms, const ParticleFilterConfig& config,
                               std::vector<ObservationMatch>* per_observation = nullptr, bool out_of_rooms_penalised = true,
                               double floor = -std::numeric_limits<double>::infinity(),
-                              double opening_margin_m = -1.0);
+                              double opening_margin_m = -1.0, const FaceShortlist* shortlist = nullptr);
 
 }  // namespace bimloc::pf::detail

@@ -13,6 +13,8 @@
 #include "measurement.hpp"
 
 #include <Eigen/Core>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace bimloc::pf::detail {
@@ -44,12 +46,23 @@ struct RefinementScan {
 };
 
 // One scan of the window matched with the base at map <- odom `T_map_odom`, as the local
+// search scores it (with a `shortlist` of this scan's faces, through it where it holds the pose:
+// the same result; with a finite `floor`, stopped below it as matchObservations is), as the local
 // search scores it: every face a candidate, out of rooms not penalised (a doorway is no worse
 // a place), a plane in a face's openings grown by `opening_margin_m` not the face, one seen
 // through a solid face a contradiction (measurement.hpp). With `per_observation`, each match.
 MatchResult matchScanAt(const Eigen::Vector3d& T_map_odom, const RefinementScan& scan, const RoomIndex& every_face,
                         const ParticleFilterConfig& model, double opening_margin_m,
-                        std::vector<ObservationMatch>* per_observation = nullptr);
+                        std::vector<ObservationMatch>* per_observation = nullptr, const FaceShortlist* shortlist = nullptr,
+                        double floor = -std::numeric_limits<double>::infinity());
+
+// Each scan's faces (FaceShortlist) for every pose now within r.search_m of `centre` and
+// kShortlistYawRad of its heading: a pose beyond (the pattern search may turn farther) is
+// matched through the index, with the same result.
+constexpr double kShortlistYawRad = 5.0 * M_PI / 180.0;
+std::vector<FaceShortlist> windowShortlists(const Eigen::Vector3d& centre, const Eigen::Vector3d& odom_now,
+                                            const std::vector<RefinementScan>& scans, const RoomIndex& every_face,
+                                            const ParticleFilterConfig& model, const PoseRefinementConfig& r);
 
 // The offsets of the local search's grid (step r.grid_step_m) from `min_m` out to r.search_m,
 // nearest first (of poses that fit alike, the nearest is met first).
