@@ -83,30 +83,6 @@ DistanceField::DistanceField(const std::vector<Segment2>& walls, double cell_m, 
   }
 }
 
-float DistanceField::minOver(float x0, float y0, float x1, float y1) const {
-  // Cells whose centres surround a point p: floor((p - lower) / cell) and the next one.
-  int i0 = static_cast<int>(std::floor((x0 - static_cast<float>(lower_.x())) / cell_));
-  int i1 = static_cast<int>(std::floor((x1 - static_cast<float>(lower_.x())) / cell_)) + 1;
-  int j0 = static_cast<int>(std::floor((y0 - static_cast<float>(lower_.y())) / cell_));
-  int j1 = static_cast<int>(std::floor((y1 - static_cast<float>(lower_.y())) / cell_)) + 1;
-  // at() is clamp wherever its cells leave the raster: only the cells inside count.
-  i0 = std::max(i0, 0), j0 = std::max(j0, 0), i1 = std::min(i1, nx_ - 1), j1 = std::min(j1, ny_ - 1);
-  if (i0 > i1 || j0 > j1) return clamp_;
-  const int size = std::max(i1 - i0 + 1, j1 - j0 + 1);
-  if (size == 1) return cell(i0, j0);
-  int k = 0;
-  while ((2 << k) <= size) ++k;  // 2^k <= size < 2^(k+1)
-  const int side = 1 << k;
-  if (k > kLevels || side > nx_ || side > ny_) return 0.0f;
-  // Four squares of side 2^k > size / 2 at the box's corners cover it.
-  const int a0 = std::clamp(i0, 0, nx_ - side), a1 = std::clamp(i1 - side + 1, 0, nx_ - side);
-  const int b0 = std::clamp(j0, 0, ny_ - side), b1 = std::clamp(j1 - side + 1, 0, ny_ - side);
-  const auto& level = levels_[k - 1];
-  const auto q = [&](int i, int j) { return level[static_cast<std::size_t>(j) * nx_ + i]; };
-  const std::uint8_t m = std::min(std::min(q(a0, b0), q(a1, b0)), std::min(q(a0, b1), q(a1, b1)));
-  return static_cast<float>(m) * clamp_ / 255.0f;
-}
-
 std::size_t DistanceField::bytes() const {
   std::size_t n = values_.size() * sizeof(float) + codes_.size();
   for (const auto& l : levels_) n += l.size();

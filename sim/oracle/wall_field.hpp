@@ -35,12 +35,10 @@ class DistanceField {
   // Distance to the nearest wall at p, bilinear between cell centres, at most clamp (and clamp
   // outside the raster).
   float at(float x, float y) const;
-  // A lower bound of at() over the box [x0, x1] x [y0, y1]: the least cell value among the cells
-  // whose centres surround any point of the box.
-  float minOver(float x0, float y0, float x1, float y1) const;
-  // The same bound as a code: the least value over the box in units of clamp / 255, rounded
-  // down (codeDistance(code) <= minOver's value). What the branch-and-bound's inner loop reads:
-  // a table lookup per point instead of a division and a search (PointModel::boundOfCode).
+  // A lower bound of at() over the box [x0, x1] x [y0, y1], as a code: the least value among the
+  // cells whose centres surround any point of the box, in units of clamp / 255 rounded down.
+  // What the branch-and-bound's inner loop reads: a table lookup per point instead of a division
+  // and a search (PointModel::boundOfCode).
   std::uint8_t minCodeOver(float x0, float y0, float x1, float y1) const;
   float codeDistance(std::uint8_t code) const { return static_cast<float>(code) * clamp_ / 255.0f; }
 
@@ -76,9 +74,11 @@ inline float DistanceField::at(float x, float y) const {
 }
 
 inline std::uint8_t DistanceField::minCodeOver(float x0, float y0, float x1, float y1) const {
-  // As minOver, but the box's cells found by multiplying with 1 / cell, which may round across
-  // a cell's edge: the box is grown by a thousandth of a cell each way first, so that every cell
-  // minOver would read is read (one more, at worst: a bound a little looser, never wrong).
+  // Cells whose centres surround a point p: floor((p - lower) / cell) and the next one. They are
+  // found by multiplying with 1 / cell, which may round across a cell's edge: the box is grown by
+  // a thousandth of a cell each way first, so that no such cell is missed (one more, at worst: a
+  // bound a little looser, never wrong). at() is clamp wherever its cells leave the raster: only
+  // the cells inside count. Four squares of side 2^k > size / 2 at the box's corners cover it.
   const float lx = static_cast<float>(lower_.x()), ly = static_cast<float>(lower_.y());
   const float fx0 = (x0 - lx) * inv_cell_ - 1e-3f, fx1 = (x1 - lx) * inv_cell_ + 1e-3f;
   const float fy0 = (y0 - ly) * inv_cell_ - 1e-3f, fy1 = (y1 - ly) * inv_cell_ + 1e-3f;
