@@ -43,7 +43,18 @@ struct BagCloud {  // a sensor_msgs/PointCloud2, or a velodyne_msgs VelodyneScan
   std::string frame_id;
   CloudLayout layout;
   std::vector<std::uint8_t> data;
+  // Or the bytes lent by the reader instead of `data` (a ROS 2 message in its decompressed chunk
+  // or its SQLite row): valid during the visit only; owned() copies them for a cloud kept longer.
+  const std::uint8_t* lent = nullptr;
+  std::size_t lent_size = 0;
   std::vector<BagPacket> packets;  // a VelodyneScan's (layout and data then empty)
+  const std::uint8_t* bytes() const { return lent ? lent : data.data(); }
+  std::size_t byteCount() const { return lent ? lent_size : data.size(); }
+  BagCloud owned() const {
+    BagCloud c = *this;
+    if (lent) c.data.assign(lent, lent + lent_size), c.lent = nullptr, c.lent_size = 0;
+    return c;
+  }
 };
 
 // The cloud's points: the PointCloud2 decoded by its fields (cloud_fields.hpp), or the packets

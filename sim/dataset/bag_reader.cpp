@@ -53,7 +53,7 @@ struct Edge {
 }  // namespace
 
 CloudPoints decodeBagCloud(const BagCloud& cloud, const std::string& where) {
-  if (cloud.packets.empty()) return decodeCloud(cloud.layout, cloud.data.data(), cloud.data.size(), where);
+  if (cloud.packets.empty()) return decodeCloud(cloud.layout, cloud.bytes(), cloud.byteCount(), where);
   std::vector<RawPacket> raw;
   raw.reserve(cloud.packets.size());
   for (const BagPacket& p : cloud.packets) raw.push_back({p.stamp_s, p.data.data(), p.data.size()});
@@ -221,7 +221,7 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
     }
     std::shared_ptr<const BagCloud> first;
     bag.forEachCloud(options.cloud_topic, [&](std::shared_ptr<const BagCloud> c) {
-      first = std::move(c);
+      first = std::make_shared<const BagCloud>(c->owned());  // kept past the visit
       return false;
     });
     if (!first) fail(options.cloud_topic + ": the first message cannot be read as " + bag.typeName(BagMessageKind::kPointCloud2));

@@ -76,14 +76,14 @@ class Ros2BagMessages final : public BagMessages {
         for (const auto& p : scan.packets) out->packets.push_back({p.stamp_s, {p.data, p.data + p.size}});
         return visit(out);
       }
-      ros2::PointCloud2 c = ros2::readPointCloud2(in);
+      // The points' bytes are lent, not copied: BagInput decodes them during the visit.
       auto out = std::make_shared<BagCloud>();
+      const ros2::PointCloud2 c = ros2::readPointCloud2(in, out->lent, out->lent_size);
       out->stamp_s = c.header.stamp.seconds();
       out->frame_id = c.header.frame_id;
       for (const auto& f : c.fields) out->layout.fields.push_back({f.name, f.offset, f.datatype, f.count});
       out->layout.width = c.width, out->layout.height = c.height, out->layout.point_step = c.point_step;
       out->layout.row_step = c.row_step, out->layout.is_bigendian = c.is_bigendian;
-      out->data = std::move(c.data);
       return visit(out);
     });
   }

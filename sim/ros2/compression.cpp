@@ -24,23 +24,32 @@ constexpr std::uint64_t kLargestChunkBytes = std::uint64_t{1} << 30;
 
 }  // namespace
 
-std::vector<std::uint8_t> decompress(const std::string& compression, const std::uint8_t* data, std::size_t size,
-                                     std::uint64_t uncompressed_size, const std::string& where) {
+struct Decompressor::Contexts {
+  std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> zstd{nullptr, ZSTD_freeDCtx};
+  std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> lz4{nullptr, LZ4F_freeDecompressionContext};
+};
+
+Decompressor::Decompressor() : contexts_(std::make_unique<Contexts>()) {}
+Decompressor::~Decompressor() = default;
+
+void Decompressor::decompress(const std::string& compression, const std::uint8_t* data, std::size_t size,
+                              std::uint64_t uncompressed_size, const std::string& where, std::vector<std::uint8_t>& out) {
   auto fail = [&](const std::string& what) -> std::runtime_error {
     return std::runtime_error(where + ": " + (compression.empty() ? "uncompressed" : compression) + " chunk: " + what);
   };
   if (compression.empty()) {
     if (uncompressed_size != size)
       throw fail("uncompressed_size " + std::to_string(uncompressed_size) + " differs from its " + std::to_string(size) + " bytes");
-    return std::vector<std::uint8_t>(data, data + size);
+    out.assign(data, data + size);
+    return;
   }
   if (compression != "zstd" && compression != "lz4") throw fail("unknown compression (bimloc reads zstd, lz4 or none)");
   if (uncompressed_size > largestExpansion(compression, size) || uncompressed_size > kLargestChunkBytes)
     throw fail("uncompressed_size " + std::to_string(uncompressed_size) + " is more than " + std::to_string(size) +
                " compressed bytes can hold (or than a chunk of 1 GiB)");
   // Decompressed as a stream into a buffer that grows with what actually comes out: a damaged
-  // size never allocates more than the data really holds.
-  std::vector<std::uint8_t> out(static_cast<std::size_t>(std::min<std::uint64_t>(uncompressed_size, 16u << 20)));
+  // size never allocates more than the data really holds (beyond what an earlier chunk needed).
+  out.resize(static_cast<std::size_t>(std::min<std::uint64_t>(uncompressed_size, std::max<std::size_t>(out.size(), 16u << 20))));
   std::size_t in_pos = 0, out_pos = 0;
   auto room = [&] {
     if (out_pos < out.size()) return true;
@@ -49,13 +58,15 @@ std::vector<std::uint8_t> decompress(const std::string& compression, const std::
     return true;
   };
   if (compression == "zstd") {
-    std::unique_ptr<ZSTD_DStream, decltype(&ZSTD_freeDStream)> z(ZSTD_createDStream(), ZSTD_freeDStream);
+    if (!contexts_->zstd) contexts_->zstd.reset(ZSTD_createDCtx());
+    ZSTD_DCtx* z = contexts_->zstd.get();
     if (!z) throw fail("no zstd context");
+    ZSTD_DCtx_reset(z, ZSTD_reset_session_only);  // a chunk is a frame of its own; a damaged one left state behind
     while (true) {
       const bool more_room = room();
       ZSTD_inBuffer in{data, size, in_pos};
       ZSTD_outBuffer o{out.data(), more_room ? out.size() : out_pos, out_pos};
-      const std::size_t hint = ZSTD_decompressStream(z.get(), &o, &in);
+      const std::size_t hint = ZSTD_decompressStream(z, &o, &in);
       if (ZSTD_isError(hint)) throw fail(std::string("does not decompress: ") + ZSTD_getErrorName(hint));
       const bool progressed = in.pos != in_pos || o.pos != out_pos;
       in_pos = in.pos, out_pos = o.pos;
@@ -65,13 +76,17 @@ std::vector<std::uint8_t> decompress(const std::string& compression, const std::
       if (!progressed) throw fail("the zstd data ends early (" + std::to_string(in_pos) + " of " + std::to_string(size) + " bytes read)");
     }
   } else {
-    LZ4F_dctx* raw = nullptr;
-    if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) throw fail("no LZ4 context");
-    std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> ctx(raw, LZ4F_freeDecompressionContext);
+    if (!contexts_->lz4) {
+      LZ4F_dctx* raw = nullptr;
+      if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) throw fail("no LZ4 context");
+      contexts_->lz4.reset(raw);
+    }
+    LZ4F_dctx* ctx = contexts_->lz4.get();
+    LZ4F_resetDecompressionContext(ctx);  // a damaged chunk before left it mid-frame
     while (true) {
       const bool more_room = room();
       std::size_t in_n = size - in_pos, out_n = more_room ? out.size() - out_pos : 0;
-      const std::size_t hint = LZ4F_decompress(ctx.get(), out.data() + out_pos, &out_n, data + in_pos, &in_n, nullptr);
+      const std::size_t hint = LZ4F_decompress(ctx, out.data() + out_pos, &out_n, data + in_pos, &in_n, nullptr);
       if (LZ4F_isError(hint)) throw fail(std::string("does not decompress: ") + LZ4F_getErrorName(hint));
       in_pos += in_n, out_pos += out_n;
       if (hint == 0) break;  // the frame is complete
@@ -84,6 +99,12 @@ std::vector<std::uint8_t> decompress(const std::string& compression, const std::
   if (out_pos != uncompressed_size)
     throw fail("decompresses to " + std::to_string(out_pos) + " bytes, not the " + std::to_string(uncompressed_size) + " it declares");
   out.resize(out_pos);
+}
+
+std::vector<std::uint8_t> decompress(const std::string& compression, const std::uint8_t* data, std::size_t size,
+                                     std::uint64_t uncompressed_size, const std::string& where) {
+  std::vector<std::uint8_t> out;
+  Decompressor().decompress(compression, data, size, uncompressed_size, where, out);
   return out;
 }
 

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,24 @@ namespace bimloc::sim::ros2 {
 // decompress to that size.
 std::vector<std::uint8_t> decompress(const std::string& compression, const std::uint8_t* data, std::size_t size,
                                      std::uint64_t uncompressed_size, const std::string& where);
+
+// The same, for a reader that decompresses chunk after chunk: one zstd context and one LZ4
+// context for all of them (a fresh context per chunk costs its allocation and initialisation
+// every time), and the output written into `out`, whose capacity is reused from chunk to chunk.
+// Same bytes, same errors as decompress().
+class Decompressor {
+ public:
+  Decompressor();
+  ~Decompressor();
+  Decompressor(const Decompressor&) = delete;
+  Decompressor& operator=(const Decompressor&) = delete;
+  void decompress(const std::string& compression, const std::uint8_t* data, std::size_t size, std::uint64_t uncompressed_size,
+                  const std::string& where, std::vector<std::uint8_t>& out);
+
+ private:
+  struct Contexts;
+  std::unique_ptr<Contexts> contexts_;
+};
 
 std::vector<std::uint8_t> compress(const std::string& compression, const std::vector<std::uint8_t>& data);
 

@@ -138,9 +138,9 @@ void McapReader::scanData() {
     if (op == mcap::kDataEnd || op == mcap::kFooter) return false;
     if (op == mcap::kChunk) {
       ChunkHeader h = parseChunk(c);
-      inflate(h, path_, buffer);
+      const mcap::ChunkRecords records = inflate(h, path_, decompressor_, buffer);
       const std::string where = path_ + ": chunk at byte " + std::to_string(at) + ", record offset";
-      const auto inner_cut = walkRecords(buffer.data(), buffer.size(), 0, where, [&](std::uint8_t iop, ByteCursor& ic, std::uint64_t) {
+      const auto inner_cut = walkRecords(records.data, records.size, 0, where, [&](std::uint8_t iop, ByteCursor& ic, std::uint64_t) {
         addRecord(iop, ic, where);
         return true;
       });
@@ -171,10 +171,10 @@ std::vector<McapMessage> McapReader::chunkMessages(std::uint64_t at, const std::
                              " bytes runs past the data section");
   ByteCursor c(d + at + mcap::kRecordHeaderBytes, static_cast<std::size_t>(length), path_, at + mcap::kRecordHeaderBytes);
   const ChunkHeader h = parseChunk(c);
-  inflate(h, path_, buffer);
+  const mcap::ChunkRecords records = inflate(h, path_, decompressor_, buffer);
   const std::string where = path_ + ": chunk at byte " + std::to_string(at) + ", record offset";
   std::vector<McapMessage> out;
-  const auto cut = walkRecords(buffer.data(), buffer.size(), 0, where, [&](std::uint8_t op, ByteCursor& m, std::uint64_t) {
+  const auto cut = walkRecords(records.data, records.size, 0, where, [&](std::uint8_t op, ByteCursor& m, std::uint64_t) {
     if (op != mcap::kMessage) return true;
     McapMessage msg;
     const std::uint16_t channel = m.u16("Message channel_id");
@@ -226,28 +226,46 @@ std::optional<std::vector<std::uint64_t>> McapReader::indexedLogTimes(const std:
 void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std::function<void(const McapMessage&)>& visit) const {
   const std::uint8_t* d = file_.data();
   if (indexed_) {
-    // Chunks whose times overlap are read together and their messages merged by log time.
-    std::size_t i = 0;
-    while (i < chunk_indexes_.size()) {
-      std::size_t j = i + 1;
-      std::uint64_t end = chunk_indexes_[i].message_end_time;
-      while (j < chunk_indexes_.size() && chunk_indexes_[j].message_start_time < end)
-        end = std::max(end, chunk_indexes_[j++].message_end_time);
-      std::vector<std::vector<std::uint8_t>> buffers(j - i);
-      std::vector<McapMessage> merged;
-      for (std::size_t k = i; k < j; ++k) {
-        const mcap::ChunkIndex& ci = chunk_indexes_[k];
+    // Merged by log time over the chunks (sorted by their first message's time): a chunk is read
+    // when the merge reaches its first message and released after its last, so that chunks
+    // overlapping in time (a topic written in chunks of its own, spanning the whole recording)
+    // are merged while only the chunks overlapping the time being read are in memory. Ties go
+    // to the earlier chunk, then to the chunk's own order: a stable sort by log time.
+    struct Live {
+      std::vector<std::uint8_t> buffer;
+      std::vector<McapMessage> messages;
+      std::size_t next = 0;
+      std::uint64_t time() const { return messages[next].log_time_ns; }
+    };
+    std::vector<std::vector<std::uint8_t>> pool;  // buffers of released chunks, their capacity reused
+    pool.swap(chunk_buffers_);                      // (taken out: a visit that reads the file again finds its own)
+    std::vector<Live> live;                         // in chunk order
+    std::size_t k = 0;
+    while (true) {
+      int first = -1;
+      for (int l = 0; l < static_cast<int>(live.size()); ++l)
+        if (first < 0 || live[l].time() < live[first].time()) first = l;
+      if (k < chunk_indexes_.size() && (first < 0 || chunk_indexes_[k].message_start_time <= live[first].time())) {
+        const mcap::ChunkIndex& ci = chunk_indexes_[k++];
         bool has_wanted = wanted.empty() || ci.message_index_offsets.empty();
         for (const auto& [channel, offset] : ci.message_index_offsets) has_wanted = has_wanted || wanted.count(channel);
         if (!has_wanted) continue;  // the message indexes say no message of these channels is here
-        std::vector<McapMessage> m = chunkMessages(ci.chunk_start_offset, wanted, buffers[k - i]);
-        merged.insert(merged.end(), m.begin(), m.end());
+        Live chunk;
+        if (!pool.empty()) chunk.buffer = std::move(pool.back()), pool.pop_back();
+        chunk.messages = chunkMessages(ci.chunk_start_offset, wanted, chunk.buffer);
+        if (chunk.messages.empty()) pool.push_back(std::move(chunk.buffer));
+        else live.push_back(std::move(chunk));  // (a moved vector keeps its bytes where they are)
+        continue;
       }
-      if (j - i > 1)
-        std::stable_sort(merged.begin(), merged.end(), [](const auto& a, const auto& b) { return a.log_time_ns < b.log_time_ns; });
-      for (const McapMessage& m : merged) visit(m);
-      i = j;
+      if (first < 0) break;
+      Live& chunk = live[static_cast<std::size_t>(first)];
+      visit(chunk.messages[chunk.next++]);
+      if (chunk.next == chunk.messages.size()) {
+        pool.push_back(std::move(chunk.buffer));
+        live.erase(live.begin() + first);
+      }
     }
+    pool.swap(chunk_buffers_);
     return;
   }
   std::vector<std::uint8_t> buffer;

@@ -5,6 +5,7 @@
 // against the file before it is used.
 #pragma once
 
+#include "sim/ros2/compression.hpp"
 #include "sim/ros2/mapped_file.hpp"
 #include "sim/ros2/mcap_format.hpp"
 
@@ -57,6 +58,9 @@ class McapReader {
 
   std::string path_;
   MappedFile file_;
+  // One decompression context for every chunk read (a reader is used by one thread at a time).
+  mutable Decompressor decompressor_;
+  mutable std::vector<std::vector<std::uint8_t>> chunk_buffers_;  // see forEachMessage
   std::uint64_t data_end_ = 0;  // where the data section ends (the summary or the footer)
   std::map<std::uint16_t, mcap::Schema> schemas_;
   std::map<std::uint16_t, mcap::Channel> channels_;

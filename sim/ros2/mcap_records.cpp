@@ -58,12 +58,17 @@ ChunkHeader parseChunk(ByteCursor& c) {
   return h;
 }
 
-void inflate(const ChunkHeader& h, const std::string& where, std::vector<std::uint8_t>& out) {
-  out = decompress(h.compression, h.records, static_cast<std::size_t>(h.records_size), h.uncompressed_size,
-                   where + ": at byte " + std::to_string(h.records_at));
-  if (h.crc != 0 && crc32Update(0, out.data(), out.size()) != h.crc)
+ChunkRecords inflate(const ChunkHeader& h, const std::string& where, Decompressor& z, std::vector<std::uint8_t>& buffer) {
+  ChunkRecords out{h.records, static_cast<std::size_t>(h.records_size)};
+  if (!h.compression.empty() || h.uncompressed_size != h.records_size) {  // (a size that differs: refused below)
+    z.decompress(h.compression, h.records, static_cast<std::size_t>(h.records_size), h.uncompressed_size,
+                 where + ": at byte " + std::to_string(h.records_at), buffer);
+    out = {buffer.data(), buffer.size()};
+  }
+  if (h.crc != 0 && crc32Update(0, out.data, out.size) != h.crc)
     throw std::runtime_error(where + ": at byte " + std::to_string(h.records_at) +
                              ": the chunk's records do not match their CRC (damaged data)");
+  return out;
 }
 
 ChunkIndex parseChunkIndex(ByteCursor& c) {

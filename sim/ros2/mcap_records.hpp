@@ -4,6 +4,7 @@
 #pragma once
 
 #include "sim/ros2/byte_cursor.hpp"
+#include "sim/ros2/compression.hpp"
 #include "sim/ros2/mcap_format.hpp"
 
 #include <cstdint>
@@ -36,7 +37,13 @@ struct ChunkHeader {  // a Chunk record's fields; `records` points into the file
 };
 ChunkHeader parseChunk(ByteCursor& c);
 
-// The chunk's records, decompressed and checked against their CRC (when it is not 0).
-void inflate(const ChunkHeader& h, const std::string& where, std::vector<std::uint8_t>& out);
+// The chunk's records, decompressed by `z` into `buffer` (the records in the file themselves
+// when the chunk is not compressed: no copy) and checked against their CRC (when it is not 0).
+// The bytes returned are valid while `buffer` and the file are.
+struct ChunkRecords {
+  const std::uint8_t* data = nullptr;
+  std::size_t size = 0;
+};
+ChunkRecords inflate(const ChunkHeader& h, const std::string& where, Decompressor& z, std::vector<std::uint8_t>& buffer);
 
 }  // namespace bimloc::sim::ros2::mcap

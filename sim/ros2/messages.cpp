@@ -109,6 +109,14 @@ TFMessage readTFMessage(CdrReader& in) {
 }
 
 PointCloud2 readPointCloud2(CdrReader& in) {
+  const std::uint8_t* data = nullptr;
+  std::size_t bytes = 0;
+  PointCloud2 c = readPointCloud2(in, data, bytes);
+  c.data.assign(data, data + bytes);
+  return c;
+}
+
+PointCloud2 readPointCloud2(CdrReader& in, const std::uint8_t*& data, std::size_t& data_size) {
   PointCloud2 c;
   c.header = readHeader(in);
   c.height = in.u32();
@@ -126,9 +134,8 @@ PointCloud2 readPointCloud2(CdrReader& in) {
   c.is_bigendian = in.boolean();
   c.point_step = in.u32();
   c.row_step = in.u32();
-  const std::uint32_t bytes = in.sequenceLength(1, "data");
-  const std::uint8_t* data = in.bytes(bytes, "data");
-  c.data.assign(data, data + bytes);
+  data_size = in.sequenceLength(1, "data");
+  data = in.bytes(data_size, "data");
   c.is_dense = in.boolean();
   return c;
 }

@@ -127,6 +127,9 @@ PoseWithCovarianceStamped readPoseWithCovarianceStamped(CdrReader& in);
 TransformStamped readTransformStamped(CdrReader& in);
 TFMessage readTFMessage(CdrReader& in);
 PointCloud2 readPointCloud2(CdrReader& in);
+// The same with `data` left empty: its bytes are lent instead (a pointer into the message,
+// valid while it lives), for a reader that decodes the points straight from the message.
+PointCloud2 readPointCloud2(CdrReader& in, const std::uint8_t*& data, std::size_t& data_size);
 MarkerArray readMarkerArray(CdrReader& in);
 
 void write(CdrWriter& out, const Time& v);

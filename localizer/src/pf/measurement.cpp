@@ -72,11 +72,11 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   const auto faceAt = [&](const Landmark& l) { return static_cast<std::uint32_t>(&l - index->faces().data()); };
   // A point of the yaw-free base frame, in the map at the particle's pose.
   const auto inMap = [&](const Eigen::Vector2d& b) { return Eigen::Vector2d(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y()); };
-  // The local search's unexplained surfaces so far (see below): azimuth, d, the cost counted.
-  struct Unexplained {
-    double azimuth, d, cost;
+  // The local search's pieces (see below): azimuth and d in the scan's frame, cost, support.
+  struct Piece {
+    double azimuth, d, cost, support;
   };
-  std::vector<Unexplained> unexplained;
+  std::vector<Piece> pieces;
   // The shortlist stands for the index only where the index would be asked: every face a candidate.
   if (shortlist && !(index && rooms.seesEveryFace() && shortlist->match.size() == observations.size())) shortlist = nullptr;
   for (std::size_t k = 0; k < observations.size(); ++k) {
@@ -168,30 +168,42 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     // An observation that matches nothing is clutter (the site does not look like the plan
     // yet): it costs what a match at the gate would, so it cannot destroy a good particle.
     if (best < gate) ++result.associated;
-    // In the local search, pieces of one unexplained surface (coplanar within the gate's reach:
-    // a shelving's front cut into pieces by what stands on it, a wall seen between them) are one
-    // piece of clutter, not several independent ones: counted once, at the dearest piece's cost.
-    // Counted per piece, a surface weighed by how many pieces the extractor cut it into, and a
-    // shelf front in five pieces outvoted the wall behind it seen in two (docs/realdata_room.md).
-    double cost = best;
-    if (opening_margin_m >= 0.0 && best >= gate) {
-      const double reach = std::sqrt(gate);
-      const auto same = std::find_if(unexplained.begin(), unexplained.end(), [&](const Unexplained& u) {
-        return std::abs(wrapAngle(o.azimuth_base - u.azimuth)) <= reach / inv_az && std::abs(o.d_offset - u.d) <= reach * c.sigma_d_m;
-      });
-      if (same == unexplained.end()) {
-        unexplained.push_back({o.azimuth_base, o.d_offset, best});
-      } else {
-        cost = std::max(0.0, best - same->cost);
-        same->cost = std::max(same->cost, best);
-      }
-    }
-    result.log_likelihood += -0.5 * cost;
+    // In the local search, the pieces of one surface are weighed together, below.
+    if (opening_margin_m >= 0.0) pieces.push_back({o.azimuth_base, o.d_offset, best, o.support});
+    else result.log_likelihood += -0.5 * best;
     if (per_observation) per_observation->push_back({best_face, static_cast<float>(best)});
     if (result.log_likelihood < floor) {
       result.below_floor = true;
       return result;
     }
+  }
+  // In the local search, the pieces of one surface (coplanar within the gate's reach: a
+  // shelving's front cut into pieces by what stands on it, a wall seen between them, a wall and
+  // the cabinet fronts along it) are one observation, not several independent ones: the surface
+  // costs the mean of its pieces' costs, each weighed by its support. Counted per piece, a
+  // surface weighed by how many pieces the extractor cut it into: a shelf front in five pieces
+  // outvoted the wall behind it seen in two (docs/realdata_room.md). And counted per piece
+  // while matched but once while unexplained (session 15's rule), matching a wall cost more
+  // than leaving it and the cabinets along it unexplained, and a piece just inside the gate cost
+  // a gate of its own while one just outside joined its neighbours: the PandarXT32's frame was
+  // fitted 0.29 m off (docs/results/2026-11-27-h29close.md). The mean is continuous in the
+  // pose, is a lone piece's own cost, a clutter's (the gate) when no piece is explained, and
+  // lets no small piece stand for the whole surface.
+  if (opening_margin_m >= 0.0) {
+    const double reach = std::sqrt(gate);
+    struct Surface {
+      double azimuth, d, weighted_cost, support;
+    };
+    std::vector<Surface> surfaces;
+    for (const Piece& piece : pieces) {
+      const auto same = std::find_if(surfaces.begin(), surfaces.end(), [&](const Surface& u) {
+        return std::abs(wrapAngle(piece.azimuth - u.azimuth)) <= reach / inv_az && std::abs(piece.d - u.d) <= reach * c.sigma_d_m;
+      });
+      if (same == surfaces.end()) surfaces.push_back({piece.azimuth, piece.d, piece.cost * piece.support, piece.support});
+      else same->weighted_cost += piece.cost * piece.support, same->support += piece.support;
+    }
+    for (const Surface& u : surfaces) result.log_likelihood += -0.5 * u.weighted_cost / u.support;
+    if (result.log_likelihood < floor) result.below_floor = true;
   }
   return result;
 }

@@ -22,6 +22,9 @@ struct Observation {
   double elevation = 0;         // asin(n_z): the same for every particle
   Eigen::Vector2d centroid_base = Eigen::Vector2d::Zero();  // of its points, x y in the yaw-free base frame
   double range_m = 0;  // 3D distance of the centroid from the base's origin (bounds where a match can lie)
+  // The plane's support (ObservedPlane::inliers, voxels): what a piece weighs within its surface
+  // in the local search (matchObservations).
+  double support = 1.0;
   double extent_m = 0;  // the support's span along the plane, horizontally (0: unknown)
   // Where along the plane its support stands as a wall (ObservedPlane::wall_span_m): length,
   // and middle x y in the yaw-free base frame (not finite: unknown, no check along the line).

@@ -99,6 +99,7 @@ std::vector<detail::Observation> ParticleFilter::Impl::observe(const std::vector
     o.centroid_base = centroid.allFinite() ? centroid.head<2>() : Eigen::Vector2d(-o.d_offset * o.normal_base.head<2>());
     o.range_m = centroid.allFinite() ? centroid.norm() : std::abs(o.d_offset);
     o.extent_m = std::isfinite(w.extent_m) && w.extent_m > 0.0 ? w.extent_m : 0.0;
+    o.support = std::max(1, w.inliers);
     const Eigen::Vector3d middle = R_bl * w.wall_span_middle + t_bl;
     if (middle.allFinite() && std::isfinite(w.wall_span_m) && w.wall_span_m > 0.0)
       o.span_middle_base = middle.head<2>(), o.wall_span_m = w.wall_span_m;
