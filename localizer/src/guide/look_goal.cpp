@@ -1,5 +1,6 @@
 #include <bimloc/guide/look_goal.hpp>
 
+#include "ray_fan.hpp"
 #include "walk_grid.hpp"
 #include "wall_slice.hpp"
 
@@ -26,7 +27,9 @@ struct GoalPlanner::Impl {
 
   // The walk from `from` to `to` (its own walking distances): as walk() with them.
   double walkFrom(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
-    return walk(grid.from(from, config.goal_walk_max_m), from, to);
+    const double metres = grid.distanceBetween(from, to, config.goal_walk_max_m);
+    if (!std::isfinite(metres)) return metres;
+    return !rooms.inAnyRoom(from) || rooms.inAnyRoom(to) ? metres : std::numeric_limits<double>::infinity();
   }
 
   // The scan from `pose` against `segments` (a subset of walls near it): per ray its range and
@@ -40,10 +43,13 @@ struct GoalPlanner::Impl {
     Scan out;
     out.ranges.resize(static_cast<std::size_t>(n));
     out.walls.resize(static_cast<std::size_t>(n));
+    // Each ray is cast against the segments it can meet (detail::RayFan), in their order: the same
+    // first hit as against them all.
+    const detail::RayFan fan(segments, pose.head<2>(), pose.z(), n, config.scan_range_m);
     for (int k = 0; k < n; ++k) {
       const double a = pose.z() + 2.0 * M_PI * k / n;
       const auto i = static_cast<std::size_t>(k);
-      out.ranges[i] = detail::castRay(segments, pose.head<2>(), Eigen::Vector2d(std::cos(a), std::sin(a)), config.scan_range_m, &out.walls[i]);
+      out.ranges[i] = fan.cast(k, pose.head<2>(), Eigen::Vector2d(std::cos(a), std::sin(a)), config.scan_range_m, &out.walls[i]);
     }
     return out;
   }

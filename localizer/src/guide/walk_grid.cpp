@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <queue>
 #include <utility>
 
 namespace bimloc::guide::detail {
@@ -47,18 +46,55 @@ bool WalkGrid::free(const Eigen::Vector2d& p) const {
 
 WalkGrid::Distances WalkGrid::from(const Eigen::Vector2d& p, double max_m, double snap_m) const {
   Distances d;
+  walk(p, max_m, snap_m, -1, -1, d);
+  return d;
+}
+
+double WalkGrid::distanceBetween(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double max_m, double snap_m) const {
+  int tx = 0, ty = 0;
+  if (!cell(b, tx, ty)) return std::numeric_limits<double>::infinity();
+  Distances d;
+  return walk(a, max_m, snap_m, tx, ty, d);
+}
+
+// Dijkstra over the 8-neighbourhood (a step's length: 1 or sqrt 2 cells), its queue a row of
+// buckets half a cell wide (Dial's): a cell is expanded only once every cell nearer by a step
+// (at least a cell) has been, so each cell is expanded once, with its final distance, in
+// whatever order a bucket holds them. A cell's distance is then the least of its start value
+// and its neighbours' final distances plus a step, as a binary heap's order gives it, to the bit.
+double WalkGrid::walk(const Eigen::Vector2d& p, double max_m, double snap_m, long target_x, long target_y, Distances& d) const {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
   int sx = 0, sy = 0;
-  if (!cell(p, sx, sy) || !(max_m > 0.0)) return d;
+  if (!cell(p, sx, sy) || !(max_m > 0.0)) return kInf;
   const int reach = static_cast<int>(std::ceil(max_m / cell_m_)) + 1;
   d.x0 = std::max(0, sx - reach), d.y0 = std::max(0, sy - reach);
   d.nx = std::min(nx_, sx + reach + 1) - d.x0, d.ny = std::min(ny_, sy + reach + 1) - d.y0;
-  d.metres.assign(static_cast<std::size_t>(d.nx) * static_cast<std::size_t>(d.ny), std::numeric_limits<float>::infinity());
+  d.metres.assign(static_cast<std::size_t>(d.nx) * static_cast<std::size_t>(d.ny), kInf);
   const auto index = [&](int ix, int iy) {
     return static_cast<std::size_t>(iy - d.y0) * static_cast<std::size_t>(d.nx) + static_cast<std::size_t>(ix - d.x0);
   };
   const auto inside = [&](int ix, int iy) { return ix >= d.x0 && iy >= d.y0 && ix < d.x0 + d.nx && iy < d.y0 + d.ny; };
-  using Entry = std::pair<float, std::pair<int, int>>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  const bool has_target = inside(static_cast<int>(target_x), static_cast<int>(target_y)) && target_x >= 0 && target_y >= 0;
+  const std::size_t target = has_target ? index(static_cast<int>(target_x), static_cast<int>(target_y)) : 0;
+  // The window's cells with a border of one: bit 0 the grid's own free flag (a diagonal's
+  // corner may lie just outside the window), bit 1 inside the window (a step may end there).
+  const int px = d.nx + 2;
+  std::vector<std::uint8_t> flags(static_cast<std::size_t>(px) * static_cast<std::size_t>(d.ny + 2), 0);
+  for (int iy = -1; iy <= d.ny; ++iy)
+    for (int ix = -1; ix <= d.nx; ++ix)
+      flags[static_cast<std::size_t>(iy + 1) * static_cast<std::size_t>(px) + static_cast<std::size_t>(ix + 1)] =
+          static_cast<std::uint8_t>((freeCell(d.x0 + ix, d.y0 + iy) ? 1 : 0) | (ix >= 0 && iy >= 0 && ix < d.nx && iy < d.ny ? 2 : 0));
+  struct Entry {
+    float metres;
+    int ix, iy;  // in the grid
+  };
+  const double width = 0.5 * cell_m_;
+  const std::size_t buckets_n = static_cast<std::size_t>(std::max(max_m, snap_m) / width) + 2;
+  std::vector<std::vector<Entry>> buckets(buckets_n);
+  const auto push = [&](float metres, int ix, int iy, std::size_t at_least) {
+    const std::size_t b = std::min(buckets_n - 1, std::max(at_least, static_cast<std::size_t>(metres / width)));
+    buckets[b].push_back({metres, ix, iy});
+  };
   // The start: its own cell, or every free cell within snap_m, at its straight distance.
   const int snap = static_cast<int>(std::ceil(snap_m / cell_m_));
   for (int iy = sy - snap; iy <= sy + snap; ++iy)
@@ -68,27 +104,35 @@ WalkGrid::Distances WalkGrid::from(const Eigen::Vector2d& p, double max_m, doubl
       if (r > snap_m && !(ix == sx && iy == sy)) continue;
       if (static_cast<float>(r) < d.metres[index(ix, iy)]) {
         d.metres[index(ix, iy)] = static_cast<float>(r);
-        open.push({static_cast<float>(r), {ix, iy}});
+        push(static_cast<float>(r), ix, iy, 0);
       }
     }
-  // Dijkstra over the 8-neighbourhood (a step's length: 1 or sqrt 2 cells).
-  while (!open.empty()) {
-    const auto [dist, at] = open.top();
-    open.pop();
-    if (dist > d.metres[index(at.first, at.second)]) continue;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int ix = at.first + dx, iy = at.second + dy;
-        if ((dx == 0 && dy == 0) || !inside(ix, iy) || !freeCell(ix, iy)) continue;
-        // A diagonal step must not cut a blocked corner.
-        if (dx != 0 && dy != 0 && (!freeCell(at.first + dx, at.second) || !freeCell(at.first, at.second + dy))) continue;
-        const float next = dist + static_cast<float>(cell_m_ * ((dx != 0 && dy != 0) ? M_SQRT2 : 1.0));
-        if (next > max_m || next >= d.metres[index(ix, iy)]) continue;
-        d.metres[index(ix, iy)] = next;
-        open.push({next, {ix, iy}});
-      }
+  const float straight = static_cast<float>(cell_m_ * 1.0), diagonal = static_cast<float>(cell_m_ * M_SQRT2);
+  const auto flag = [&](int ix, int iy) {
+    return flags[static_cast<std::size_t>(iy - d.y0 + 1) * static_cast<std::size_t>(px) + static_cast<std::size_t>(ix - d.x0 + 1)];
+  };
+  for (std::size_t b = 0; b < buckets_n; ++b) {
+    for (std::size_t k = 0; k < buckets[b].size(); ++k) {
+      const Entry e = buckets[b][k];
+      const std::size_t at = index(e.ix, e.iy);
+      if (e.metres > d.metres[at]) continue;
+      if (has_target && at == target) return e.metres;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int ix = e.ix + dx, iy = e.iy + dy;
+          if ((dx == 0 && dy == 0) || flag(ix, iy) != 3) continue;
+          // A diagonal step must not cut a blocked corner.
+          if (dx != 0 && dy != 0 && (!(flag(e.ix + dx, e.iy) & 1) || !(flag(e.ix, e.iy + dy) & 1))) continue;
+          const float next = e.metres + ((dx != 0 && dy != 0) ? diagonal : straight);
+          const std::size_t to = index(ix, iy);
+          if (next > max_m || next >= d.metres[to]) continue;
+          d.metres[to] = next;
+          push(next, ix, iy, b);
+        }
+    }
+    std::vector<Entry>().swap(buckets[b]);
   }
-  return d;
+  return has_target ? d.metres[target] : kInf;
 }
 
 double WalkGrid::distance(const Distances& d, const Eigen::Vector2d& p) const {

@@ -27,12 +27,18 @@ class WalkGrid {
   // From `from` (from the nearest free cell within snap_m when its own has no room for the body:
   // a place's pose is only as good as its fit), every free cell within max_m of walking.
   Distances from(const Eigen::Vector2d& from, double max_m, double snap_m = 0.5) const;
+  // distance(from(a, max_m, snap_m), b), the same value, with the walk stopped once b's cell is
+  // settled (a goal still under way asks one walk per place at every weighing).
+  double distanceBetween(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double max_m, double snap_m = 0.5) const;
   // The walking distance to p (infinity: not free, or not reached).
   double distance(const Distances& d, const Eigen::Vector2d& p) const;
   bool free(const Eigen::Vector2d& p) const;
 
  private:
   bool cell(const Eigen::Vector2d& p, int& ix, int& iy) const;
+  // from() and distanceBetween(): the walk, stopped when the window's cell `target` is settled
+  // (-1: never). Returns that cell's distance (infinity when not reached or no target).
+  double walk(const Eigen::Vector2d& p, double max_m, double snap_m, long target_x, long target_y, Distances& d) const;
   bool freeCell(int ix, int iy) const {
     return ix >= 0 && iy >= 0 && ix < nx_ && iy < ny_ && free_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix)];
   }

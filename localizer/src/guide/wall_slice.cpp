@@ -72,18 +72,20 @@ double castRay(const std::vector<Segment2>& segments, const Eigen::Vector2d& ori
                double max_m, int* wall) {
   double best = max_m;
   if (wall) *wall = -1;
-  for (const auto& s : segments) {
-    const Eigen::Vector2d e = s.b - s.a;
-    const double denom = cross2(direction, e);
-    if (std::abs(denom) < 1e-12) continue;  // parallel: a grazing ray hits the neighbouring face
-    const Eigen::Vector2d w = s.a - origin;
-    const double t = cross2(w, e) / denom, u = cross2(w, direction) / denom;
-    if (t > 0 && t < best && u >= 0 && u <= 1) {
-      best = t;
-      if (wall) *wall = s.wall;
-    }
-  }
+  for (const auto& s : segments)
+    if (rayMeets(s, origin, direction, best) && wall) *wall = s.wall;
   return best;
+}
+
+bool rayMeets(const Segment2& s, const Eigen::Vector2d& origin, const Eigen::Vector2d& direction, double& best) {
+  const Eigen::Vector2d e = s.b - s.a;
+  const double denom = cross2(direction, e);
+  if (std::abs(denom) < 1e-12) return false;  // parallel: a grazing ray hits the neighbouring face
+  const Eigen::Vector2d w = s.a - origin;
+  const double t = cross2(w, e) / denom, u = cross2(w, direction) / denom;
+  if (!(t > 0 && t < best && u >= 0 && u <= 1)) return false;
+  best = t;
+  return true;
 }
 
 double distanceTo(const Segment2& s, const Eigen::Vector2d& p) {

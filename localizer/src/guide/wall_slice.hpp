@@ -40,6 +40,10 @@ std::vector<Segment2> segmentsNear(const std::vector<Segment2>& segments, const 
 double castRay(const std::vector<Segment2>& segments, const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
                double max_m, int* wall = nullptr);
 
+// castRay's test of one segment: whether the ray meets it nearer than `best` (then `best` is
+// that distance).
+bool rayMeets(const Segment2& s, const Eigen::Vector2d& origin, const Eigen::Vector2d& direction, double& best);
+
 // The distance from p to segment s.
 double distanceTo(const Segment2& s, const Eigen::Vector2d& p);
 
