@@ -14,7 +14,9 @@ WalkGrid::WalkGrid(const std::vector<Segment2>& walls, double clearance_m, doubl
   origin_ = lo - Eigen::Vector2d::Constant(2.0 * cell_m_);
   nx_ = static_cast<int>(std::ceil((hi.x() - origin_.x()) / cell_m_)) + 3;
   ny_ = static_cast<int>(std::ceil((hi.y() - origin_.y()) / cell_m_)) + 3;
-  free_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), 1);
+  free_.assign(static_cast<std::size_t>(nx_ + 2) * static_cast<std::size_t>(ny_ + 2), 0);
+  for (int iy = 0; iy < ny_; ++iy)
+    for (int ix = 0; ix < nx_; ++ix) free_[padded(ix, iy)] = 1;
   // Each wall blocks the cells whose centre lies within the clearance of it: only the cells of
   // its box grown by the clearance are looked at, so the cost is the walls' area, not the floor's.
   for (const auto& s : walls) {
@@ -27,7 +29,7 @@ WalkGrid::WalkGrid(const std::vector<Segment2>& walls, double clearance_m, doubl
     for (int iy = iy0; iy <= iy1; ++iy)
       for (int ix = ix0; ix <= ix1; ++ix) {
         const Eigen::Vector2d c = origin_ + cell_m_ * Eigen::Vector2d(ix + 0.5, iy + 0.5);
-        if (distanceTo(s, c) < clearance_m) free_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix)] = 0;
+        if (distanceTo(s, c) < clearance_m) free_[padded(ix, iy)] = 0;
       }
   }
 }
@@ -76,14 +78,6 @@ double WalkGrid::walk(const Eigen::Vector2d& p, double max_m, double snap_m, lon
   const auto inside = [&](int ix, int iy) { return ix >= d.x0 && iy >= d.y0 && ix < d.x0 + d.nx && iy < d.y0 + d.ny; };
   const bool has_target = inside(static_cast<int>(target_x), static_cast<int>(target_y)) && target_x >= 0 && target_y >= 0;
   const std::size_t target = has_target ? index(static_cast<int>(target_x), static_cast<int>(target_y)) : 0;
-  // The window's cells with a border of one: bit 0 the grid's own free flag (a diagonal's
-  // corner may lie just outside the window), bit 1 inside the window (a step may end there).
-  const int px = d.nx + 2;
-  std::vector<std::uint8_t> flags(static_cast<std::size_t>(px) * static_cast<std::size_t>(d.ny + 2), 0);
-  for (int iy = -1; iy <= d.ny; ++iy)
-    for (int ix = -1; ix <= d.nx; ++ix)
-      flags[static_cast<std::size_t>(iy + 1) * static_cast<std::size_t>(px) + static_cast<std::size_t>(ix + 1)] =
-          static_cast<std::uint8_t>((freeCell(d.x0 + ix, d.y0 + iy) ? 1 : 0) | (ix >= 0 && iy >= 0 && ix < d.nx && iy < d.ny ? 2 : 0));
   struct Entry {
     float metres;
     int ix, iy;  // in the grid
@@ -108,9 +102,9 @@ double WalkGrid::walk(const Eigen::Vector2d& p, double max_m, double snap_m, lon
       }
     }
   const float straight = static_cast<float>(cell_m_ * 1.0), diagonal = static_cast<float>(cell_m_ * M_SQRT2);
-  const auto flag = [&](int ix, int iy) {
-    return flags[static_cast<std::size_t>(iy - d.y0 + 1) * static_cast<std::size_t>(px) + static_cast<std::size_t>(ix - d.x0 + 1)];
-  };
+  // Cells next to a window's cell are on the padded grid (a diagonal's corner may lie just
+  // outside the window): no bounds test for them.
+  const std::uint8_t* free = free_.data();
   for (std::size_t b = 0; b < buckets_n; ++b) {
     for (std::size_t k = 0; k < buckets[b].size(); ++k) {
       const Entry e = buckets[b][k];
@@ -120,9 +114,9 @@ double WalkGrid::walk(const Eigen::Vector2d& p, double max_m, double snap_m, lon
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int ix = e.ix + dx, iy = e.iy + dy;
-          if ((dx == 0 && dy == 0) || flag(ix, iy) != 3) continue;
+          if ((dx == 0 && dy == 0) || !inside(ix, iy) || !free[padded(ix, iy)]) continue;
           // A diagonal step must not cut a blocked corner.
-          if (dx != 0 && dy != 0 && (!(flag(e.ix + dx, e.iy) & 1) || !(flag(e.ix, e.iy + dy) & 1))) continue;
+          if (dx != 0 && dy != 0 && (!free[padded(e.ix + dx, e.iy)] || !free[padded(e.ix, e.iy + dy)])) continue;
           const float next = e.metres + ((dx != 0 && dy != 0) ? diagonal : straight);
           const std::size_t to = index(ix, iy);
           if (next > max_m || next >= d.metres[to]) continue;

@@ -39,8 +39,10 @@ class WalkGrid {
   // from() and distanceBetween(): the walk, stopped when the window's cell `target` is settled
   // (-1: never). Returns that cell's distance (infinity when not reached or no target).
   double walk(const Eigen::Vector2d& p, double max_m, double snap_m, long target_x, long target_y, Distances& d) const;
-  bool freeCell(int ix, int iy) const {
-    return ix >= 0 && iy >= 0 && ix < nx_ && iy < ny_ && free_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix)];
+  bool freeCell(int ix, int iy) const { return ix >= 0 && iy >= 0 && ix < nx_ && iy < ny_ && free_[padded(ix, iy)]; }
+  // free_ holds the grid with a border of one blocked cell: ix in -1 .. nx_, iy in -1 .. ny_.
+  std::size_t padded(int ix, int iy) const {
+    return static_cast<std::size_t>(iy + 1) * static_cast<std::size_t>(nx_ + 2) + static_cast<std::size_t>(ix + 1);
   }
   double cell_m_;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
