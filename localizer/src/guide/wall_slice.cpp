@@ -23,14 +23,51 @@ RoomBoxes::RoomBoxes(const bim::Storey& storey) : storey_(&storey) {
     boxes_.push_back(finite ? Eigen::Vector4d(box.x() - 1e-6, box.y() - 1e-6, box.z() + 1e-6, box.w() + 1e-6)
                             : Eigen::Vector4d(-1e300, -1e300, 1e300, 1e300));
   }
+  // The grid over the finite boxes (an empty room's outline gives an empty box: in no cell).
+  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (std::size_t r = 0; r < boxes_.size(); ++r) {
+    const Eigen::Vector4d& b = boxes_[r];
+    if (b.x() == -1e300) {
+      everywhere_.push_back(r);
+    } else if (b.x() <= b.z() && b.y() <= b.w()) {
+      lo = lo.cwiseMin(b.head<2>()), hi = hi.cwiseMax(b.tail<2>());
+    }
+  }
+  if (!(lo.x() <= hi.x() && lo.y() <= hi.y())) return;
+  origin_ = lo;
+  // At most 1024 cells a side: a site's coordinates can span kilometres.
+  cell_m_ = std::max({2.0, (hi.x() - lo.x()) / 1024.0, (hi.y() - lo.y()) / 1024.0});
+  nx_ = static_cast<long>(std::floor((hi.x() - lo.x()) / cell_m_)) + 1, ny_ = static_cast<long>(std::floor((hi.y() - lo.y()) / cell_m_)) + 1;
+  const auto cellOf = [&](double v, double o, long n) { return std::clamp(static_cast<long>(std::floor((v - o) / cell_m_)), 0L, n - 1); };
+  std::vector<std::vector<std::size_t>> cells(static_cast<std::size_t>(nx_ * ny_));
+  for (std::size_t r = 0; r < boxes_.size(); ++r) {
+    const Eigen::Vector4d& b = boxes_[r];
+    if (b.x() == -1e300 || !(b.x() <= b.z() && b.y() <= b.w())) continue;
+    for (long iy = cellOf(b.y(), lo.y(), ny_); iy <= cellOf(b.w(), lo.y(), ny_); ++iy)
+      for (long ix = cellOf(b.x(), lo.x(), nx_); ix <= cellOf(b.z(), lo.x(), nx_); ++ix) cells[static_cast<std::size_t>(iy * nx_ + ix)].push_back(r);
+  }
+  starts_.assign(cells.size() + 1, 0);
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    starts_[k + 1] = starts_[k] + cells[k].size();
+    members_.insert(members_.end(), cells[k].begin(), cells[k].end());
+  }
+}
+
+bool RoomBoxes::inRoom(std::size_t r, const Eigen::Vector2d& p) const {
+  const Eigen::Vector4d& b = boxes_[r];
+  return p.x() >= b.x() && p.y() >= b.y() && p.x() <= b.z() && p.y() <= b.w() && bim::pointInPolygon(storey_->rooms[r].footprint, p);
 }
 
 bool RoomBoxes::inAnyRoom(const Eigen::Vector2d& p) const {
-  for (std::size_t r = 0; r < boxes_.size(); ++r) {
-    const Eigen::Vector4d& b = boxes_[r];
-    if (p.x() >= b.x() && p.y() >= b.y() && p.x() <= b.z() && p.y() <= b.w() && bim::pointInPolygon(storey_->rooms[r].footprint, p))
-      return true;
-  }
+  for (const std::size_t r : everywhere_)
+    if (inRoom(r, p)) return true;
+  // A box holding p covers p's cell (floor is monotone); p outside the grid is in no finite box.
+  if (nx_ == 0 || !p.allFinite()) return false;
+  const double fx = std::floor((p.x() - origin_.x()) / cell_m_), fy = std::floor((p.y() - origin_.y()) / cell_m_);
+  if (fx < 0 || fy < 0 || fx >= static_cast<double>(nx_) || fy >= static_cast<double>(ny_)) return false;
+  const std::size_t k = static_cast<std::size_t>(static_cast<long>(fy) * nx_ + static_cast<long>(fx));
+  for (std::size_t i = starts_[k]; i < starts_[k + 1]; ++i)
+    if (inRoom(members_[i], p)) return true;
   return false;
 }
 

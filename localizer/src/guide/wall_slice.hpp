@@ -18,15 +18,24 @@ struct Segment2 {
 // Whether a point is in any room of the storey: storey.roomAt(p) != nullptr, the same answer,
 // with each room's outline tested only where its bounding box holds the point (a goal's
 // reachability asks it for every trial goal of every place, and a storey of 100 rooms made
-// each answer 100 outline tests).
+// each answer 100 outline tests), and only the boxes over the point's cell of a grid looked
+// at (100 box tests an answer were still the building's size, not what the robot sees).
 class RoomBoxes {
  public:
   explicit RoomBoxes(const bim::Storey& storey);
   bool inAnyRoom(const Eigen::Vector2d& p) const;
 
  private:
+  bool inRoom(std::size_t r, const Eigen::Vector2d& p) const;
   const bim::Storey* storey_ = nullptr;
   std::vector<Eigen::Vector4d> boxes_;  // per room: x and y least, x and y most, grown by 1e-6 m
+  // The finite boxes by cells: cell k's rooms are members_[starts_[k] .. starts_[k + 1]); a
+  // box covers every cell from its least corner's to its most corner's. Rooms with a
+  // non-finite outline (a box over everything) are tested wherever the point is.
+  double cell_m_ = 2.0;
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  long nx_ = 0, ny_ = 0;
+  std::vector<std::size_t> starts_, members_, everywhere_;
 };
 
 // The solid pieces of every face of the storey at `height_m` above the face's base.
