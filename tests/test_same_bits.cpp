@@ -4,7 +4,8 @@
 // - the guide's walk (a bucket queue, stopped at a target) against a binary-heap Dijkstra;
 // - the de-skew's kept odometry samples against a fresh look-up and slerp per firing;
 // - fitPlane's six moments against the nine of q q^T;
-// - the guide's room test through a grid against storey.roomAt.
+// - the guide's room test through a grid against storey.roomAt;
+// - the guide's walls near a point through a grid against segmentsNear.
 #include "guide/ray_fan.hpp"
 #include "guide/walk_grid.hpp"
 #include "guide/wall_slice.hpp"
@@ -284,4 +285,27 @@ TEST(SameBits, TheRoomGridAnswersAsEveryRoomsBox) {
   }
   EXPECT_GT(inside, 5000);
   EXPECT_LT(inside, 19000);
+}
+
+TEST(SameBits, TheSegmentGridListsWhatSegmentsNearLists) {
+  std::mt19937 rng(2816);
+  std::vector<Segment2> segments = awkwardSegments(rng);
+  segments.push_back({{1.0, 1.0}, {std::numeric_limits<double>::infinity(), 1.0}, 999});  // tested always
+  const guide::detail::SegmentGrid grid(segments);
+  std::uniform_real_distribution<double> xy(-20.0, 35.0), r(0.0, 18.0);
+  std::size_t listed = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const Eigen::Vector2d c(xy(rng), xy(rng));
+    const double radius = k == 0 ? std::numeric_limits<double>::infinity() : k % 100 == 1 ? 0.0 : r(rng);
+    const auto want = guide::detail::segmentsNear(segments, c, radius);
+    const auto got = grid.near(c, radius);
+    ASSERT_EQ(want.size(), got.size()) << c.transpose() << " r " << radius;
+    for (std::size_t i = 0; i < want.size(); ++i) {
+      ASSERT_EQ(want[i].wall, got[i].wall);
+      ASSERT_TRUE(want[i].a == got[i].a && want[i].b == got[i].b);
+    }
+    listed += want.size();
+  }
+  EXPECT_GT(listed, 20000u);
+  EXPECT_TRUE(guide::detail::SegmentGrid().near({0.0, 0.0}, 5.0).empty());
 }

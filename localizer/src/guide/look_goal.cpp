@@ -16,6 +16,7 @@ struct GoalPlanner::Impl {
   std::vector<detail::Segment2> walls;  // the slice at scan height, doors as gaps
   detail::RoomBoxes rooms;              // storey.roomAt's answer, without testing every room's outline
   detail::WalkGrid grid;                // where the body fits, for walking distances
+  detail::SegmentGrid near_walls;       // `walls` near a point, through a grid
 
   // The walk from a place to `to`: its length, or infinity where the body cannot get there
   // (not free, beyond goal_walk_max_m, or out of every room from a room).
@@ -54,7 +55,7 @@ struct GoalPlanner::Impl {
     return out;
   }
   // The same against the walls within the scan's range of the pose.
-  Scan scanAt(const PlanarPose& pose) const { return scan(detail::segmentsNear(walls, pose.head<2>(), config.scan_range_m), pose); }
+  Scan scanAt(const PlanarPose& pose) const { return scan(near_walls.near(pose.head<2>(), config.scan_range_m), pose); }
 
   // The walls that tell two predicted scans apart, as the path evidence counts them (GuideConfig):
   // per wall (the nearer of the two a ray ends on), the rays that differ beyond the gate; a wall
@@ -93,8 +94,9 @@ struct GoalPlanner::Impl {
 
 GoalPlanner::GoalPlanner(const bim::Storey& storey, const GuideConfig& config)
     : impl_(std::make_unique<Impl>(
-          Impl{storey, config, detail::sliceWalls(storey, config.scan_height_m), detail::RoomBoxes(storey), detail::WalkGrid({}, 0.0)})) {
+          Impl{storey, config, detail::sliceWalls(storey, config.scan_height_m), detail::RoomBoxes(storey), detail::WalkGrid({}, 0.0), detail::SegmentGrid()})) {
   impl_->grid = detail::WalkGrid(impl_->walls, config.clearance_m);
+  impl_->near_walls = detail::SegmentGrid(impl_->walls);
 }
 GoalPlanner::~GoalPlanner() = default;
 GoalPlanner::GoalPlanner(GoalPlanner&&) noexcept = default;
@@ -133,7 +135,7 @@ std::optional<LookGoal> GoalPlanner::suggest(const std::vector<Place>& places, c
   std::vector<std::vector<detail::Segment2>> near;
   std::vector<detail::WalkGrid::Distances> walks;
   for (const auto& p : places) {
-    near.push_back(detail::segmentsNear(m.walls, p.T_map_base.head<2>(), c.goal_max_m + c.scan_range_m));
+    near.push_back(m.near_walls.near(p.T_map_base.head<2>(), c.goal_max_m + c.scan_range_m));
     walks.push_back(m.grid.from(p.T_map_base.head<2>(), c.goal_walk_max_m));
   }
   std::optional<LookGoal> best;

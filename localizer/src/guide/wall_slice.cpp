@@ -105,6 +105,61 @@ std::vector<Segment2> segmentsNear(const std::vector<Segment2>& segments, const 
   return out;
 }
 
+SegmentGrid::SegmentGrid(const std::vector<Segment2>& segments, double cell_m) : segments_(&segments), cell_m_(cell_m) {
+  seen_.assign(segments.size(), 0);
+  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const Segment2& s = segments[k];
+    if (!s.a.allFinite() || !s.b.allFinite()) {
+      everywhere_.push_back(k);
+      continue;
+    }
+    lo = lo.cwiseMin(s.a).cwiseMin(s.b), hi = hi.cwiseMax(s.a).cwiseMax(s.b);
+  }
+  if (!(lo.x() <= hi.x() && lo.y() <= hi.y())) return;
+  origin_ = lo;
+  cell_m_ = std::max({cell_m, (hi.x() - lo.x()) / 1024.0, (hi.y() - lo.y()) / 1024.0});  // at most 1024 cells a side
+  nx_ = static_cast<long>(std::floor((hi.x() - lo.x()) / cell_m_)) + 1, ny_ = static_cast<long>(std::floor((hi.y() - lo.y()) / cell_m_)) + 1;
+  std::vector<std::vector<std::size_t>> cells(static_cast<std::size_t>(nx_ * ny_));
+  const auto cellOf = [&](double v, double o, long n) { return std::clamp(static_cast<long>(std::floor((v - o) / cell_m_)), 0L, n - 1); };
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const Segment2& s = segments[k];
+    if (!s.a.allFinite() || !s.b.allFinite()) continue;
+    const Eigen::Vector2d a = s.a.cwiseMin(s.b), b = s.a.cwiseMax(s.b);
+    for (long iy = cellOf(a.y(), lo.y(), ny_); iy <= cellOf(b.y(), lo.y(), ny_); ++iy)
+      for (long ix = cellOf(a.x(), lo.x(), nx_); ix <= cellOf(b.x(), lo.x(), nx_); ++ix) cells[static_cast<std::size_t>(iy * nx_ + ix)].push_back(k);
+  }
+  starts_.assign(cells.size() + 1, 0);
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    starts_[k + 1] = starts_[k] + cells[k].size();
+    members_.insert(members_.end(), cells[k].begin(), cells[k].end());
+  }
+}
+
+std::vector<Segment2> SegmentGrid::near(const Eigen::Vector2d& centre, double radius_m) const {
+  if (!segments_) return {};
+  // Not a finite disc (or no grid): the plain scan.
+  if (nx_ == 0 || !centre.allFinite() || !std::isfinite(radius_m)) return segmentsNear(*segments_, centre, radius_m);
+  std::vector<std::size_t> picked(everywhere_);
+  if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0u), stamp_ = 1;
+  // A segment with a point within the radius has that point in the disc's box, hence a cell of
+  // its own box among the box's cells (floor is monotone; the clamp keeps the grid's edge).
+  const auto cellOf = [&](double v, double o, long n) { return std::clamp(static_cast<long>(std::floor((v - o) / cell_m_)), 0L, n - 1); };
+  const double x0 = centre.x() - radius_m, x1 = centre.x() + radius_m, y0 = centre.y() - radius_m, y1 = centre.y() + radius_m;
+  if (x1 >= origin_.x() && y1 >= origin_.y() && x0 <= origin_.x() + nx_ * cell_m_ && y0 <= origin_.y() + ny_ * cell_m_)
+    for (long iy = cellOf(y0, origin_.y(), ny_); iy <= cellOf(y1, origin_.y(), ny_); ++iy)
+      for (long ix = cellOf(x0, origin_.x(), nx_); ix <= cellOf(x1, origin_.x(), nx_); ++ix) {
+        const std::size_t c = static_cast<std::size_t>(iy * nx_ + ix);
+        for (std::size_t i = starts_[c]; i < starts_[c + 1]; ++i)
+          if (seen_[members_[i]] != stamp_) seen_[members_[i]] = stamp_, picked.push_back(members_[i]);
+      }
+  std::sort(picked.begin(), picked.end());  // the segments' own order
+  std::vector<Segment2> out;
+  for (const std::size_t k : picked)
+    if (distanceTo((*segments_)[k], centre) <= radius_m) out.push_back((*segments_)[k]);
+  return out;
+}
+
 double castRay(const std::vector<Segment2>& segments, const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
                double max_m, int* wall) {
   double best = max_m;

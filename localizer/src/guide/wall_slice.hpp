@@ -6,6 +6,7 @@
 #include <bimloc/bim/building.hpp>
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 namespace bimloc::guide::detail {
@@ -43,6 +44,25 @@ std::vector<Segment2> sliceWalls(const bim::Storey& storey, double height_m);
 
 // The segments with a point within `radius_m` of `centre`.
 std::vector<Segment2> segmentsNear(const std::vector<Segment2>& segments, const Eigen::Vector2d& centre, double radius_m);
+
+// segmentsNear over one set of segments, the same list in the same order, through a grid of
+// their boxes: the cost is what lies near, not the storey's every wall.
+class SegmentGrid {
+ public:
+  SegmentGrid() = default;  // no segments
+  explicit SegmentGrid(const std::vector<Segment2>& segments, double cell_m = 2.0);  // kept by reference
+  std::vector<Segment2> near(const Eigen::Vector2d& centre, double radius_m) const;
+
+ private:
+  const std::vector<Segment2>* segments_ = nullptr;
+  double cell_m_ = 2.0;
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  long nx_ = 0, ny_ = 0;
+  std::vector<std::size_t> starts_, members_;  // cell k's segments: members_[starts_[k] .. starts_[k + 1])
+  std::vector<std::size_t> everywhere_;        // segments with a non-finite end: tested always
+  mutable std::vector<std::uint32_t> seen_;    // per segment: the query that took it last
+  mutable std::uint32_t stamp_ = 0;
+};
 
 // Distance from the ray's origin to the first segment along it, or max_m; with `wall`, that
 // segment's wall (-1: none within max_m).
