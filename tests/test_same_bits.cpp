@@ -154,7 +154,10 @@ TEST(SameBits, TheBucketWalkIsTheHeapWalk) {
     const double max_m = k % 4 == 0 ? 3.0 : 10.0;
     const auto want = heapWalk(grid, origin, cell_m, nx, ny, p, max_m, 0.5);
     const auto got = grid.from(p, max_m);
-    ASSERT_EQ(want.x0, got.x0), ASSERT_EQ(want.y0, got.y0), ASSERT_EQ(want.nx, got.nx), ASSERT_EQ(want.ny, got.ny);
+    ASSERT_EQ(want.x0, got.x0);
+    ASSERT_EQ(want.y0, got.y0);
+    ASSERT_EQ(want.nx, got.nx);
+    ASSERT_EQ(want.ny, got.ny);
     ASSERT_EQ(want.metres.size(), got.metres.size());
     for (std::size_t i = 0; i < want.metres.size(); ++i) {
       ASSERT_EQ(std::memcmp(&want.metres[i], &got.metres[i], sizeof(float)), 0) << "start " << p.transpose() << " cell " << i;
@@ -283,7 +286,7 @@ TEST(SameBits, TheRoomGridAnswersAsEveryRoomsBox) {
     ASSERT_EQ(with_odd.inAnyRoom(p), odd.roomAt(p) != nullptr) << p.transpose();
     inside += storey.roomAt(p) != nullptr ? 1 : 0;
   }
-  EXPECT_GT(inside, 5000);
+  EXPECT_GT(inside, 2000);  // the rooms cover about a fifth of the square
   EXPECT_LT(inside, 19000);
 }
 
