@@ -23,28 +23,28 @@ RoomBoxes::RoomBoxes(const bim::Storey& storey) : storey_(&storey) {
     boxes_.push_back(finite ? Eigen::Vector4d(box.x() - 1e-6, box.y() - 1e-6, box.z() + 1e-6, box.w() + 1e-6)
                             : Eigen::Vector4d(-1e300, -1e300, 1e300, 1e300));
   }
-  // The grid over the finite boxes (an empty room's outline gives an empty box: in no cell).
+  for (std::size_t r = 0; r < boxes_.size(); ++r)
+    if (boxes_[r].x() == -1e300) everywhere_.push_back(r);
+  // The grid over the finite boxes (an empty room's outline gives a reversed box: in no cell).
+  std::vector<Eigen::Vector4d> finite(boxes_);
+  for (std::size_t r : everywhere_) finite[r] = Eigen::Vector4d::Constant(std::nan(""));
+  cells_ = BoxCells(finite, 2.0);
+}
+
+BoxCells::BoxCells(const std::vector<Eigen::Vector4d>& boxes, double cell_m) : cell_m_(cell_m) {
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-  for (std::size_t r = 0; r < boxes_.size(); ++r) {
-    const Eigen::Vector4d& b = boxes_[r];
-    if (b.x() == -1e300) {
-      everywhere_.push_back(r);
-    } else if (b.x() <= b.z() && b.y() <= b.w()) {
-      lo = lo.cwiseMin(b.head<2>()), hi = hi.cwiseMax(b.tail<2>());
-    }
-  }
+  for (const auto& b : boxes)
+    if (usable(b)) lo = lo.cwiseMin(b.head<2>()), hi = hi.cwiseMax(b.tail<2>());
   if (!(lo.x() <= hi.x() && lo.y() <= hi.y())) return;
   origin_ = lo;
-  // At most 1024 cells a side: a site's coordinates can span kilometres.
-  cell_m_ = std::max({2.0, (hi.x() - lo.x()) / 1024.0, (hi.y() - lo.y()) / 1024.0});
+  cell_m_ = std::max({cell_m, (hi.x() - lo.x()) / 1024.0, (hi.y() - lo.y()) / 1024.0});
   nx_ = static_cast<long>(std::floor((hi.x() - lo.x()) / cell_m_)) + 1, ny_ = static_cast<long>(std::floor((hi.y() - lo.y()) / cell_m_)) + 1;
-  const auto cellOf = [&](double v, double o, long n) { return std::clamp(static_cast<long>(std::floor((v - o) / cell_m_)), 0L, n - 1); };
   std::vector<std::vector<std::size_t>> cells(static_cast<std::size_t>(nx_ * ny_));
-  for (std::size_t r = 0; r < boxes_.size(); ++r) {
-    const Eigen::Vector4d& b = boxes_[r];
-    if (b.x() == -1e300 || !(b.x() <= b.z() && b.y() <= b.w())) continue;
-    for (long iy = cellOf(b.y(), lo.y(), ny_); iy <= cellOf(b.w(), lo.y(), ny_); ++iy)
-      for (long ix = cellOf(b.x(), lo.x(), nx_); ix <= cellOf(b.z(), lo.x(), nx_); ++ix) cells[static_cast<std::size_t>(iy * nx_ + ix)].push_back(r);
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    const Eigen::Vector4d& b = boxes[k];
+    if (!usable(b)) continue;
+    for (long iy = cell(b.y(), lo.y(), ny_); iy <= cell(b.w(), lo.y(), ny_); ++iy)
+      for (long ix = cell(b.x(), lo.x(), nx_); ix <= cell(b.z(), lo.x(), nx_); ++ix) cells[static_cast<std::size_t>(iy * nx_ + ix)].push_back(k);
   }
   starts_.assign(cells.size() + 1, 0);
   for (std::size_t k = 0; k < cells.size(); ++k) {
@@ -61,14 +61,10 @@ bool RoomBoxes::inRoom(std::size_t r, const Eigen::Vector2d& p) const {
 bool RoomBoxes::inAnyRoom(const Eigen::Vector2d& p) const {
   for (const std::size_t r : everywhere_)
     if (inRoom(r, p)) return true;
-  // A box holding p covers p's cell (floor is monotone); p outside the grid is in no finite box.
-  if (nx_ == 0 || !p.allFinite()) return false;
-  const double fx = std::floor((p.x() - origin_.x()) / cell_m_), fy = std::floor((p.y() - origin_.y()) / cell_m_);
-  if (fx < 0 || fy < 0 || fx >= static_cast<double>(nx_) || fy >= static_cast<double>(ny_)) return false;
-  const std::size_t k = static_cast<std::size_t>(static_cast<long>(fy) * nx_ + static_cast<long>(fx));
-  for (std::size_t i = starts_[k]; i < starts_[k + 1]; ++i)
-    if (inRoom(members_[i], p)) return true;
-  return false;
+  if (!p.allFinite()) return false;
+  bool in = false;
+  cells_.forEach(p.x(), p.y(), p.x(), p.y(), [&](std::size_t r) { in = in || inRoom(r, p); });
+  return in;
 }
 
 std::vector<Segment2> sliceWalls(const bim::Storey& storey, double height_m) {
@@ -105,54 +101,28 @@ std::vector<Segment2> segmentsNear(const std::vector<Segment2>& segments, const 
   return out;
 }
 
-SegmentGrid::SegmentGrid(const std::vector<Segment2>& segments, double cell_m) : segments_(&segments), cell_m_(cell_m) {
+SegmentGrid::SegmentGrid(const std::vector<Segment2>& segments, double cell_m) : segments_(&segments) {
   seen_.assign(segments.size(), 0);
-  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  std::vector<Eigen::Vector4d> boxes;
   for (std::size_t k = 0; k < segments.size(); ++k) {
     const Segment2& s = segments[k];
-    if (!s.a.allFinite() || !s.b.allFinite()) {
-      everywhere_.push_back(k);
-      continue;
-    }
-    lo = lo.cwiseMin(s.a).cwiseMin(s.b), hi = hi.cwiseMax(s.a).cwiseMax(s.b);
-  }
-  if (!(lo.x() <= hi.x() && lo.y() <= hi.y())) return;
-  origin_ = lo;
-  cell_m_ = std::max({cell_m, (hi.x() - lo.x()) / 1024.0, (hi.y() - lo.y()) / 1024.0});  // at most 1024 cells a side
-  nx_ = static_cast<long>(std::floor((hi.x() - lo.x()) / cell_m_)) + 1, ny_ = static_cast<long>(std::floor((hi.y() - lo.y()) / cell_m_)) + 1;
-  std::vector<std::vector<std::size_t>> cells(static_cast<std::size_t>(nx_ * ny_));
-  const auto cellOf = [&](double v, double o, long n) { return std::clamp(static_cast<long>(std::floor((v - o) / cell_m_)), 0L, n - 1); };
-  for (std::size_t k = 0; k < segments.size(); ++k) {
-    const Segment2& s = segments[k];
-    if (!s.a.allFinite() || !s.b.allFinite()) continue;
     const Eigen::Vector2d a = s.a.cwiseMin(s.b), b = s.a.cwiseMax(s.b);
-    for (long iy = cellOf(a.y(), lo.y(), ny_); iy <= cellOf(b.y(), lo.y(), ny_); ++iy)
-      for (long ix = cellOf(a.x(), lo.x(), nx_); ix <= cellOf(b.x(), lo.x(), nx_); ++ix) cells[static_cast<std::size_t>(iy * nx_ + ix)].push_back(k);
+    boxes.emplace_back(a.x(), a.y(), b.x(), b.y());
+    if (!BoxCells::usable(boxes.back())) everywhere_.push_back(k);
   }
-  starts_.assign(cells.size() + 1, 0);
-  for (std::size_t k = 0; k < cells.size(); ++k) {
-    starts_[k + 1] = starts_[k] + cells[k].size();
-    members_.insert(members_.end(), cells[k].begin(), cells[k].end());
-  }
+  cells_ = BoxCells(boxes, cell_m);
 }
 
 std::vector<Segment2> SegmentGrid::near(const Eigen::Vector2d& centre, double radius_m) const {
   if (!segments_) return {};
   // Not a finite disc (or no grid): the plain scan.
-  if (nx_ == 0 || !centre.allFinite() || !std::isfinite(radius_m)) return segmentsNear(*segments_, centre, radius_m);
+  if (cells_.empty() || !centre.allFinite() || !std::isfinite(radius_m)) return segmentsNear(*segments_, centre, radius_m);
   std::vector<std::size_t> picked(everywhere_);
   if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0u), stamp_ = 1;
-  // A segment with a point within the radius has that point in the disc's box, hence a cell of
-  // its own box among the box's cells (floor is monotone; the clamp keeps the grid's edge).
-  const auto cellOf = [&](double v, double o, long n) { return std::clamp(static_cast<long>(std::floor((v - o) / cell_m_)), 0L, n - 1); };
-  const double x0 = centre.x() - radius_m, x1 = centre.x() + radius_m, y0 = centre.y() - radius_m, y1 = centre.y() + radius_m;
-  if (x1 >= origin_.x() && y1 >= origin_.y() && x0 <= origin_.x() + nx_ * cell_m_ && y0 <= origin_.y() + ny_ * cell_m_)
-    for (long iy = cellOf(y0, origin_.y(), ny_); iy <= cellOf(y1, origin_.y(), ny_); ++iy)
-      for (long ix = cellOf(x0, origin_.x(), nx_); ix <= cellOf(x1, origin_.x(), nx_); ++ix) {
-        const std::size_t c = static_cast<std::size_t>(iy * nx_ + ix);
-        for (std::size_t i = starts_[c]; i < starts_[c + 1]; ++i)
-          if (seen_[members_[i]] != stamp_) seen_[members_[i]] = stamp_, picked.push_back(members_[i]);
-      }
+  // A segment with a point within the radius has that point in the disc's box.
+  cells_.forEach(centre.x() - radius_m, centre.y() - radius_m, centre.x() + radius_m, centre.y() + radius_m, [&](std::size_t k) {
+    if (seen_[k] != stamp_) seen_[k] = stamp_, picked.push_back(k);
+  });
   std::sort(picked.begin(), picked.end());  // the segments' own order
   std::vector<Segment2> out;
   for (const std::size_t k : picked)
