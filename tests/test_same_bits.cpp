@@ -1,7 +1,7 @@
 // Issue 28, Speed (h28speed5): faster ways to the same numbers, each held to the bit against the
 // straightforward computation it replaces, written out here:
 // - the guide's fan of rays (RayFan) against castRay over every segment;
-// - the guide's walk (a bucket queue, stopped at a target) against a binary-heap Dijkstra;
+// - the guide's walk (a bucket queue, stopped at its targets) against a binary-heap Dijkstra;
 // - the de-skew's kept odometry samples against a fresh look-up and slerp per firing;
 // - fitPlane's six moments against the nine of q q^T;
 // - the guide's room test through a grid against storey.roomAt;
@@ -163,11 +163,17 @@ TEST(SameBits, TheBucketWalkIsTheHeapWalk) {
       ASSERT_EQ(std::memcmp(&want.metres[i], &got.metres[i], sizeof(float)), 0) << "start " << p.transpose() << " cell " << i;
       reached += std::isfinite(want.metres[i]) ? 1 : 0;
     }
-    // One target: the walk stopped when it is settled gives the same distance.
+    // One target: the walk stopped when it is settled gives the same distance; and so do many,
+    // at each of them.
+    std::vector<Eigen::Vector2d> targets;
     for (int t = 0; t < 25; ++t) {
       const Eigen::Vector2d q(xy(rng), xy(rng));
       ASSERT_TRUE(sameBits(grid.distance(got, q), grid.distanceBetween(p, q, max_m))) << p.transpose() << " -> " << q.transpose();
+      targets.push_back(t % 2 ? q : p + Eigen::Vector2d(0.3 * t - 3.0, 0.2 * t - 2.0));  // near ones too
     }
+    const auto stopped = grid.from(p, targets, max_m);
+    for (const auto& q : targets)
+      ASSERT_TRUE(sameBits(grid.distance(got, q), grid.distance(stopped, q))) << p.transpose() << " -> " << q.transpose();
   }
   EXPECT_GT(reached, 10000);
 }

@@ -131,45 +131,57 @@ std::optional<LookGoal> GoalPlanner::suggest(const std::vector<Place>& places, c
   const Impl& m = *impl_;
   const GuideConfig& c = m.config;
   if (places.size() < 2 || c.goal_rings < 1 || c.goal_bearings < 1) return std::nullopt;
-  // Each place's walls within reach of any of its goals' scans, and its walking distances: once.
-  std::vector<std::vector<detail::Segment2>> near;
-  std::vector<detail::WalkGrid::Distances> walks;
-  for (const auto& p : places) {
-    near.push_back(m.near_walls.near(p.T_map_base.head<2>(), c.goal_max_m + c.scan_range_m));
-    walks.push_back(m.grid.from(p.T_map_base.head<2>(), c.goal_walk_max_m));
-  }
-  std::optional<LookGoal> best;
-  double best_score = -std::numeric_limits<double>::infinity();
-  std::vector<Impl::Scan> scans(places.size());
-  std::vector<PlanarPose> there(places.size());
+  // The trial goals: motions on rings around the base. Facing the way it walked: the scan is
+  // all round, so the heading only says how it got there.
+  struct Trial {
+    double radius;
+    PlanarPose motion;
+  };
+  std::vector<Trial> trials;
   for (int ring = 0; ring < c.goal_rings; ++ring) {
     const double radius = c.goal_rings == 1 ? c.goal_max_m
                                             : c.goal_min_m + (c.goal_max_m - c.goal_min_m) * ring / (c.goal_rings - 1);
     for (int b = 0; b < c.goal_bearings; ++b) {
       const double bearing = 2.0 * M_PI * b / c.goal_bearings;
-      // Facing the way it walked: the scan is all round, so the heading only says how it got there.
-      const PlanarPose motion(radius * std::cos(bearing), radius * std::sin(bearing), wrapAngle(bearing));
-      // Reachable in every place (through doors: the walking distance), and walked the longest of those.
-      double walk_m = 0;
-      for (std::size_t i = 0; i < places.size() && std::isfinite(walk_m); ++i) {
-        there[i] = compose(places[i].T_map_base, motion);
-        walk_m = std::max(walk_m, m.walk(walks[i], places[i].T_map_base.head<2>(), there[i].head<2>()));
-      }
-      if (!std::isfinite(walk_m)) continue;
-      for (std::size_t i = 0; i < places.size(); ++i) scans[i] = m.scan(near[i], there[i]);
-      const double info = m.information(scans);
-      const double score = info - c.travel_cost_per_m * walk_m;
-      if (info < c.min_information || score <= best_score) continue;
-      best_score = score;
-      LookGoal g;
-      g.motion = motion;
-      g.T_odom_goal = compose(T_odom_base, motion);
-      g.T_map_goal = there;
-      g.information = info;
-      g.distance_m = radius;
-      g.walk_m = walk_m;
-      best = std::move(g);
+      trials.push_back({radius, PlanarPose(radius * std::cos(bearing), radius * std::sin(bearing), wrapAngle(bearing))});
     }
+  }
+  // Each place's walls within reach of any of its goals' scans, and its walking distances to
+  // its goals: once.
+  std::vector<std::vector<detail::Segment2>> near;
+  std::vector<detail::WalkGrid::Distances> walks;
+  std::vector<Eigen::Vector2d> goals;
+  for (const auto& p : places) {
+    near.push_back(m.near_walls.near(p.T_map_base.head<2>(), c.goal_max_m + c.scan_range_m));
+    goals.clear();
+    for (const auto& t : trials) goals.push_back(compose(p.T_map_base, t.motion).head<2>());
+    walks.push_back(m.grid.from(p.T_map_base.head<2>(), goals, c.goal_walk_max_m));
+  }
+  std::optional<LookGoal> best;
+  double best_score = -std::numeric_limits<double>::infinity();
+  std::vector<Impl::Scan> scans(places.size());
+  std::vector<PlanarPose> there(places.size());
+  for (const auto& [radius, motion] : trials) {
+    // Reachable in every place (through doors: the walking distance), and walked the longest of those.
+    double walk_m = 0;
+    for (std::size_t i = 0; i < places.size() && std::isfinite(walk_m); ++i) {
+      there[i] = compose(places[i].T_map_base, motion);
+      walk_m = std::max(walk_m, m.walk(walks[i], places[i].T_map_base.head<2>(), there[i].head<2>()));
+    }
+    if (!std::isfinite(walk_m)) continue;
+    for (std::size_t i = 0; i < places.size(); ++i) scans[i] = m.scan(near[i], there[i]);
+    const double info = m.information(scans);
+    const double score = info - c.travel_cost_per_m * walk_m;
+    if (info < c.min_information || score <= best_score) continue;
+    best_score = score;
+    LookGoal g;
+    g.motion = motion;
+    g.T_odom_goal = compose(T_odom_base, motion);
+    g.T_map_goal = there;
+    g.information = info;
+    g.distance_m = radius;
+    g.walk_m = walk_m;
+    best = std::move(g);
   }
   return best;
 }

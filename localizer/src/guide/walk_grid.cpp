@@ -48,7 +48,18 @@ bool WalkGrid::free(const Eigen::Vector2d& p) const {
 
 WalkGrid::Distances WalkGrid::from(const Eigen::Vector2d& p, double max_m, double snap_m) const {
   Distances d;
-  walk(p, max_m, snap_m, -1, -1, d);
+  walk(p, max_m, snap_m, {}, d);
+  return d;
+}
+
+WalkGrid::Distances WalkGrid::from(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& targets, double max_m, double snap_m) const {
+  std::vector<std::pair<int, int>> cells;
+  int tx = 0, ty = 0;
+  for (const auto& t : targets)
+    if (cell(t, tx, ty)) cells.emplace_back(tx, ty);
+  Distances d;
+  // With no target on the grid, nothing of the walk is read.
+  if (!cells.empty()) walk(p, max_m, snap_m, cells, d);
   return d;
 }
 
@@ -56,7 +67,7 @@ double WalkGrid::distanceBetween(const Eigen::Vector2d& a, const Eigen::Vector2d
   int tx = 0, ty = 0;
   if (!cell(b, tx, ty)) return std::numeric_limits<double>::infinity();
   Distances d;
-  return walk(a, max_m, snap_m, tx, ty, d);
+  return walk(a, max_m, snap_m, {{tx, ty}}, d);
 }
 
 // Dijkstra over the 8-neighbourhood (a step's length: 1 or sqrt 2 cells), its queue a row of
@@ -64,7 +75,8 @@ double WalkGrid::distanceBetween(const Eigen::Vector2d& a, const Eigen::Vector2d
 // (at least a cell) has been, so each cell is expanded once, with its final distance, in
 // whatever order a bucket holds them. A cell's distance is then the least of its start value
 // and its neighbours' final distances plus a step, as a binary heap's order gives it, to the bit.
-double WalkGrid::walk(const Eigen::Vector2d& p, double max_m, double snap_m, long target_x, long target_y, Distances& d) const {
+double WalkGrid::walk(const Eigen::Vector2d& p, double max_m, double snap_m, const std::vector<std::pair<int, int>>& targets,
+                      Distances& d) const {
   constexpr float kInf = std::numeric_limits<float>::infinity();
   int sx = 0, sy = 0;
   if (!cell(p, sx, sy) || !(max_m > 0.0)) return kInf;
@@ -76,8 +88,17 @@ double WalkGrid::walk(const Eigen::Vector2d& p, double max_m, double snap_m, lon
     return static_cast<std::size_t>(iy - d.y0) * static_cast<std::size_t>(d.nx) + static_cast<std::size_t>(ix - d.x0);
   };
   const auto inside = [&](int ix, int iy) { return ix >= d.x0 && iy >= d.y0 && ix < d.x0 + d.nx && iy < d.y0 + d.ny; };
-  const bool has_target = inside(static_cast<int>(target_x), static_cast<int>(target_y)) && target_x >= 0 && target_y >= 0;
-  const std::size_t target = has_target ? index(static_cast<int>(target_x), static_cast<int>(target_y)) : 0;
+  // The targets the walk can settle (free cells of the window), each once: when none is left,
+  // the distances read are final.
+  const bool has_targets = !targets.empty();
+  std::vector<std::uint8_t> is_target;
+  std::size_t remaining = 0, last_target = 0;
+  if (has_targets) {
+    is_target.assign(d.metres.size(), 0);
+    for (const auto& [tx, ty] : targets)
+      if (inside(tx, ty) && freeCell(tx, ty) && !is_target[index(tx, ty)]) is_target[index(tx, ty)] = 1, ++remaining, last_target = index(tx, ty);
+    if (remaining == 0) return kInf;
+  }
   struct Entry {
     float metres;
     int ix, iy;  // in the grid
@@ -110,7 +131,10 @@ double WalkGrid::walk(const Eigen::Vector2d& p, double max_m, double snap_m, lon
       const Entry e = buckets[b][k];
       const std::size_t at = index(e.ix, e.iy);
       if (e.metres > d.metres[at]) continue;
-      if (has_target && at == target) return e.metres;
+      if (has_targets && is_target[at]) {
+        is_target[at] = 0;
+        if (--remaining == 0) return e.metres;
+      }
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int ix = e.ix + dx, iy = e.iy + dy;
@@ -126,7 +150,7 @@ double WalkGrid::walk(const Eigen::Vector2d& p, double max_m, double snap_m, lon
     }
     std::vector<Entry>().swap(buckets[b]);
   }
-  return has_target ? d.metres[target] : kInf;
+  return has_targets ? d.metres[last_target] : kInf;
 }
 
 double WalkGrid::distance(const Distances& d, const Eigen::Vector2d& p) const {
