@@ -5,31 +5,56 @@
 
 namespace bimloc::sim {
 
-Eigen::Isometry3d interpolatePose(const std::vector<StampedPose>& samples, double t) {
-  const auto after =
-      std::lower_bound(samples.begin(), samples.end(), t, [](const StampedPose& s, double v) { return s.stamp_s < v; });
-  if (after == samples.begin()) return samples.front().pose;
-  if (after == samples.end()) return samples.back().pose;
-  const StampedPose& a = *std::prev(after);
-  const StampedPose& b = *after;
-  const double f = (t - a.stamp_s) / (b.stamp_s - a.stamp_s);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = (1 - f) * a.pose.translation() + f * b.pose.translation();
-  T.linear() = Eigen::Quaterniond(a.pose.linear()).slerp(f, Eigen::Quaterniond(b.pose.linear())).toRotationMatrix();
-  return T;
-}
+namespace {
+
+// interpolatePose over many times of one turn: the two samples around the last time, and their
+// rotations as quaternions, kept while the next time falls between the same two (a turn's
+// 1800 firings fall between a few samples). The same arithmetic, so the same pose to the bit.
+class PoseInterpolator {
+ public:
+  explicit PoseInterpolator(const std::vector<StampedPose>& samples) : samples_(samples) {}
+
+  Eigen::Isometry3d at(double t) {
+    // lower_bound's answer: the first sample not before t (the one kept, when the one before it is before t).
+    const bool kept = after_ != samples_.end() && after_ != samples_.begin() && after_->stamp_s >= t && std::prev(after_)->stamp_s < t;
+    if (!kept) {
+      after_ = std::lower_bound(samples_.begin(), samples_.end(), t, [](const StampedPose& s, double v) { return s.stamp_s < v; });
+      if (after_ == samples_.begin()) return samples_.front().pose;
+      if (after_ == samples_.end()) return samples_.back().pose;
+      qa_ = Eigen::Quaterniond(std::prev(after_)->pose.linear());
+      qb_ = Eigen::Quaterniond(after_->pose.linear());
+    }
+    const StampedPose& a = *std::prev(after_);
+    const StampedPose& b = *after_;
+    const double f = (t - a.stamp_s) / (b.stamp_s - a.stamp_s);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = (1 - f) * a.pose.translation() + f * b.pose.translation();
+    T.linear() = qa_.slerp(f, qb_).toRotationMatrix();
+    return T;
+  }
+
+ private:
+  const std::vector<StampedPose>& samples_;
+  std::vector<StampedPose>::const_iterator after_ = samples_.end();
+  Eigen::Quaterniond qa_, qb_;
+};
+
+}  // namespace
+
+Eigen::Isometry3d interpolatePose(const std::vector<StampedPose>& samples, double t) { return PoseInterpolator(samples).at(t); }
 
 void deskew(std::vector<Eigen::Vector3f>& points, const std::vector<double>& time_s, double stamp_s, double reference_s,
             const std::vector<StampedPose>& odometry, const Eigen::Isometry3d& T_base_lidar) {
   if (odometry.empty() || time_s.size() != points.size()) return;
-  const Eigen::Isometry3d T_ref_odom = (interpolatePose(odometry, reference_s) * T_base_lidar).inverse();
+  PoseInterpolator odom(odometry);
+  const Eigen::Isometry3d T_ref_odom = (odom.at(reference_s) * T_base_lidar).inverse();
   // The driver gives the points of one firing the same time: one transform per distinct time.
   double cached_time = std::nan("");
   Eigen::Isometry3f T_ref_point = Eigen::Isometry3f::Identity();
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!(time_s[i] == cached_time)) {
       cached_time = time_s[i];
-      T_ref_point = (T_ref_odom * interpolatePose(odometry, stamp_s + time_s[i]) * T_base_lidar).cast<float>();
+      T_ref_point = (T_ref_odom * odom.at(stamp_s + time_s[i]) * T_base_lidar).cast<float>();
     }
     points[i] = T_ref_point * points[i];
   }

@@ -1,5 +1,6 @@
 #include <bimloc/guide/look_goal.hpp>
 
+#include "ray_fan.hpp"
 #include "walk_grid.hpp"
 #include "wall_slice.hpp"
 
@@ -15,6 +16,7 @@ struct GoalPlanner::Impl {
   std::vector<detail::Segment2> walls;  // the slice at scan height, doors as gaps
   detail::RoomBoxes rooms;              // storey.roomAt's answer, without testing every room's outline
   detail::WalkGrid grid;                // where the body fits, for walking distances
+  detail::SegmentGrid near_walls;       // `walls` near a point, through a grid
 
   // The walk from a place to `to`: its length, or infinity where the body cannot get there
   // (not free, beyond goal_walk_max_m, or out of every room from a room).
@@ -26,7 +28,9 @@ struct GoalPlanner::Impl {
 
   // The walk from `from` to `to` (its own walking distances): as walk() with them.
   double walkFrom(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
-    return walk(grid.from(from, config.goal_walk_max_m), from, to);
+    const double metres = grid.distanceBetween(from, to, config.goal_walk_max_m);
+    if (!std::isfinite(metres)) return metres;
+    return !rooms.inAnyRoom(from) || rooms.inAnyRoom(to) ? metres : std::numeric_limits<double>::infinity();
   }
 
   // The scan from `pose` against `segments` (a subset of walls near it): per ray its range and
@@ -40,15 +44,18 @@ struct GoalPlanner::Impl {
     Scan out;
     out.ranges.resize(static_cast<std::size_t>(n));
     out.walls.resize(static_cast<std::size_t>(n));
+    // Each ray is cast against the segments it can meet (detail::RayFan), in their order: the same
+    // first hit as against them all.
+    const detail::RayFan fan(segments, pose.head<2>(), pose.z(), n, config.scan_range_m);
     for (int k = 0; k < n; ++k) {
       const double a = pose.z() + 2.0 * M_PI * k / n;
       const auto i = static_cast<std::size_t>(k);
-      out.ranges[i] = detail::castRay(segments, pose.head<2>(), Eigen::Vector2d(std::cos(a), std::sin(a)), config.scan_range_m, &out.walls[i]);
+      out.ranges[i] = fan.cast(k, pose.head<2>(), Eigen::Vector2d(std::cos(a), std::sin(a)), config.scan_range_m, &out.walls[i]);
     }
     return out;
   }
   // The same against the walls within the scan's range of the pose.
-  Scan scanAt(const PlanarPose& pose) const { return scan(detail::segmentsNear(walls, pose.head<2>(), config.scan_range_m), pose); }
+  Scan scanAt(const PlanarPose& pose) const { return scan(near_walls.near(pose.head<2>(), config.scan_range_m), pose); }
 
   // The walls that tell two predicted scans apart, as the path evidence counts them (GuideConfig):
   // per wall (the nearer of the two a ray ends on), the rays that differ beyond the gate; a wall
@@ -87,8 +94,9 @@ struct GoalPlanner::Impl {
 
 GoalPlanner::GoalPlanner(const bim::Storey& storey, const GuideConfig& config)
     : impl_(std::make_unique<Impl>(
-          Impl{storey, config, detail::sliceWalls(storey, config.scan_height_m), detail::RoomBoxes(storey), detail::WalkGrid({}, 0.0)})) {
+          Impl{storey, config, detail::sliceWalls(storey, config.scan_height_m), detail::RoomBoxes(storey), detail::WalkGrid({}, 0.0), detail::SegmentGrid()})) {
   impl_->grid = detail::WalkGrid(impl_->walls, config.clearance_m);
+  impl_->near_walls = detail::SegmentGrid(impl_->walls);
 }
 GoalPlanner::~GoalPlanner() = default;
 GoalPlanner::GoalPlanner(GoalPlanner&&) noexcept = default;
@@ -123,45 +131,57 @@ std::optional<LookGoal> GoalPlanner::suggest(const std::vector<Place>& places, c
   const Impl& m = *impl_;
   const GuideConfig& c = m.config;
   if (places.size() < 2 || c.goal_rings < 1 || c.goal_bearings < 1) return std::nullopt;
-  // Each place's walls within reach of any of its goals' scans, and its walking distances: once.
-  std::vector<std::vector<detail::Segment2>> near;
-  std::vector<detail::WalkGrid::Distances> walks;
-  for (const auto& p : places) {
-    near.push_back(detail::segmentsNear(m.walls, p.T_map_base.head<2>(), c.goal_max_m + c.scan_range_m));
-    walks.push_back(m.grid.from(p.T_map_base.head<2>(), c.goal_walk_max_m));
-  }
-  std::optional<LookGoal> best;
-  double best_score = -std::numeric_limits<double>::infinity();
-  std::vector<Impl::Scan> scans(places.size());
-  std::vector<PlanarPose> there(places.size());
+  // The trial goals: motions on rings around the base. Facing the way it walked: the scan is
+  // all round, so the heading only says how it got there.
+  struct Trial {
+    double radius;
+    PlanarPose motion;
+  };
+  std::vector<Trial> trials;
   for (int ring = 0; ring < c.goal_rings; ++ring) {
     const double radius = c.goal_rings == 1 ? c.goal_max_m
                                             : c.goal_min_m + (c.goal_max_m - c.goal_min_m) * ring / (c.goal_rings - 1);
     for (int b = 0; b < c.goal_bearings; ++b) {
       const double bearing = 2.0 * M_PI * b / c.goal_bearings;
-      // Facing the way it walked: the scan is all round, so the heading only says how it got there.
-      const PlanarPose motion(radius * std::cos(bearing), radius * std::sin(bearing), wrapAngle(bearing));
-      // Reachable in every place (through doors: the walking distance), and walked the longest of those.
-      double walk_m = 0;
-      for (std::size_t i = 0; i < places.size() && std::isfinite(walk_m); ++i) {
-        there[i] = compose(places[i].T_map_base, motion);
-        walk_m = std::max(walk_m, m.walk(walks[i], places[i].T_map_base.head<2>(), there[i].head<2>()));
-      }
-      if (!std::isfinite(walk_m)) continue;
-      for (std::size_t i = 0; i < places.size(); ++i) scans[i] = m.scan(near[i], there[i]);
-      const double info = m.information(scans);
-      const double score = info - c.travel_cost_per_m * walk_m;
-      if (info < c.min_information || score <= best_score) continue;
-      best_score = score;
-      LookGoal g;
-      g.motion = motion;
-      g.T_odom_goal = compose(T_odom_base, motion);
-      g.T_map_goal = there;
-      g.information = info;
-      g.distance_m = radius;
-      g.walk_m = walk_m;
-      best = std::move(g);
+      trials.push_back({radius, PlanarPose(radius * std::cos(bearing), radius * std::sin(bearing), wrapAngle(bearing))});
     }
+  }
+  // Each place's walls within reach of any of its goals' scans, and its walking distances to
+  // its goals: once.
+  std::vector<std::vector<detail::Segment2>> near;
+  std::vector<detail::WalkGrid::Distances> walks;
+  std::vector<Eigen::Vector2d> goals;
+  for (const auto& p : places) {
+    near.push_back(m.near_walls.near(p.T_map_base.head<2>(), c.goal_max_m + c.scan_range_m));
+    goals.clear();
+    for (const auto& t : trials) goals.push_back(compose(p.T_map_base, t.motion).head<2>());
+    walks.push_back(m.grid.from(p.T_map_base.head<2>(), goals, c.goal_walk_max_m));
+  }
+  std::optional<LookGoal> best;
+  double best_score = -std::numeric_limits<double>::infinity();
+  std::vector<Impl::Scan> scans(places.size());
+  std::vector<PlanarPose> there(places.size());
+  for (const auto& [radius, motion] : trials) {
+    // Reachable in every place (through doors: the walking distance), and walked the longest of those.
+    double walk_m = 0;
+    for (std::size_t i = 0; i < places.size() && std::isfinite(walk_m); ++i) {
+      there[i] = compose(places[i].T_map_base, motion);
+      walk_m = std::max(walk_m, m.walk(walks[i], places[i].T_map_base.head<2>(), there[i].head<2>()));
+    }
+    if (!std::isfinite(walk_m)) continue;
+    for (std::size_t i = 0; i < places.size(); ++i) scans[i] = m.scan(near[i], there[i]);
+    const double info = m.information(scans);
+    const double score = info - c.travel_cost_per_m * walk_m;
+    if (info < c.min_information || score <= best_score) continue;
+    best_score = score;
+    LookGoal g;
+    g.motion = motion;
+    g.T_odom_goal = compose(T_odom_base, motion);
+    g.T_map_goal = there;
+    g.information = info;
+    g.distance_m = radius;
+    g.walk_m = walk_m;
+    best = std::move(g);
   }
   return best;
 }

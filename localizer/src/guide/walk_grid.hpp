@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace bimloc::guide::detail {
@@ -27,14 +28,25 @@ class WalkGrid {
   // From `from` (from the nearest free cell within snap_m when its own has no room for the body:
   // a place's pose is only as good as its fit), every free cell within max_m of walking.
   Distances from(const Eigen::Vector2d& from, double max_m, double snap_m = 0.5) const;
+  // The same, with only the cells of `targets` sure to hold their final distance: the walk stops
+  // once each of them is settled (the guide reads a place's walk at its trial goals only).
+  Distances from(const Eigen::Vector2d& from, const std::vector<Eigen::Vector2d>& targets, double max_m, double snap_m = 0.5) const;
+  // distance(from(a, max_m, snap_m), b), the same value, with the walk stopped once b's cell is
+  // settled (a goal still under way asks one walk per place at every weighing).
+  double distanceBetween(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double max_m, double snap_m = 0.5) const;
   // The walking distance to p (infinity: not free, or not reached).
   double distance(const Distances& d, const Eigen::Vector2d& p) const;
   bool free(const Eigen::Vector2d& p) const;
 
  private:
   bool cell(const Eigen::Vector2d& p, int& ix, int& iy) const;
-  bool freeCell(int ix, int iy) const {
-    return ix >= 0 && iy >= 0 && ix < nx_ && iy < ny_ && free_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix)];
+  // from() and distanceBetween(): the walk, stopped when every cell of `targets` (grid cells)
+  // is settled (none: never). Returns the last one's distance (infinity when not reached or no target).
+  double walk(const Eigen::Vector2d& p, double max_m, double snap_m, const std::vector<std::pair<int, int>>& targets, Distances& d) const;
+  bool freeCell(int ix, int iy) const { return ix >= 0 && iy >= 0 && ix < nx_ && iy < ny_ && free_[padded(ix, iy)]; }
+  // free_ holds the grid with a border of one blocked cell: ix in -1 .. nx_, iy in -1 .. ny_.
+  std::size_t padded(int ix, int iy) const {
+    return static_cast<std::size_t>(iy + 1) * static_cast<std::size_t>(nx_ + 2) + static_cast<std::size_t>(ix + 1);
   }
   double cell_m_;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();

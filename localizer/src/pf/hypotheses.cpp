@@ -142,16 +142,29 @@ void scorePoses(std::vector<Particle>& poses, const std::vector<Observation>& ob
   for (const auto& p : poses) scorePose(p, obs, z, rooms, c, penalise_outside, bound, out);
 }
 
-// The poses from one room's landmarks: every pair of observations against every pair.
+// The poses from one room's landmarks: every pair of observations against every pair. The
+// pairs solvePair turns down at its first two tests (the turn between the faces, the heights)
+// are passed over here: those tests once per observation and face, not per pair of pairs
+// (the seeds go over every room of the storey at every weighing). The poses are the same, in
+// the same order.
 void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
-                   const RoomIndex& rooms, double along_m, std::vector<Particle>& poses) {
+                   const RoomIndex& rooms, double along_m, std::vector<Particle>& poses, std::vector<char>& at_height) {
+  const std::size_t m = marks.size();
+  at_height.resize(obs.size() * m);
+  for (std::size_t i = 0; i < obs.size(); ++i)
+    for (std::size_t a = 0; a < m; ++a) at_height[i * m + a] = atFaceHeight(obs[i], marks[a], z) ? 1 : 0;
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (!pairable(obs, i, j)) continue;
-      for (std::size_t a = 0; a < marks.size(); ++a)
-        for (std::size_t b = 0; b < marks.size(); ++b)
-          if (a != b)
-            if (const auto p = solvePair(obs, i, j, marks[a], marks[b], z, room, rooms, along_m)) poses.push_back(*p);
+      const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
+      for (std::size_t a = 0; a < m; ++a) {
+        if (!at_height[i * m + a]) continue;
+        for (std::size_t b = 0; b < m; ++b) {
+          if (a == b || !at_height[j * m + b] || std::abs(wrapAngle(marks[b].azimuth - marks[a].azimuth - turn)) > kAngleTolerance)
+            continue;
+          if (const auto p = solvePair(obs, i, j, marks[a], marks[b], z, room, rooms, along_m)) poses.push_back(*p);
+        }
+      }
     }
 }
 
@@ -205,14 +218,16 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observati
   std::vector<Particle> poses;
   const int room = config.use_rooms ? 0 : outside_rooms ? kAnywhere : -1;
   const double along_m = config.segment_margin_m;
+  std::vector<char> at_height;
   if (config.use_rooms) {
-    for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r) fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, along_m, poses);
+    for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r)
+      fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, along_m, poses, at_height);
   } else {
     // The ablation: every room holds every face; one pass over them is enough.
     if (const FaceIndex* index = rooms.fineIndex())
       fromIndex(observations, z_base, *index, rooms, config, room, along_m, poses);
     else
-      fromLandmarks(observations, z_base, rooms.landmarks(0), room, rooms, along_m, poses);
+      fromLandmarks(observations, z_base, rooms.landmarks(0), room, rooms, along_m, poses, at_height);
   }
   scorePoses(poses, observations, z_base, rooms, config, room != kAnywhere, bound, all);
   // Those below the floor are out before they are sorted: the ones the caller wants, best

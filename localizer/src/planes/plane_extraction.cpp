@@ -166,10 +166,11 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
       take(*candidate, standing, &pool, true);
     }
   }
+  const detail::RansacCloud ransac_cloud(cloud);
   for (int attempt = 0; accepted < config.max_planes && attempt < kAttemptsPerPlane * config.max_planes &&
                         pool.size() >= min_inliers;
        ++attempt) {
-    const auto candidate = detail::ransacPlane(cloud, pool, config.ransac_iterations, config.distance_threshold_m,
+    const auto candidate = detail::ransacPlane(ransac_cloud, pool, config.ransac_iterations, config.distance_threshold_m,
                                                attemptSeed(config.seed, attempt));
     if (!candidate || candidate->inliers.size() < min_inliers) break;  // no plane left worth having
     take(*candidate, pool, nullptr, !standing_stage);

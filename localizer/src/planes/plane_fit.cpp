@@ -85,12 +85,17 @@ PlaneFit fitPlane(const Cloud& cloud, const Indices& support) {
   // the spread of a support is metres, its offset from the sensor tens of metres at most).
   const Eigen::Vector3d origin = cloud[support.front()].cast<double>();
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d sum2 = Eigen::Matrix3d::Zero();
+  // The second moments' six distinct entries (q_i q_j and q_j q_i are the same product): the
+  // same sums as q q^T's nine, at two thirds of the work.
+  double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
   for (const int i : support) {
     const Eigen::Vector3d q = cloud[i].cast<double>() - origin;
     sum += q;
-    sum2 += q * q.transpose();
+    xx += q.x() * q.x(), xy += q.x() * q.y(), xz += q.x() * q.z();
+    yy += q.y() * q.y(), yz += q.y() * q.z(), zz += q.z() * q.z();
   }
+  Eigen::Matrix3d sum2;
+  sum2 << xx, xy, xz, xy, yy, yz, xz, yz, zz;
   const double n = double(support.size());
   fit.centroid = origin + sum / n;
   const Eigen::Matrix3d scatter = sum2 - sum * sum.transpose() / n;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -28,6 +29,25 @@ struct RansacPlane {
   Indices inliers;  // indices into cloud, ascending
 };
 std::optional<RansacPlane> ransacPlane(const Cloud& cloud, const Indices& pool, int iterations, double threshold_m,
+                                       std::uint32_t seed);
+// The cloud as PCL's model reads it, made once for every attempt on one scan (each attempt
+// copied the whole scan's voxels into a PCL cloud of its own). PCL stays in ransac_plane.cpp.
+class RansacCloud {
+ public:
+  explicit RansacCloud(const Cloud& cloud);
+  ~RansacCloud();
+  RansacCloud(const RansacCloud&) = delete;
+  RansacCloud& operator=(const RansacCloud&) = delete;
+  const Cloud& cloud() const { return *cloud_; }
+  struct Points;
+  const Points& points() const { return *points_; }
+
+ private:
+  const Cloud* cloud_;
+  std::unique_ptr<Points> points_;
+};
+// ransacPlane(input.cloud(), pool, ...), the same plane.
+std::optional<RansacPlane> ransacPlane(const RansacCloud& input, const Indices& pool, int iterations, double threshold_m,
                                        std::uint32_t seed);
 
 // standing.cpp. The voxels whose x-y column (cell_m square) holds returns spanning at least

@@ -116,16 +116,31 @@ void applyPclVerbosity() {
   pcl::console::setVerbosityLevel(verbose() ? pcl::console::L_INFO : pcl::console::L_ALWAYS);
 }
 
+struct RansacCloud::Points {
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud{new pcl::PointCloud<pcl::PointXYZ>};
+};
+
+RansacCloud::RansacCloud(const Cloud& cloud) : cloud_(&cloud), points_(std::make_unique<Points>()) {
+  points_->cloud->reserve(cloud.size());
+  for (const auto& p : cloud) points_->cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+}
+RansacCloud::~RansacCloud() = default;
+
 std::optional<RansacPlane> ransacPlane(const Cloud& cloud, const Indices& pool, int iterations, double threshold_m,
                                        std::uint32_t seed) {
+  if (pool.size() < 3 || iterations < 1 || !(threshold_m > 0)) return std::nullopt;  // before the copy
+  return ransacPlane(RansacCloud(cloud), pool, iterations, threshold_m, seed);
+}
+
+std::optional<RansacPlane> ransacPlane(const RansacCloud& input, const Indices& pool, int iterations, double threshold_m,
+                                       std::uint32_t seed) {
   applyPclVerbosity();
+  const Cloud& cloud = input.cloud();
   if (pool.size() < 3 || iterations < 1 || !(threshold_m > 0) || lineLike(cloud, pool)) return std::nullopt;
-  pcl::PointCloud<pcl::PointXYZ>::Ptr points(new pcl::PointCloud<pcl::PointXYZ>);
-  points->reserve(cloud.size());
-  for (const auto& p : cloud) points->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
   const pcl::Indices indices(pool.begin(), pool.end());
 
-  auto model = std::make_shared<SeededPlaneModel>(points, indices, seed);
+  // The model only reads the points (PCL's models keep their input const).
+  auto model = std::make_shared<SeededPlaneModel>(input.points().cloud, indices, seed);
   pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model, threshold_m);
   ransac.setMaxIterations(iterations);
   ransac.setProbability(kRansacConfidence);
