@@ -159,6 +159,46 @@ TEST(StoreyBank, StoreysThatAreCopiesOfEachOtherAreNeverToldApart) {
   EXPECT_FALSE(bank.T_map_odom());
 }
 
+TEST(StoreyBank, EvidenceFromOutsideTheWallsTellsCopiesApartByItsLogLikelihoodRatio) {
+  // The twins of the test above: the walls give no margin between the storeys. An altitude's
+  // log-likelihood ratio (setStoreyLogLikelihoods) adds to it in the same units: 10 for the
+  // true storey passes the bar (8.34), 5 does not; the storey it decides is the one it favours.
+  bim::Building twins;
+  twins.storeys.push_back(test::officeWorld().building().storeys[0]);
+  twins.storeys.push_back(twins.storeys[0]);
+  bim::Storey& copy = twins.storeys[1];
+  copy.elevation_m += 3.0;
+  const Eigen::Vector3d up(0, 0, 3.0);
+  for (bim::Wall& w : copy.walls) {
+    w.start += up, w.end += up;
+    for (bim::WallFace& f : w.faces) f.start += up, f.end += up;
+  }
+  for (bim::Room& r : copy.rooms) r.floor_z += 3.0;
+  for (Eigen::Vector3f& v : copy.mesh.vertices) v.z() += 3.0f;
+  const Eigen::Isometry3d mount = sim::Vlp16Config{}.T_base_lidar;
+  pf::StoreyBank strong(twins, {0, 1}, mount, {}), weak(twins, {0, 1}, mount, {});
+  strong.setStoreyLogLikelihoods({0.0, -10.0});
+  weak.setStoreyLogLikelihoods({0.0, -5.0});
+  std::optional<double> strong_margin;
+  Loop loop;
+  loop.predict = [&](const Eigen::Isometry3d& odom) { strong.predict(odom), weak.predict(odom); };
+  loop.wants = [&] { return strong.wantsObservations() || weak.wantsObservations(); };
+  loop.update = [&](const std::vector<planes::ObservedPlane>& walls) {
+    const auto a = strong.update(walls);
+    if (a.decided && !strong_margin) strong_margin = a.storey_margin;
+    const auto b = weak.update(walls);
+    EXPECT_FALSE(b.decided) << "a ratio of 5 is under the bar";
+  };
+  replay(tour(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc", "0", "S100", "C100", 25.0, 1), test::officeWorld(), loop);
+  ASSERT_TRUE(strong.converged());
+  EXPECT_EQ(strong.storey(), std::optional<std::size_t>(0));
+  ASSERT_TRUE(strong_margin);
+  // The walls' margin between twins is about 0: the ratio carries the decision.
+  EXPECT_GE(*strong_margin, pf::ParticleFilterConfig{}.evidenceMargin());
+  EXPECT_LE(*strong_margin, 10.0 + 1e-9);
+  EXPECT_FALSE(weak.converged());
+}
+
 TEST(StoreyBank, StoreyAutoOnTheTwoStoreyWorldFindsTheStoreyAndThePose) {
   // The runner with `storey: auto`: the simulator runs on the true storey, the localizer
   // considers both. A wrong storey would be a false convergence.
