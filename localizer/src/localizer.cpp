@@ -5,6 +5,7 @@
 #include "peers/peer.hpp"
 #include "pf/filter_access.hpp"
 #include "storeys/altitude_mean.hpp"
+#include "storeys/landing_rooms.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -396,12 +397,22 @@ void Localizer::Impl::followSearch(double stamp_s, const Eigen::Isometry3d& odom
   }
   if (next.empty()) return;  // no floor that far up: wait
   z_shift_m += rise;
-  bank = std::make_unique<pf::StoreyBank>(building, next, T_base_lidar, config.pf);
+  // The robot came by a flight: it is at (or a few steps past) the end of one that arrives on
+  // these storeys, the search's prior rooms (the start's prior, if any, is moot up here). The
+  // reach: the height settles settled_window_s after the last riser, and the search starts
+  // then, 1-2 m on at a legged base's 0.5-1 m/s.
+  constexpr double kLandingReachM = 2.0;
+  pf::ParticleFilterConfig c = config.pf;
+  c.prior_rooms = storeys::landingRooms(building, next, rise > 0, kLandingReachM);
+  c.prior_pose.reset();
+  bank = std::make_unique<pf::StoreyBank>(building, next, T_base_lidar, c);
   Eigen::Isometry3d now = odom;
   now.translation().z() -= rise;
   bank->predict(now);
   r.warnings.push_back("the base climbed " + std::to_string(rise) + " m while searching: the search starts again " +
-                       std::to_string(next.size()) + " storey(s) " + (rise > 0 ? "up" : "down"));
+                       std::to_string(next.size()) + " storey(s) " + (rise > 0 ? "up" : "down") +
+                       (c.prior_rooms.empty() ? std::string(", over the whole storey")
+                                              : ", in the " + std::to_string(c.prior_rooms.size()) + " room(s) at the flights' ends"));
 }
 
 // Onto the new storey: the pose carried across (map <- odom kept in x, y, yaw; z on the new
