@@ -31,8 +31,10 @@ std::string keyframeDoubt(const Graph& g, const Keyframe& kf, const std::vector<
   // What contradicts the plan, from the keyframe's pose:
   //  - a plane matched to no plan wall, seen behind a solid plan face (the plan says the lidar
   //    cannot see there);
-  //  - a plan face in clear view (PlanView: no other plan face in between, not at a grazing
-  //    angle, within kClearViewRangeM) in whose plane the scan has no plane.
+  //  - a plan face in clear view (PlanView: no other plan face and no plane the scan saw in
+  //    between, not at a grazing angle, within kClearViewRangeM) in whose plane the scan has no
+  //    plane. A wall seen in the open, hiding the plan's wall behind it, is as consistent
+  //    with the plan as a cupboard before it: neither counts.
   // Not a contradiction: a plane in the open before the walls. The site holds every physical
   // element, the plan only its walls: furniture, stacked material, columns, stair sides. In
   // small rooms they outnumber the walls in view (the Duplex's: 3 and 5 such planes against 2
@@ -68,7 +70,12 @@ std::string keyframeDoubt(const Graph& g, const Keyframe& kf, const std::vector<
   }
   // Seen: some plane of the scan in the face's plane, matched or not (a wall split in the plan
   // into segments in line is one plane, matched to one of them).
-  for (const PlanFaceRef& r : view.facesInClearView(kClearViewMinM)) {
+  std::vector<PlanView::Occluder> occluders;
+  for (const auto& o : observed) {
+    const Eigen::Vector2d along(-o.normal_map.y(), o.normal_map.x());
+    occluders.push_back({o.centroid_map - 0.5 * o.extent_m * along, o.centroid_map + 0.5 * o.extent_m * along});
+  }
+  for (const PlanFaceRef& r : view.facesInClearView(kClearViewMinM, occluders)) {
     const WallNode& node = g.nodes[static_cast<std::size_t>(r.node)];
     const bool seen = std::any_of(observed.begin(), observed.end(), [&](const ScanObservation& o) { return inFacePlane(o, node, r.face); });
     if (!seen) ++unseen[node.axis(r.face) == bim::WallAxis::X ? 0 : 1];

@@ -29,6 +29,13 @@ double distanceToFace(const WallNode& node, int f, const Eigen::Vector2d& p) {
   return (a + t * u - p).norm();
 }
 
+// The segments p-q and a-b cross.
+bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const double d1 = cross(q - p, a - p), d2 = cross(q - p, b - p), d3 = cross(b - a, p - a), d4 = cross(b - a, q - a);
+  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
+}
+
 }  // namespace
 
 PlanView::PlanView(const Graph& g, const Eigen::Vector2d& from, double range_m) : g_(g), from_(from), range_m_(range_m) {
@@ -57,7 +64,7 @@ bool PlanView::blocked(const Eigen::Vector2d& to, double behind_m, int skip_node
   return false;
 }
 
-std::vector<PlanFaceRef> PlanView::facesInClearView(double min_length_m) const {
+std::vector<PlanFaceRef> PlanView::facesInClearView(double min_length_m, const std::vector<Occluder>& occluders) const {
   const double cos_max = std::cos(kPlanViewMaxIncidenceDeg * M_PI / 180.0);
   std::vector<PlanFaceRef> out;
   for (const PlanFaceRef& r : near_) {
@@ -76,8 +83,12 @@ std::vector<PlanFaceRef> PlanView::facesInClearView(double min_length_m) const {
       const Eigen::Vector2d ray = p - from_;
       const double range = ray.norm();
       if (!(range > 1e-6) || range > range_m_ || -ray.dot(n) / range < cos_max) continue;
-      // Another plan face in between hides it (the point itself lies on this face: skip its node).
-      if (!blocked(p, 0.01, r.node)) clear += kPlanViewSampleM;
+      // Another plan face in between hides it (the point itself lies on this face: skip its node),
+      // or something the scan saw.
+      if (blocked(p, 0.01, r.node)) continue;
+      bool hidden = false;
+      for (const Occluder& o : occluders) hidden = hidden || segmentsCross(from_, p, o.a, o.b);
+      if (!hidden) clear += kPlanViewSampleM;
     }
     if (clear >= min_length_m) out.push_back(r);
   }

@@ -27,9 +27,15 @@ class PlanView {
   // `to`, `to` more than behind_m behind it.
   bool blocked(const Eigen::Vector2d& to, double behind_m, int skip_node = -1) const;
 
-  // The plan faces that look at `from` and of which at least min_length_m is in clear view
-  // (no other plan face between, not seen at a grazing angle, not an opening, within range).
-  std::vector<PlanFaceRef> facesInClearView(double min_length_m) const;
+  // Something the scan saw, as a segment on the floor plane: it hides what lies behind it.
+  struct Occluder {
+    Eigen::Vector2d a = Eigen::Vector2d::Zero(), b = Eigen::Vector2d::Zero();
+  };
+
+  // The plan faces that look at `from` and of which at least min_length_m is in clear view:
+  // no other plan face between, none of `occluders` (the scan's own planes: a wall hidden
+  // behind a cupboard is not missing), not seen at a grazing angle, not an opening, in range.
+  std::vector<PlanFaceRef> facesInClearView(double min_length_m, const std::vector<Occluder>& occluders) const;
 
  private:
   const Graph& g_;
