@@ -17,6 +17,10 @@ namespace {
 // the plan does not hold than missed by the extraction).
 constexpr double kClearViewRangeM = 5.0;
 constexpr double kClearViewMinM = 1.0;
+// Farther than this from the height the base stood at on the storey's floor (two risers), it
+// is on a flight: the storey's walls are not where the floor's view puts them (going down,
+// the lidar is under the floor and sees the stairwell below), and the class rule is not asked.
+constexpr double kOffFloorM = 0.3;
 
 }  // namespace
 
@@ -56,9 +60,11 @@ std::string keyframeDoubt(const Graph& g, const Keyframe& kf, const std::vector<
     }
     return false;
   };
-  const PlanView view(g, kf.planar().head<2>(), kClearViewRangeM);
+  const bool on_floor = !g.floor_base_z || std::abs(kf.z_map - *g.floor_base_z) < kOffFloorM;
+  const PlanView view(g, kf.planar().head<2>(), on_floor ? kClearViewRangeM : 0.0);
   std::array<int, 2> matched{}, behind{}, unseen{};
   for (const auto& o : observed) {
+    if (!on_floor) break;
     bool on_plan_wall = false;  // matched to a plan wall (a match to a new plane does not count)
     for (const auto& p : kf.planes)
       on_plan_wall = on_plan_wall || (p.observation == o.index && g.nodes[static_cast<std::size_t>(p.node)].kind == WallNode::Kind::Plan);
