@@ -596,6 +596,7 @@ TEST(SGraphLoss, ClutterInASmallRoomIsNoLossAWrongPoseStillIs) {
   const auto keyframeAt = [&](const Eigen::Vector2d& estimate, std::vector<sgraph::detail::ScanObservation>& observed) {
     sgraph::detail::Keyframe kf;
     kf.pose = {estimate.x(), estimate.y(), 0.0};
+    kf.predicted = kf.planar();  // the odometry agrees: only what the planes say is asked
     observed.clear();
     for (std::size_t i = 0; i < seen.size(); ++i) {
       sgraph::detail::ScanObservation o;

@@ -65,6 +65,26 @@ void replay(const sim::Scenario& s, const sim::World& world, const Loop& loop) {
   }
 }
 
+// The site office twice: a copy 3 m up, everything in it 3 m up (the filter matches a face only
+// at the heights its wall has: a copy whose walls stayed below would differ from the original,
+// by its heights).
+bim::Building twinOffices() {
+  bim::Building twins;
+  twins.storeys.push_back(test::officeWorld().building().storeys[0]);
+  twins.storeys.push_back(twins.storeys[0]);
+  bim::Storey& copy = twins.storeys[1];
+  copy.elevation_m += 3.0;
+  copy.name = "copy";
+  const Eigen::Vector3d up(0, 0, 3.0);
+  for (bim::Wall& w : copy.walls) {
+    w.start += up, w.end += up;
+    for (bim::WallFace& f : w.faces) f.start += up, f.end += up;
+  }
+  for (bim::Room& r : copy.rooms) r.floor_z += 3.0;
+  for (Eigen::Vector3f& v : copy.mesh.vertices) v.z() += 3.0f;
+  return twins;
+}
+
 }  // namespace
 
 TEST(StoreyBank, CandidatesAreStoreysWithWallsAndRoomsAndShareTheParticlesByRoomArea) {
@@ -125,21 +145,7 @@ TEST(StoreyBank, StoreysThatAreCopiesOfEachOtherAreNeverToldApart) {
   // The site office twice, 3 m apart: every place of one storey has its twin on the other,
   // with the same walls. The filters may converge, each on its storey; the storey must not
   // be decided, however decisive the path within a storey.
-  bim::Building twins;
-  twins.storeys.push_back(test::officeWorld().building().storeys[0]);
-  twins.storeys.push_back(twins.storeys[0]);
-  // A copy 3 m up, everything in it 3 m up (the filter matches a face only at the heights its
-  // wall has: a copy whose walls stayed below would differ from the original, by its heights).
-  bim::Storey& copy = twins.storeys[1];
-  copy.elevation_m += 3.0;
-  copy.name = "copy";
-  const Eigen::Vector3d up(0, 0, 3.0);
-  for (bim::Wall& w : copy.walls) {
-    w.start += up, w.end += up;
-    for (bim::WallFace& f : w.faces) f.start += up, f.end += up;
-  }
-  for (bim::Room& r : copy.rooms) r.floor_z += 3.0;
-  for (Eigen::Vector3f& v : copy.mesh.vertices) v.z() += 3.0f;
+  const bim::Building twins = twinOffices();
   pf::StoreyBank bank(twins, {0, 1}, sim::Vlp16Config{}.T_base_lidar, {});
   bool any_filter_converged = false;
   Loop loop;
@@ -163,18 +169,7 @@ TEST(StoreyBank, EvidenceFromOutsideTheWallsTellsCopiesApartByItsLogLikelihoodRa
   // The twins of the test above: the walls give no margin between the storeys. An altitude's
   // log-likelihood ratio (setStoreyLogLikelihoods) adds to it in the same units: 10 for the
   // true storey passes the bar (8.34), 5 does not; the storey it decides is the one it favours.
-  bim::Building twins;
-  twins.storeys.push_back(test::officeWorld().building().storeys[0]);
-  twins.storeys.push_back(twins.storeys[0]);
-  bim::Storey& copy = twins.storeys[1];
-  copy.elevation_m += 3.0;
-  const Eigen::Vector3d up(0, 0, 3.0);
-  for (bim::Wall& w : copy.walls) {
-    w.start += up, w.end += up;
-    for (bim::WallFace& f : w.faces) f.start += up, f.end += up;
-  }
-  for (bim::Room& r : copy.rooms) r.floor_z += 3.0;
-  for (Eigen::Vector3f& v : copy.mesh.vertices) v.z() += 3.0f;
+  const bim::Building twins = twinOffices();
   const Eigen::Isometry3d mount = sim::Vlp16Config{}.T_base_lidar;
   pf::StoreyBank strong(twins, {0, 1}, mount, {}), weak(twins, {0, 1}, mount, {});
   strong.setStoreyLogLikelihoods({0.0, -10.0});
