@@ -65,6 +65,26 @@ void replay(const sim::Scenario& s, const sim::World& world, const Loop& loop) {
   }
 }
 
+// The site office twice: a copy 3 m up, everything in it 3 m up (the filter matches a face only
+// at the heights its wall has: a copy whose walls stayed below would differ from the original,
+// by its heights).
+bim::Building twinOffices() {
+  bim::Building twins;
+  twins.storeys.push_back(test::officeWorld().building().storeys[0]);
+  twins.storeys.push_back(twins.storeys[0]);
+  bim::Storey& copy = twins.storeys[1];
+  copy.elevation_m += 3.0;
+  copy.name = "copy";
+  const Eigen::Vector3d up(0, 0, 3.0);
+  for (bim::Wall& w : copy.walls) {
+    w.start += up, w.end += up;
+    for (bim::WallFace& f : w.faces) f.start += up, f.end += up;
+  }
+  for (bim::Room& r : copy.rooms) r.floor_z += 3.0;
+  for (Eigen::Vector3f& v : copy.mesh.vertices) v.z() += 3.0f;
+  return twins;
+}
+
 }  // namespace
 
 TEST(StoreyBank, CandidatesAreStoreysWithWallsAndRoomsAndShareTheParticlesByRoomArea) {
@@ -125,21 +145,7 @@ TEST(StoreyBank, StoreysThatAreCopiesOfEachOtherAreNeverToldApart) {
   // The site office twice, 3 m apart: every place of one storey has its twin on the other,
   // with the same walls. The filters may converge, each on its storey; the storey must not
   // be decided, however decisive the path within a storey.
-  bim::Building twins;
-  twins.storeys.push_back(test::officeWorld().building().storeys[0]);
-  twins.storeys.push_back(twins.storeys[0]);
-  // A copy 3 m up, everything in it 3 m up (the filter matches a face only at the heights its
-  // wall has: a copy whose walls stayed below would differ from the original, by its heights).
-  bim::Storey& copy = twins.storeys[1];
-  copy.elevation_m += 3.0;
-  copy.name = "copy";
-  const Eigen::Vector3d up(0, 0, 3.0);
-  for (bim::Wall& w : copy.walls) {
-    w.start += up, w.end += up;
-    for (bim::WallFace& f : w.faces) f.start += up, f.end += up;
-  }
-  for (bim::Room& r : copy.rooms) r.floor_z += 3.0;
-  for (Eigen::Vector3f& v : copy.mesh.vertices) v.z() += 3.0f;
+  const bim::Building twins = twinOffices();
   pf::StoreyBank bank(twins, {0, 1}, sim::Vlp16Config{}.T_base_lidar, {});
   bool any_filter_converged = false;
   Loop loop;
@@ -157,6 +163,35 @@ TEST(StoreyBank, StoreysThatAreCopiesOfEachOtherAreNeverToldApart) {
   EXPECT_TRUE(any_filter_converged);  // S100 -> C100 converges on one storey (the test is not vacuous)
   EXPECT_FALSE(bank.converged());
   EXPECT_FALSE(bank.T_map_odom());
+}
+
+TEST(StoreyBank, EvidenceFromOutsideTheWallsTellsCopiesApartByItsLogLikelihoodRatio) {
+  // The twins of the test above: the walls give no margin between the storeys. An altitude's
+  // log-likelihood ratio (setStoreyLogLikelihoods) adds to it in the same units: 10 for the
+  // true storey passes the bar (8.34), 5 does not; the storey it decides is the one it favours.
+  const bim::Building twins = twinOffices();
+  const Eigen::Isometry3d mount = sim::Vlp16Config{}.T_base_lidar;
+  pf::StoreyBank strong(twins, {0, 1}, mount, {}), weak(twins, {0, 1}, mount, {});
+  strong.setStoreyLogLikelihoods({0.0, -10.0});
+  weak.setStoreyLogLikelihoods({0.0, -5.0});
+  std::optional<double> strong_margin;
+  Loop loop;
+  loop.predict = [&](const Eigen::Isometry3d& odom) { strong.predict(odom), weak.predict(odom); };
+  loop.wants = [&] { return strong.wantsObservations() || weak.wantsObservations(); };
+  loop.update = [&](const std::vector<planes::ObservedPlane>& walls) {
+    const auto a = strong.update(walls);
+    if (a.decided && !strong_margin) strong_margin = a.storey_margin;
+    const auto b = weak.update(walls);
+    EXPECT_FALSE(b.decided) << "a ratio of 5 is under the bar";
+  };
+  replay(tour(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc", "0", "S100", "C100", 25.0, 1), test::officeWorld(), loop);
+  ASSERT_TRUE(strong.converged());
+  EXPECT_EQ(strong.storey(), std::optional<std::size_t>(0));
+  ASSERT_TRUE(strong_margin);
+  // The walls' margin between twins is about 0: the ratio carries the decision.
+  EXPECT_GE(*strong_margin, pf::ParticleFilterConfig{}.evidenceMargin());
+  EXPECT_LE(*strong_margin, 10.0 + 1e-9);
+  EXPECT_FALSE(weak.converged());
 }
 
 TEST(StoreyBank, StoreyAutoOnTheTwoStoreyWorldFindsTheStoreyAndThePose) {

@@ -197,11 +197,14 @@ struct Step {
 
 // The walk through a localizer at 10 Hz: odometry with 1 % scale, 0.3 deg/m heading drift and
 // 2 % height scale; `altitude_sigma_m` > 0: the true altitude with that noise, every turn.
+// `altitude_offset_m`: added to every reading (a barometer's offset); `seen`: the world the
+// lidar sees, when it is not the plan (default: the plan).
 std::vector<Step> run(const bim::Building& building, const Walk& w, LocalizerConfig config, double altitude_sigma_m,
-                      bool hole = true, double stairs_slip = 0.0, bool blind_on_flight = false) {
+                      bool hole = true, double stairs_slip = 0.0, bool blind_on_flight = false, double altitude_offset_m = 0.0,
+                      const bim::Building* seen = nullptr) {
   const Eigen::Isometry3d T_base_lidar(Eigen::Translation3d(0, 0, 0.3));
   Localizer localizer(building, T_base_lidar, config);
-  const Caster caster{building, hole};
+  const Caster caster{seen ? *seen : building, hole};
   std::mt19937_64 rng(7);
   std::normal_distribution<double> gauss(0.0, 1.0);
   Eigen::Isometry3d odom = Eigen::Isometry3d(Eigen::Translation3d(0, 0, kBaseHeight));
@@ -219,7 +222,8 @@ std::vector<Step> run(const bim::Building& building, const Walk& w, LocalizerCon
     drifted.translation().z() *= 1.02;
     drifted.rotate(Eigen::AngleAxisd(0.3 * M_PI / 180 * metres, Eigen::Vector3d::UnitZ()));
     odom = odom * drifted;
-    if (altitude_sigma_m > 0) localizer.observeAltitude(t, truth.translation().z() + altitude_sigma_m * gauss(rng), altitude_sigma_m);
+    if (altitude_sigma_m > 0)
+      localizer.observeAltitude(t, truth.translation().z() + altitude_offset_m + altitude_sigma_m * gauss(rng), altitude_sigma_m);
     const double floor_z = truth.translation().z() - kBaseHeight;
     const bool blind = blind_on_flight && floor_z > 0.01 && floor_z < kStoreyHeight - 0.01;
     const auto points = [&] { return blind ? std::vector<Eigen::Vector3f>{} : caster.scan(truth * T_base_lidar, rng); };
@@ -337,6 +341,47 @@ TEST(StoreyChange, AnAltitudeDecidesBetweenIdenticalStoreysTheWallsCannot) {
   ASSERT_TRUE(last);
   ASSERT_EQ(last->candidates.size(), 2u);
   for (const auto& c : last->candidates) EXPECT_TRUE(c.converged) << building.storeys[c.storey].name;
+}
+
+TEST(StoreyChange, TwoLookAlikeStoreys90CmApartTheAltitudeDecidesAReadingBetweenThemDoesNot) {
+  // Split levels (Jesse.1's T.O. level 0 floor and Level -1): the ground floor and a copy of
+  // its walls 0.9 m above it. The robot walks on the ground floor; the lidar sees that storey
+  // alone (its floor, its walls, the slab 3 m up). The walls cannot tell the two apart.
+  bim::Building building = identicalStoreys();
+  constexpr double kSplit = 0.9;
+  bim::Storey& up = building.storeys[1];
+  up.elevation_m = kSplit;
+  for (auto& wall : up.walls) {
+    wall.start.z() = wall.end.z() = kSplit;
+    for (auto& f : wall.faces) f.start.z() = f.end.z() = kSplit;
+  }
+  for (auto& r : up.rooms) r.floor_z = kSplit;
+  bim::Building seen;
+  seen.storeys = {building.storeys[0]};
+  const Walk w = walk({{2, 2, 0}, {3, 4.5, 0}, {5, 7, 0}, {9, 7, 0}, {12, 3, 0}, {8, 1.5, 0}, {3, 2, 0}});
+  const auto decidedStorey = [](const std::vector<Step>& steps) {
+    std::optional<std::size_t> decided;
+    for (const auto& s : steps)
+      if (s.result.storey && !decided) decided = s.result.storey;
+    return decided;
+  };
+  // A barometer's reading of 0.15 m sigma on the truth: 0.9 m is 6 sigma; the ground floor.
+  const auto on_truth = run(building, w, fastConfig(), 0.15, false, 0.0, false, 0.0, &seen);
+  ASSERT_EQ(decidedStorey(on_truth), std::optional<std::size_t>(0));
+  EXPECT_LT(error(on_truth.back()), 0.1);
+  // Readings half-way between the two floors (an offset of 0.45 m, noise of 0.25 m sigma told
+  // and drawn afresh each time): neither storey is ruled out, and however the noise falls on
+  // one step, the readings' mean weighs both alike: never the upper storey (what the walls
+  // may still say, from the heights their faces span, is theirs).
+  const auto between = run(building, w, fastConfig(), 0.25, false, 0.0, false, 0.5 * kSplit, &seen);
+  for (const auto& s : between)
+    ASSERT_NE(s.result.storey, std::optional<std::size_t>(1)) << "t=" << s.result.stamp_s << ": decided falsely on a reading between the floors";
+  std::optional<pf::StoreyBankReport> last;
+  for (const auto& s : between)
+    if (s.result.filter) last = s.result.filter;
+  ASSERT_TRUE(last);
+  std::printf("readings between the floors: %zu storey(s) still searched at the end, decided: %s\n", last->candidates.size(),
+              decidedStorey(between) ? "the ground floor" : "no");
 }
 
 TEST(StoreyChange, AfterSlippingOnTheStairsTheNewStoreysWallsBringThePoseBack) {

@@ -4,6 +4,8 @@
 
 #include "peers/peer.hpp"
 #include "pf/filter_access.hpp"
+#include "storeys/altitude_mean.hpp"
+#include "storeys/landing_rooms.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -87,6 +89,9 @@ struct Localizer::Impl {
   LocalizerConfig config;
   std::vector<std::size_t> storeys;  // the candidates of the first search
   std::optional<storeys::AltitudeReading> altitude;  // the latest observeAltitude(), if any
+  std::optional<double> altitude_reference_s;        // the first reading's stamp: its drift counts from there
+  storeys::AltitudeMean altitude_mean;               // the readings averaged (storeys/altitude_mean.hpp)
+  double odom_z = 0;                                 // the odometry's height on this step
   std::unique_ptr<pf::StoreyBank> bank;            // the current (or last) search (not for peers)
   std::unique_ptr<peers::PeerLocalizer> peer;      // methods Amcl, Ndt
   std::optional<Eigen::Isometry3d> peer_T_map_odom;  // the peer's, since it converged
@@ -189,7 +194,8 @@ Localizer::Localizer(Localizer&&) noexcept = default;
 
 void Localizer::observeAltitude(double stamp_s, double altitude_m, double sigma_m) {
   if (!std::isfinite(stamp_s) || !std::isfinite(altitude_m) || !std::isfinite(sigma_m) || sigma_m < 0) return;  // no reading
-  impl_->altitude = storeys::AltitudeReading{stamp_s, altitude_m, sigma_m};
+  if (!impl_->altitude_reference_s) impl_->altitude_reference_s = stamp_s;
+  impl_->altitude = storeys::AltitudeReading{stamp_s, altitude_m, sigma_m, stamp_s - *impl_->altitude_reference_s};
 }
 
 LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<Eigen::Vector3f>& points_lidar) {
@@ -205,6 +211,8 @@ LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_od
     return r;
   }
   if (!m.base_height_m) m.firstStep(T_odom_base, r);
+  m.odom_z = T_odom_base.translation().z();
+  if (m.altitude && std::isfinite(m.odom_z)) m.altitude_mean.add(*m.altitude, m.odom_z);
   // predict -> follow the storey -> observe (only what a stage will look at) -> track ->
   // search -> hand over or lose -> describe
   Eigen::Isometry3d odom = m.levelled(T_odom_base);
@@ -270,6 +278,14 @@ void Localizer::Impl::track(double stamp_s, const Eigen::Isometry3d& T_odom_base
 }
 
 void Localizer::Impl::search(const std::vector<planes::ObservedPlane>& walls, const pf::RangeProfile& profile, LocalizationResult& r) {
+  const std::optional<storeys::AltitudeReading> mean = altitude_mean.at(odom_z);
+  if (mean && bank->storeys().size() > 1) {
+    // The altitude weighs the storeys the search still considers (those it rules out are not).
+    std::vector<double> ll(building.storeys.size(), 0.0);
+    for (const std::size_t s : bank->storeys())
+      ll[s] = storeys::altitudeLogLikelihood(building, s, *mean, *base_height_m, config.storeys);
+    bank->setStoreyLogLikelihoods(std::move(ll));
+  }
   pf::StoreyBankReport report = bank->update(walls, &profile);
   // The places the report lists (while not converged), each a fitted pose, not a candidate of
   // the path evidence's wide model: the filter has decided with the latter already.
@@ -381,12 +397,22 @@ void Localizer::Impl::followSearch(double stamp_s, const Eigen::Isometry3d& odom
   }
   if (next.empty()) return;  // no floor that far up: wait
   z_shift_m += rise;
-  bank = std::make_unique<pf::StoreyBank>(building, next, T_base_lidar, config.pf);
+  // The robot came by a flight: it is at (or a few steps past) the end of one that arrives on
+  // these storeys, the search's prior rooms (the start's prior, if any, is moot up here). The
+  // reach: the height settles settled_window_s after the last riser, and the search starts
+  // then, 1-2 m on at a legged base's 0.5-1 m/s.
+  constexpr double kLandingReachM = 2.0;
+  pf::ParticleFilterConfig c = config.pf;
+  c.prior_rooms = storeys::landingRooms(building, next, rise > 0, kLandingReachM);
+  c.prior_pose.reset();
+  bank = std::make_unique<pf::StoreyBank>(building, next, T_base_lidar, c);
   Eigen::Isometry3d now = odom;
   now.translation().z() -= rise;
   bank->predict(now);
   r.warnings.push_back("the base climbed " + std::to_string(rise) + " m while searching: the search starts again " +
-                       std::to_string(next.size()) + " storey(s) " + (rise > 0 ? "up" : "down"));
+                       std::to_string(next.size()) + " storey(s) " + (rise > 0 ? "up" : "down") +
+                       (c.prior_rooms.empty() ? std::string(", over the whole storey")
+                                              : ", in the " + std::to_string(c.prior_rooms.size()) + " room(s) at the flights' ends"));
 }
 
 // Onto the new storey: the pose carried across (map <- odom kept in x, y, yaw; z on the new

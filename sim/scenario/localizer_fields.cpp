@@ -91,7 +91,8 @@ std::vector<Field> storeyFields(storeys::StoreyFollowConfig& c) {
           {"flight_margin_m", &c.flight_margin_m, closed(0, 10)},
           {"max_climb_s", &c.max_climb_s, positive(1e5)},
           {"altitude_sigmas", &c.altitude_sigmas, positive(100)},
-          {"altitude_tolerance_m", &c.altitude_tolerance_m, closed(0, 100)},
+          {"floor_finish_m", &c.floor_finish_m, closed(0, 100)},
+          {"altitude_drift_sigma_mps", &c.altitude_drift_sigma_mps, closed(0, 1)},
           {"arrival_sigma_m", &c.arrival_sigma_m, positive(1e4)},
           {"arrival_sigma_yaw_deg", &c.arrival_sigma_yaw_deg, positive(180)}};
 }

@@ -61,6 +61,13 @@ struct StoreyBank::Impl {
   std::size_t leader = 0;  // index into entries
   bool decided = false;
   std::optional<double> margin;
+  std::vector<double> storey_ll;  // setStoreyLogLikelihoods(), by Building storey index
+
+  // The evidence from outside the walls on an entry's storey (0 without any).
+  double storeyLogLikelihood(std::size_t k) const {
+    const std::size_t s = entries[k].storey;
+    return s < storey_ll.size() ? storey_ll[s] : 0.0;
+  }
 
   // The leader's place to weigh against the other storeys: the path's best place where the
   // filter converged, else the filter's estimate.
@@ -69,16 +76,20 @@ struct StoreyBank::Impl {
     const Pose2 estimate = planarPose(e.filter->T_map_base());
     return e.best && detail::near(*e.best, estimate, kSamePlaceM, kSamePlaceRad) ? *e.best : estimate;
   }
-  // The margin of the leader's place over the best places of every other storey.
+  // The margin of the leader's place over the best places of every other storey: the walls'
+  // (crossMargin) plus the altitude's log-likelihood ratio between the two storeys (one
+  // reading, counted once: its error is mostly an offset the window's scans share).
   double marginOverOthers() const {
     const PathEvidence::WindowFit here = FilterAccess::windowFit(*entries[leader].filter, leaderPlace());
     double margin = std::numeric_limits<double>::infinity();
     for (std::size_t j = 0; j < entries.size(); ++j) {
       if (j == leader || !entries[j].best) continue;
+      const double storey_ratio = storeyLogLikelihood(leader) - storeyLogLikelihood(j);
       std::vector<Eigen::Vector3d> places{*entries[j].best};
       places.insert(places.end(), entries[j].rivals.begin(), entries[j].rivals.end());
       for (const auto& q : places)
-        margin = std::min(margin, crossMargin(here, FilterAccess::windowFit(*entries[j].filter, q), config.gate_mahalanobis2));
+        margin = std::min(margin, crossMargin(here, FilterAccess::windowFit(*entries[j].filter, q), config.gate_mahalanobis2) +
+                                      storey_ratio);
     }
     return margin;
   }
@@ -136,6 +147,8 @@ StoreyBank::StoreyBank(const bim::Building& building, const std::vector<std::siz
 StoreyBank::~StoreyBank() = default;
 StoreyBank::StoreyBank(StoreyBank&&) noexcept = default;
 
+void StoreyBank::setStoreyLogLikelihoods(std::vector<double> by_storey) { impl_->storey_ll = std::move(by_storey); }
+
 void StoreyBank::predict(const Eigen::Isometry3d& T_odom_base) {
   for (auto& e : impl_->entries) e.filter->predict(T_odom_base);
 }
@@ -167,7 +180,8 @@ StoreyBankReport StoreyBank::update(const std::vector<planes::ObservedPlane>& wa
     }
     const auto ahead = [&](std::size_t a, std::size_t b) {
       const bool ca = m.entries[a].filter->converged(), cb = m.entries[b].filter->converged();
-      return ca != cb ? ca : m.entries[a].log_likelihood > m.entries[b].log_likelihood;
+      return ca != cb ? ca
+                      : m.entries[a].log_likelihood + m.storeyLogLikelihood(a) > m.entries[b].log_likelihood + m.storeyLogLikelihood(b);
     };
     for (std::size_t k = 0; k < m.entries.size(); ++k)
       if (ahead(k, m.leader)) m.leader = k;

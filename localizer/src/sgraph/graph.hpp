@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <deque>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -116,6 +117,10 @@ struct Graph {
   MarginalPrior prior;
   int next_keyframe_id = 0;
   int next_new_plane_id = 0;
+  // The base's map z at the first keyframe, standing on the storey's floor (the hand-over, or
+  // the arrival from the stairs): a keyframe far from it is on a flight, where the lidar does
+  // not see the storey as the plan's floor view has it (loss_monitor.cpp).
+  std::optional<double> floor_base_z;
 };
 
 }  // namespace bimloc::sgraph::detail

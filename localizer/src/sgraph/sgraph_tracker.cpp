@@ -155,6 +155,7 @@ detail::Keyframe& SGraphTracker::Impl::addKeyframe(double stamp_s, const Eigen::
   kf.b = kf.tilt * T_base_lidar.translation();
   kf.odometry_jump = jump_pending && !graph.window.empty();
   jump_pending = false;
+  if (!graph.floor_base_z) graph.floor_base_z = kf.z_map;  // handed over (or arrived) standing on the floor
   if (graph.window.empty()) {  // the first keyframe: the particle filter's pose, to its precision
     graph.prior = detail::posePrior(predicted, {config.initial_sigma_xy_m, config.initial_sigma_xy_m, config.initial_sigma_yaw_deg * kDeg});
   }

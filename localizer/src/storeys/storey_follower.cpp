@@ -38,9 +38,23 @@ std::optional<std::size_t> storeyAtHeight(const bim::Building& building, const s
   return best;
 }
 
+double altitudeSigma(const AltitudeReading& altitude, const StoreyFollowConfig& config) {
+  const double drift = config.altitude_drift_sigma_mps * std::max(0.0, altitude.since_reference_s);
+  return std::hypot(altitude.sigma_m, drift);
+}
+
+double altitudeLogLikelihood(const bim::Building& building, std::size_t storey, const AltitudeReading& altitude,
+                             double base_height_m, const StoreyFollowConfig& config) {
+  const double off = std::abs(altitude.altitude_m - (building.storeys.at(storey).elevation_m + base_height_m));
+  const double beyond = std::max(0.0, off - config.floor_finish_m);
+  const double sigma = altitudeSigma(altitude, config);
+  if (!(sigma > 0)) return beyond > 0 ? -std::numeric_limits<double>::infinity() : 0.0;
+  return -0.5 * (beyond / sigma) * (beyond / sigma);
+}
+
 std::vector<std::size_t> storeysAtAltitude(const bim::Building& building, const std::vector<std::size_t>& candidates,
                                            const AltitudeReading& altitude, double base_height_m, const StoreyFollowConfig& config) {
-  const double reach = config.altitude_sigmas * std::abs(altitude.sigma_m) + config.altitude_tolerance_m;
+  const double reach = config.altitude_sigmas * altitudeSigma(altitude, config) + config.floor_finish_m;
   std::vector<std::size_t> kept;
   for (const std::size_t s : candidates)
     if (std::abs(altitude.altitude_m - (building.storeys.at(s).elevation_m + base_height_m)) <= reach) kept.push_back(s);

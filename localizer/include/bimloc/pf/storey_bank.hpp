@@ -5,7 +5,9 @@
 // decision between places of one storey. Until then the candidates are reported.
 //
 // What is not used: the odometry's height. The robot's start height is unknown, so a storey's
-// elevation cannot be matched to it; only the walls decide.
+// elevation cannot be matched to it. An altitude (a barometer) is: its log-likelihood per
+// storey (setStoreyLogLikelihoods) enters the choice of the leader and the margin over the
+// other storeys, in the same units as the walls' (a log-likelihood ratio).
 #pragma once
 
 #include <bimloc/pf/particle_filter.hpp>
@@ -30,8 +32,8 @@ struct StoreyBankReport {
   std::size_t leader = 0;     // storey index of the leading (or decided) storey
   bool decided = false;       // the storey is decided (on this update or before)
   // How much better the path fits the leader's place than the best place of any other storey
-  // (per distinct face, as UpdateReport::path_margin): +inf with one storey left, unset while
-  // the leader's filter has not converged (not asked).
+  // (per distinct face, as UpdateReport::path_margin, plus the storey evidence's log-likelihood
+  // ratio): +inf with one storey left, unset while the leader's filter has not converged (not asked).
   std::optional<double> storey_margin;
   std::vector<StoreyCandidate> candidates;  // the storeys still considered, leader first
 };
@@ -51,6 +53,12 @@ class StoreyBank {
              const ParticleFilterConfig& config);
   ~StoreyBank();
   StoreyBank(StoreyBank&&) noexcept;
+
+  // Evidence on the storey from outside the walls (the altitude): a log-likelihood per storey,
+  // indexed as Building::storeys (up to a common constant). It is added to each storey's path
+  // log-likelihood where the leader is chosen, and the leader's less a rival's to the margin
+  // over that rival. Empty (the default): the walls alone.
+  void setStoreyLogLikelihoods(std::vector<double> by_storey);
 
   void predict(const Eigen::Isometry3d& T_odom_base);
   bool wantsObservations() const;

@@ -39,11 +39,24 @@ struct StoreyFollowConfig {
   // odometry's height drifting (lidar odometry drifts in z on long runs): the localizer stops
   // treating the robot as climbing (its search runs again).
   double max_climb_s = 60.0;
-  // An altitude rules a storey out when it is farther than altitude_sigmas * sigma +
-  // altitude_tolerance_m from its floor + base height (the tolerance: floors off their
-  // elevation by the finish, the barometer's drift since its reference).
+  // An altitude rules a storey out when it is farther than altitude_sigmas * altitudeSigma() +
+  // floor_finish_m from its floor + base height (storeysAtAltitude), and weighs the storeys
+  // it does not rule out by its Gaussian log-likelihood (altitudeLogLikelihood).
   double altitude_sigmas = 3.0;
-  double altitude_tolerance_m = 0.5;
+  // How far the floor the robot stands on may lie from its storey's elevation, a bound (not a
+  // noise): the slab's own elevation tolerance, +-19 mm (ACI 117-10, "Specification for
+  // Tolerances for Concrete Construction and Materials", the elevation of a slab's top surface
+  // +-3/4 in), and the floor build-up a site may not have laid yet when the plan's elevation is
+  // the finished floor's: a floating screed of at least 45 mm (DIN 18560-2:2022, the nominal
+  // thickness of a cement screed on an insulating layer) over its impact-sound insulation and a
+  // covering, about 0.1 m. 0.02 + 0.1 m.
+  double floor_finish_m = 0.12;
+  // The barometer's drift since its reference (the localizer's first reading): the weather
+  // moves the pressure under a still sensor, a tendency of about 0.5 hPa in 3 hours at about
+  // 8.3 m per hPa, 0.38 mm/s (the order of magnitude of the 3-hourly tendencies weather
+  // stations report; the bench's model, sim/odometry/barometer.hpp). A rate of this sigma: its
+  // effect grows with the time since the reference and adds to the reading's sigma.
+  double altitude_drift_sigma_mps = 3.8e-4;
   // The arrival landing as a prior: when the tracker cannot confirm the new storey's walls,
   // the filter searches within this of the pose carried across the flight (1 sigma).
   double arrival_sigma_m = 1.0;
@@ -52,15 +65,27 @@ struct StoreyFollowConfig {
 
 struct AltitudeReading {
   double stamp_s = 0, altitude_m = 0, sigma_m = 0;
+  double since_reference_s = 0;  // the time since the altitude's reference (for its drift)
 };
+
+// The altitude's sigma: the reading's own, and its drift since its reference
+// (StoreyFollowConfig::altitude_drift_sigma_mps), independent, in quadrature.
+double altitudeSigma(const AltitudeReading& altitude, const StoreyFollowConfig& config);
+
+// The altitude's log-likelihood on storey s (an index into building.storeys): Gaussian in the
+// distance from the storey's floor + base height beyond StoreyFollowConfig::floor_finish_m
+// (0 within it), of sigma altitudeSigma(). Up to a constant, the same for every storey: a
+// difference of two is the altitude's log-likelihood ratio between them.
+double altitudeLogLikelihood(const bim::Building& building, std::size_t storey, const AltitudeReading& altitude,
+                             double base_height_m, const StoreyFollowConfig& config);
 
 // The storey (of `candidates`, indices into building.storeys) whose floor + base height is
 // nearest base_z_m, if within tolerance_m.
 std::optional<std::size_t> storeyAtHeight(const bim::Building& building, const std::vector<std::size_t>& candidates,
                                           double base_z_m, double base_height_m, double tolerance_m);
 
-// The candidates an altitude does not rule out (StoreyFollowConfig::altitude_sigmas and
-// altitude_tolerance_m), in their order.
+// The candidates an altitude does not rule out (StoreyFollowConfig::altitude_sigmas,
+// floor_finish_m, altitudeSigma()), in their order.
 std::vector<std::size_t> storeysAtAltitude(const bim::Building& building, const std::vector<std::size_t>& candidates,
                                            const AltitudeReading& altitude, double base_height_m, const StoreyFollowConfig& config);
 
