@@ -1,6 +1,7 @@
 // bimloc bench bags [SCENARIO] [--repeat N] [--json]
-// The cost of reading one run's recording as a ROS 1 bag, a ROS 2 MCAP bag (zstd chunks) and a
-// ROS 2 SQLite3 bag: the input layer of `localize` (BagInput: topics, odometry, tf, every cloud
+// The cost of reading one run's recording as a ROS 1 bag, a ROS 2 MCAP bag (zstd chunks, as
+// rosbag2 writes by default; and lz4 and uncompressed chunks, the same bag as the uncompressed
+// ROS 1 one but for the container) and a ROS 2 SQLite3 bag: the input layer of `localize` (BagInput: topics, odometry, tf, every cloud
 // decoded), best of N, each against the ROS 1 bag in the same run. The reads take turns (ROS 1,
 // MCAP, SQLite3, then again), so that a load that comes and goes on a shared machine falls on
 // each format alike; the ratio is of CPU seconds (the process's), since wall time also counts
@@ -47,9 +48,13 @@ void run(const BagBenchArgs& args) {
                 [&](LidarScan&& scan) { scans.push_back(std::move(scan)); });
   const auto tmp = std::filesystem::temp_directory_path() / ("bimloc-bench-bags-" + std::to_string(::getpid()));
   struct Format {
-    std::string name, input;
+    std::string name, bag_format, mcap_compression, input;
   };
-  const std::vector<Format> formats = {{"ros1", "dataset.bag"}, {"mcap", "rosbag2"}, {"sqlite3", "rosbag2"}};
+  const std::vector<Format> formats = {{"ros1", "ros1", "", "dataset.bag"},
+                                       {"mcap", "mcap", "zstd", "rosbag2"},
+                                       {"mcap-lz4", "mcap", "lz4", "rosbag2"},
+                                       {"mcap-none", "mcap", "", "rosbag2"},
+                                       {"sqlite3", "sqlite3", "", "rosbag2"}};
   nlohmann::json rows = nlohmann::json::array();
   bimloc::cli::Table table({"format", "bag [MB]", "read [s]", "read CPU [s]", "x ROS 1 (CPU)", "points"});
   struct Measured {
@@ -62,7 +67,8 @@ void run(const BagBenchArgs& args) {
     for (std::size_t k = 0; k < formats.size(); ++k) {
       DatasetInfo info;
       info.T_base_lidar = scenario.sensor.T_base_lidar;
-      info.bag_format = formats[k].name;
+      info.bag_format = formats[k].bag_format;
+      info.mcap_compression = formats[k].mcap_compression;
       const std::string dir = (tmp / formats[k].name).string();
       DatasetWriter writer(dir, info);
       for (const auto& o : sim.odometry()) writer.addOdometry(o);
@@ -85,7 +91,7 @@ void run(const BagBenchArgs& args) {
       const Measured& m = measured[k];
       const double ratio = m.cpu_s / measured[0].cpu_s;
       const double mb = static_cast<double>(bytesOf(m.input)) / 1e6;
-      rows.push_back({{"format", formats[k].name}, {"bag_bytes", bytesOf(m.input)}, {"read_seconds", m.wall_s},
+      rows.push_back({{"format", formats[k].name}, {"compression", formats[k].mcap_compression}, {"bag_bytes", bytesOf(m.input)}, {"read_seconds", m.wall_s},
                       {"read_cpu_seconds", m.cpu_s}, {"ratio_to_ros1", ratio}, {"points", m.points}, {"turns", scans.size()}});
       using bimloc::cli::fixed;
       table.add({formats[k].name, fixed(mb, 1), fixed(m.wall_s, 3), fixed(m.cpu_s, 3), fixed(ratio, 2), std::to_string(m.points)});
@@ -108,8 +114,9 @@ void run(const BagBenchArgs& args) {
 void addBenchBagsCommand(CLI::App& bench) {
   auto args = std::make_shared<BagBenchArgs>();
   CLI::App* cmd = bench.add_subcommand(
-      "bags", "Reading one run as a ROS 1 bag, a ROS 2 MCAP bag and a ROS 2 SQLite3 bag (localize's input layer, every "
-              "cloud decoded), the reads taking turns: seconds, CPU seconds and the ratio of CPU to the ROS 1 bag's, in the same run.");
+      "bags", "Reading one run as a ROS 1 bag, a ROS 2 MCAP bag (chunks zstd, rosbag2's default: mcap; lz4: mcap-lz4; "
+              "uncompressed like the ROS 1 bag: mcap-none) and a ROS 2 SQLite3 bag (localize's input layer, every cloud decoded), "
+              "the reads taking turns: seconds, CPU seconds and the ratio of CPU to the ROS 1 bag's, in the same run.");
   cmd->add_option("scenario", args->scenario, "scenario file")->capture_default_str();
   cmd->add_option("--repeat", args->repeat, "reads of each bag; the best is kept")->capture_default_str()->check(CLI::Range(1, 100));
   cmd->add_flag("--json", args->json, "print one JSON object");

@@ -43,6 +43,8 @@ struct DatasetInfo {
   std::array<double, 6> odometry_twist_variance{1e-3, 1e-3, 1e-6, 1e-6, 1e-6, 1e-3};
   // The bag's format: "ros1" (dataset.bag), "mcap" or "sqlite3" (a rosbag2 folder, rosbag2/).
   std::string bag_format = "ros1";
+  // An MCAP bag's chunk compression: "zstd" (rosbag2's default), "lz4" or "" (none).
+  std::string mcap_compression = "zstd";
   // When > 0, every turn is also written as the VLP-16's own packets at this rpm: a
   // velodyne_msgs/VelodyneScan on /velodyne_packets in the bag and the UDP stream in
   // velodyne.pcap (`bimloc simulate --packets`).
