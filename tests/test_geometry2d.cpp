@@ -44,3 +44,16 @@ TEST(Geometry2d, SimplifyDropsCollinearAndDuplicateVerticesAndOrientsCounterCloc
   ASSERT_EQ(s.size(), 4u);
   EXPECT_DOUBLE_EQ(signedArea(s), 12.0);
 }
+
+TEST(Geometry2d, DistanceToASegmentIsToItsNearestPointAndSegmentsCrossOnlyInside) {
+  const Eigen::Vector2d a(1, 1), b(4, 5);  // length 5
+  EXPECT_NEAR(distanceToSegment({1, 1}, a, b), 0.0, 1e-12);
+  EXPECT_NEAR(distanceToSegment({-2, -3}, a, b), 5.0, 1e-12);       // beyond a, along the line
+  EXPECT_NEAR(distanceToSegment({8, 8}, a, b), 5.0, 1e-12);         // beyond b: (8,8)-(4,5)
+  EXPECT_NEAR(distanceToSegment({2.5 + 4, 3 - 3}, a, b), 5.0, 1e-12);  // off its middle, along the normal
+  EXPECT_NEAR(distanceToSegment({4, 5}, a, a), std::hypot(3.0, 4.0), 1e-12);  // a point segment
+  EXPECT_TRUE(segmentsCross({0, 0}, {2, 2}, {0, 2}, {2, 0}));
+  EXPECT_FALSE(segmentsCross({0, 0}, {1, 1}, {0, 2}, {2, 0}));  // they meet at (1, 1): an end touches
+  EXPECT_FALSE(segmentsCross({0, 0}, {0.9, 0.9}, {0, 2}, {2, 0}));
+  EXPECT_FALSE(segmentsCross({0, 0}, {2, 0}, {1, 0}, {3, 0}));  // collinear
+}

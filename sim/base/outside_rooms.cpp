@@ -22,16 +22,10 @@ constexpr int kDraws = 4000;
 constexpr int kReachChecks = 8;  // per kind of place
 constexpr std::size_t kNearestRooms = 3;
 
-double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
 double distanceToWalls(const bim::Storey& storey, const Eigen::Vector2d& p) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& w : storey.walls)
-    best = std::min(best, distanceToSegment(p, w.start.head<2>(), w.end.head<2>()) - 0.5 * w.thickness_m);
+    best = std::min(best, bim::distanceToSegment(p, w.start.head<2>(), w.end.head<2>()) - 0.5 * w.thickness_m);
   return best;
 }
 

@@ -15,25 +15,12 @@ constexpr int kDrawsPerPartition = 400;
 // A door's leaf and swing: kept this much further from a partition than a wall is.
 constexpr double kPartitionDoorSwing_m = 1.0;
 
-double pointSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
-bool segmentsCross(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1, const Eigen::Vector2d& b0, const Eigen::Vector2d& b1) {
-  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
-  const double d1 = cross(a1 - a0, b0 - a0), d2 = cross(a1 - a0, b1 - a0);
-  const double d3 = cross(b1 - b0, a0 - b0), d4 = cross(b1 - b0, a1 - b0);
-  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
-}
 
 }  // namespace
 
 double segmentDistance(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1, const Eigen::Vector2d& b0, const Eigen::Vector2d& b1) {
-  if (segmentsCross(a0, a1, b0, b1)) return 0.0;
-  return std::min({pointSegment(a0, b0, b1), pointSegment(a1, b0, b1), pointSegment(b0, a0, a1), pointSegment(b1, a0, a1)});
+  if (bim::segmentsCross(a0, a1, b0, b1)) return 0.0;
+  return std::min({bim::distanceToSegment(a0, b0, b1), bim::distanceToSegment(a1, b0, b1), bim::distanceToSegment(b0, a0, a1), bim::distanceToSegment(b1, a0, a1)});
 }
 
 void placePartitions(const bim::Storey& storey, std::size_t storey_index, const SiteWalls& config,
@@ -71,7 +58,7 @@ void placePartitions(const bim::Storey& storey, std::size_t storey_index, const 
         clear = segmentDistance(a, b, s, e) >= keep + 0.5 * w.thickness_m;
       }
       for (std::size_t i = 0; clear && i < door_centres.size(); ++i)
-        clear = pointSegment(door_centres[i], a, b) >= keep + kPartitionDoorSwing_m;
+        clear = bim::distanceToSegment(door_centres[i], a, b) >= keep + kPartitionDoorSwing_m;
       for (std::size_t i = 0; clear && i < placed.size(); ++i)
         clear = segmentDistance(a, b, placed[i].first, placed[i].second) >= keep + 0.5 * config.partition_thickness_m;
       if (!clear) continue;

@@ -21,29 +21,16 @@ bool inOpening(const WallNode& node, int f, double along) {
   return false;
 }
 
-// The distance from p to face f's segment (its plan extent) in the floor plane.
-double distanceToFace(const WallNode& node, int f, const Eigen::Vector2d& p) {
-  const Eigen::Vector2d a = node.start[static_cast<std::size_t>(f)], u = node.end[static_cast<std::size_t>(f)] - a;
-  const double l2 = u.squaredNorm();
-  const double t = l2 > 0 ? std::clamp((p - a).dot(u) / l2, 0.0, 1.0) : 0.0;
-  return (a + t * u - p).norm();
-}
-
-// The segments p-q and a-b cross.
-bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
-  const double d1 = cross(q - p, a - p), d2 = cross(q - p, b - p), d3 = cross(b - a, p - a), d4 = cross(b - a, q - a);
-  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
-}
-
 }  // namespace
 
 PlanView::PlanView(const Graph& g, const Eigen::Vector2d& from, double range_m) : g_(g), from_(from), range_m_(range_m) {
   for (std::size_t n = 0; n < g.nodes.size(); ++n) {
     const WallNode& node = g.nodes[n];
     if (node.kind != WallNode::Kind::Plan || !node.active) continue;
-    for (int f = 0; f < node.faces; ++f)
-      if (distanceToFace(node, f, from) <= range_m) near_.push_back({static_cast<int>(n), f});
+    for (int f = 0; f < node.faces; ++f) {
+      const auto k = static_cast<std::size_t>(f);
+      if (bim::distanceToSegment(from, node.start[k], node.end[k]) <= range_m) near_.push_back({static_cast<int>(n), f});
+    }
   }
 }
 
@@ -87,7 +74,7 @@ std::vector<PlanFaceRef> PlanView::facesInClearView(double min_length_m, const s
       // or something the scan saw.
       if (blocked(p, 0.01, r.node)) continue;
       bool hidden = false;
-      for (const Occluder& o : occluders) hidden = hidden || segmentsCross(from_, p, o.a, o.b);
+      for (const Occluder& o : occluders) hidden = hidden || bim::segmentsCross(from_, p, o.a, o.b);
       if (!hidden) clear += kPlanViewSampleM;
     }
     if (clear >= min_length_m) out.push_back(r);

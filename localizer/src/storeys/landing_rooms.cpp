@@ -14,12 +14,8 @@ double distanceToRoom(const bim::Room& room, const Eigen::Vector2d& p) {
   if (room.footprint.size() < 3) return std::numeric_limits<double>::infinity();
   if (bim::pointInPolygon(room.footprint, p)) return 0.0;
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < room.footprint.size(); ++i) {
-    const Eigen::Vector2d a = room.footprint[i], u = room.footprint[(i + 1) % room.footprint.size()] - a;
-    const double l2 = u.squaredNorm();
-    const double t = l2 > 0 ? std::clamp((p - a).dot(u) / l2, 0.0, 1.0) : 0.0;
-    best = std::min(best, (a + t * u - p).norm());
-  }
+  for (std::size_t i = 0; i < room.footprint.size(); ++i)
+    best = std::min(best, bim::distanceToSegment(p, room.footprint[i], room.footprint[(i + 1) % room.footprint.size()]));
   return best;
 }
 

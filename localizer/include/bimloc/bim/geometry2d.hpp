@@ -11,6 +11,10 @@ using Polygon2 = std::vector<Eigen::Vector2d>;
 double signedArea(const Polygon2& polygon);  // > 0 for counter-clockwise
 Eigen::Vector2d areaCentroid(const Polygon2& polygon);
 bool pointInPolygon(const Polygon2& polygon, const Eigen::Vector2d& p);
+// The distance from p to the segment a-b (to a where a = b).
+double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+// The segments p-q and a-b cross at a point inside both (touching at an end, or collinear, is not crossing).
+bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
 Polygon2 convexHull(std::vector<Eigen::Vector2d> points);  // counter-clockwise
 
 // Minimum-area enclosing rectangle of a convex polygon (rotating calipers).
