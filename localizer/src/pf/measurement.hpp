@@ -90,6 +90,8 @@ FaceShortlist shortlistFaces(const Eigen::Vector3d& centre, double xy_radius_m, 
 // With a finite `floor`, the match stops (below_floor) as soon as the log-likelihood summed so
 // far is below it: each observation adds a term <= 0, and in floating point a sum never grows
 // by adding one, so the whole would be below it too. Otherwise the result is the same bits.
+// In the local search (opening_margin_m >= 0) the floor is checked once, at the end: a piece
+// joining a surface can lower the surface's mean cost, so no partial sum bounds the whole.
 // With a `shortlist` (built from these observations, z_base, rooms and config, holding the
 // particle), the faces are taken from it: the same result, faster (see FaceShortlist).
 MatchResult matchObservations(const Particle& particle, double z_base, const std::vector<Observation>& observations,
