@@ -122,6 +122,27 @@ TEST(Export, MeshLoaderRefusesBrokenMeshes) {
   headless.erase(headless.find("end_header\n"), 11);
   expectRefused(headless, "not a PLY file (no 'ply' line first, or no end_header line)");
   expectRefused(whole + "x", "1 bytes after the last element");
+  // A face of fewer than 3 corners made assimp's triangulation abort the process (an ai_assert;
+  // found by the fuzz test with a line deleted from the body). The first face, 3 corners, is
+  // rewritten as 2.
+  const std::size_t body = whole.find("end_header\n") + 11;
+  const std::size_t vertices = std::stoul(whole.substr(whole.find("element vertex ") + 15));
+  const std::size_t face = body + vertices * 12;
+  ASSERT_EQ(whole[face], '\x03');
+  expectRefused(whole.substr(0, face) + '\x02' + whole.substr(face + 1, 8) + whole.substr(face + 13),
+                "face 0 has 2 vertex indices; a face needs at least 3");
+  // ASCII bodies are walked too.
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string corners = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+  std::ofstream(ply, std::ios::trunc) << header << corners << "4 0 1 2 3\n";
+  EXPECT_EQ(sim::loadMesh(ply).triangles.size(), 2u);  // the square, triangulated
+  expectRefused(header + corners + "0\n", "face 0 has 0 vertex indices; a face needs at least 3");
+  expectRefused(header + corners + "2 0 1\n", "face 0 has 2 vertex indices; a face needs at least 3");
+  expectRefused(header + corners + "3 0 1 4\n", "face 0 names a vertex past the 4 vertices");
+  expectRefused(header + corners + "3 0 1\n", "truncated: element face 0 is cut short");
+  expectRefused(header + "0 0 0\n1 0 x\n", "element vertex 1: 'x' is not a number");
+  expectRefused(header + corners + "3 0 1 2\n7\n", "text after the last element: '7'");
 }
 
 // IFC++'s CSG orders faces, and splits them, by heap address: before canonical_mesh.cpp the

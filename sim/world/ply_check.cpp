@@ -1,6 +1,8 @@
 #include "sim/world/ply_check.hpp"
 
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -38,6 +40,45 @@ std::uint64_t littleEndian(const unsigned char* p, std::size_t size) {
   std::uint64_t v = 0;
   for (std::size_t k = size; k-- > 0;) v = (v << 8) | p[k];
   return v;
+}
+
+// An ASCII body, walked as the binary one: every element's numbers present, every face a polygon of
+// existing vertices, nothing after the last element. assimp aborts the process on a face of fewer
+// than 3 corners whatever the format.
+void checkAsciiBody(const std::string& path, const std::string& data, std::size_t at, const std::vector<Element>& elements) {
+  std::istringstream body(data.substr(at));
+  std::uint64_t vertices = 0;
+  std::string word;
+  for (const Element& e : elements) {
+    if (e.name == "vertex") vertices = e.count;
+    for (std::uint64_t i = 0; i < e.count; ++i)
+      for (const Property& p : e.properties) {
+        const auto number = [&](double& v) {
+          if (!(body >> word)) fail(path, "truncated: element " + e.name + " " + std::to_string(i) + " is cut short");
+          char* stop = nullptr;
+          v = std::strtod(word.c_str(), &stop);
+          if (stop == word.c_str() || *stop != '\0')
+            fail(path, "element " + e.name + " " + std::to_string(i) + ": '" + word.substr(0, 40) + "' is not a number");
+        };
+        double v = 0;
+        if (p.count_size == 0) {
+          number(v);
+          continue;
+        }
+        number(v);
+        if (!(v >= 0 && v <= 1e6 && v == std::floor(v)))
+          fail(path, "element " + e.name + " " + std::to_string(i) + ": a list of '" + word.substr(0, 40) + "' items");
+        const auto n = static_cast<std::uint64_t>(v);
+        if (e.name == "face" && n < 3)
+          fail(path, "face " + std::to_string(i) + " has " + std::to_string(n) + " vertex indices; a face needs at least 3");
+        for (std::uint64_t k = 0; k < n; ++k) {
+          number(v);
+          if (e.name == "face" && !(v >= 0 && v < static_cast<double>(vertices) && v == std::floor(v)))
+            fail(path, "face " + std::to_string(i) + " names a vertex past the " + std::to_string(vertices) + " vertices");
+        }
+      }
+  }
+  if (body >> word) fail(path, "text after the last element: '" + word.substr(0, 40) + "'");
 }
 
 }  // namespace
@@ -87,10 +128,10 @@ void checkPly(const std::string& path) {
     }
   }
   if (format.empty()) fail(path, "no format line in the PLY header");
-  if (format == "ascii") return;
+  std::size_t at = end + std::strlen("\nend_header\n");
+  if (format == "ascii") return checkAsciiBody(path, data, at, elements);
   std::uint64_t vertices = 0;
   const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
-  std::size_t at = end + std::strlen("\nend_header\n");
   for (const Element& e : elements) {
     if (e.name == "vertex") vertices = e.count;
     if (e.properties.empty()) continue;  // nothing stored: no byte to read, however many
@@ -103,6 +144,10 @@ void checkPly(const std::string& path) {
           at += p.count_size;
         }
         if (at + n * p.size > data.size()) fail(path, "truncated: element " + e.name + " " + std::to_string(i) + " is cut short");
+        // A face is a polygon: fewer than 3 corners is no surface, and assimp's triangulation
+        // aborts the process on such a face (an ai_assert) instead of failing.
+        if (p.count_size > 0 && e.name == "face" && n < 3)
+          fail(path, "face " + std::to_string(i) + " has " + std::to_string(n) + " vertex indices; a face needs at least 3");
         if (p.count_size > 0 && e.name == "face" && (p.size == 4 || p.size == 2 || p.size == 1))
           for (std::uint64_t k = 0; k < n; ++k)
             if (littleEndian(bytes + at + k * p.size, p.size) >= vertices)
