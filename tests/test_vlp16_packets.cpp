@@ -8,6 +8,7 @@
 
 #include "sim/dataset/pcap_writer.hpp"
 #include "sim/lidar/vlp16.hpp"
+#include "sim/dataset/velodyne_scan_points.hpp"
 #include "sim/lidar/vlp16_packet.hpp"
 #include "sim/lidar/vlp16_packet_encoder.hpp"
 #include "sim/lidar/vlp16_turns.hpp"
@@ -161,6 +162,34 @@ TEST(Vlp16Packets, ABrokenPacketIsRefusedNamingWhatIsWrong) {
   p = good;
   p[1204] = 0x3B;
   refused(p, p.size(), "return mode 0x3B is none of the manual's");
+}
+
+// Every return dropped is counted (found by damaging packets: 0xFFFF distances, 131 m, vanished
+// without a word), and a timestamp no VLP-16 writes is said.
+TEST(Vlp16Packets, ReturnsOutOfRangeAreCountedAndAStampPastTheHourIsSaid) {
+  std::array<std::uint16_t, 12> az{};
+  Packet p = emptyPacket(az, 0x37);
+  setReturn(p, 0, 0, 0, 0xFFFF, 10);  // 131.07 m: beyond the 130 m the decoder keeps
+  setReturn(p, 0, 0, 1, 0xFFFF, 10);
+  setReturn(p, 1, 1, 2, 100, 10);     // 0.2 m: at or below the driver's 0.4 m
+  setReturn(p, 2, 0, 3, 2500, 10);    // 5 m: kept
+  setReturn(p, 3, 0, 4, 0, 0);        // no return: not a point at all
+  std::vector<sim::Vlp16Point> out;
+  const auto header = sim::decodeVlp16Packet(p.data(), p.size(), 0.0, {}, out, "test packet");
+  EXPECT_EQ(out.size(), 1u);
+  EXPECT_EQ(header.beyond_max_range, 2u);
+  EXPECT_EQ(header.below_min_range, 1u);
+  const auto cloud = sim::decodeVelodyneScan({{0.0, p.data(), p.size()}}, 0.0, {}, "bag: /velodyne_packets message 0");
+  EXPECT_EQ(cloud.beyond_max_range, 2u);
+  EXPECT_EQ(cloud.below_min_range, 1u);
+  EXPECT_TRUE(cloud.warnings.empty());
+  // 0xFFFFFFFF microseconds past the hour: no hour is that long.
+  p[1200] = p[1201] = p[1202] = p[1203] = 0xFF;
+  const auto stamped = sim::decodeVelodyneScan({{0.0, p.data(), p.size()}}, 0.0, {}, "bag: /velodyne_packets message 0");
+  ASSERT_EQ(stamped.warnings.size(), 1u);
+  EXPECT_NE(stamped.warnings[0].find("timestamp past the hour"), std::string::npos) << stamped.warnings[0];
+  put16(p, 1200, 0x0000), put16(p, 1202, 0xD693);  // 3 599 958 016 us: within the hour
+  EXPECT_TRUE(sim::decodeVelodyneScan({{0.0, p.data(), p.size()}}, 0.0, {}, "m").warnings.empty());
 }
 
 TEST(Vlp16Packets, TheBenchsTurnsComeBackFromTheirPacketsWithinTheQuantization) {

@@ -282,6 +282,9 @@ void BagInput::forEachTurn(const std::function<void(const BagTurn&)>& visit) con
     // is skipped before the localizer sees it. De-skewed only when the localizer asks.
     auto p = std::make_shared<CloudPoints>(decodeBagCloud(*cloud, where));
     turn.drops = keepUsablePoints(p->xyz, &p->time_s, options_.range, p->non_finite);
+    turn.drops.read += p->below_min_range + p->beyond_max_range;  // the decoder's range filter (packets)
+    turn.drops.below_min_range += p->below_min_range;
+    turn.drops.beyond_max_range += p->beyond_max_range;
     turn.warnings = std::move(p->warnings);
     turn.points = [this, p, header_s, ref = turn.stamp_s] {
       if (options_.deskew && !p->time_s.empty()) {

@@ -66,6 +66,9 @@ struct CloudPoints {
   std::vector<double> time_s;
   std::size_t declared = 0;    // width * height
   std::size_t non_finite = 0;  // dropped: NaN or infinite x, y or z
+  // Dropped while decoding, by the decoder's range filter (VLP-16 packets), counted in the
+  // run's point drops with the others.
+  std::size_t below_min_range = 0, beyond_max_range = 0;
   std::vector<std::string> warnings;  // checkCloudLayout's
   std::string time_field;  // the field the times came from ("" without); "packets" for decoded packets
   bool time_absolute = false;

@@ -111,7 +111,14 @@ Vlp16PacketHeader decodeVlp16Packet(const std::uint8_t* data, std::size_t size, 
         // The second return equal to the first: one echo, reported twice.
         if (dual && b % 2 == 1 && options.keep_last && u16(record - kVlp16BlockBytes) == units) continue;
         const double distance = units * kVlp16DistanceUnitM;
-        if (!(distance > options.min_range_m) || !(distance < options.max_range_m)) continue;
+        if (!(distance > options.min_range_m)) {
+          ++header.below_min_range;
+          continue;
+        }
+        if (!(distance < options.max_range_m)) {
+          ++header.beyond_max_range;
+          continue;
+        }
         const double along = f * kSequenceUs + l * kFiringUs;
         double units_az;
         if (options.nebula_azimuths) {  // single precision and rounding, as nebula computes it

@@ -69,7 +69,13 @@ struct Vlp16Point {
 struct Vlp16PacketHeader {
   Vlp16ReturnMode mode = Vlp16ReturnMode::kStrongest;
   std::uint32_t timestamp_us = 0;  // microseconds past the top of the hour
+  // Returns the packet holds that the range filter (Vlp16DecodeOptions) dropped: counted, since
+  // every point dropped is said (a 0xFFFF distance, 131 m, is a damaged packet's mark).
+  std::size_t below_min_range = 0, beyond_max_range = 0;
 };
+
+// The manual's timestamp counts microseconds past the top of the hour: below this.
+inline constexpr std::uint32_t kVlp16MicrosecondsPerHour = 3600000000u;
 
 // Appends the packet's points in packet order (block, firing, laser). `stamp_s` is the time of
 // the packet's first firing (a driver's packet stamp). Throws std::runtime_error
