@@ -83,6 +83,9 @@ TEST(DatasetValidation, IndexRowsMustPointAtSoundPcdFiles) {
                 "clouds/000004.pcd", "bytes of data, the file has");
   expectRefused(damaged("clouds/000004.pcd", [](const std::string& t) { return replaceRegex(t, "POINTS ", "POINTS 1"); }),
                 "clouds/000004.pcd", "is not WIDTH x HEIGHT");
+  // A garbled VERSION (found by the fuzz test, seed 17004: "0.7" -> "nan") says the header is damaged.
+  expectRefused(damaged("clouds/000004.pcd", [](const std::string& t) { return replaceRegex(t, "VERSION 0.7", "VERSION nan"); }),
+                "clouds/000004.pcd", "VERSION 'nan' is none of the PCD format's 0.5, 0.6, 0.7");
   expectRefused(damaged("clouds/index.csv", [](const std::string& t) { return replaceRegex(t, "\n000001.pcd,", "\n../x,"); }),
                 "clouds/index.csv:3", "'../x' is not a file name in clouds/");
 }

@@ -38,6 +38,13 @@ PcdHeader readPcdHeader(const std::string& path, std::istream& in, std::size_t f
     if (header[key].size() != 1) pcdFail(path, "not a PCD file: no single " + key + " value in the header");
     return header[key][0];
   };
+  // The format's versions (PCL writes ".7" or "0.7"); an absent VERSION is tolerated, a garbled one
+  // says the header is damaged.
+  if (header.count("VERSION")) {
+    static const std::vector<std::string> known{"0.7", ".7", "0.6", ".6", "0.5", ".5"};
+    if (std::find(known.begin(), known.end(), one("VERSION")) == known.end())
+      pcdFail(path, "VERSION '" + one("VERSION") + "' is none of the PCD format's 0.5, 0.6, 0.7");
+  }
   PcdHeader h;
   h.fields = header["FIELDS"];
   const auto& sizes = header["SIZE"];
