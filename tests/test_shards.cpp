@@ -131,6 +131,11 @@ TEST(Shards, ArrayTasksMergeIntoTheUnshardedRun) {
   std::ofstream(dir + "/bad.json") << "{\"scenarios\": [";
   const auto bad = runBimloc("report merge '" + dir + "/bad.json' " + files);
   EXPECT_NE(bad.err.find(dir + "/bad.json: not valid JSON"), std::string::npos) << bad.err;
+  // A number no double holds is the library's out_of_range, not a parse error: named too.
+  std::ofstream(dir + "/huge.json") << "{\"scenarios\": [], \"wall_seconds\": 1e99999}";
+  const auto huge = runBimloc("report merge '" + dir + "/huge.json' " + files);
+  EXPECT_EQ(huge.exit_code, 2);
+  EXPECT_NE(huge.err.find(dir + "/huge.json: number overflow"), std::string::npos) << huge.err;
   std::ofstream(dir + "/whole.json") << whole.out;
   const auto plain = runBimloc("report merge '" + dir + "/whole.json'");
   EXPECT_NE(plain.err.find(dir + "/whole.json: not the JSON of a sharded run"), std::string::npos) << plain.err;

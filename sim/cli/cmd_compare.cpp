@@ -5,6 +5,7 @@
 // same turn before the next is made, so all get the same scans and the same odometry, bit for
 // bit; each declares convergence by its own criterion and one scorer (RunScore) judges all.
 #include "sim/cli/commands.hpp"
+#include "sim/common/printable.hpp"
 #include "sim/cli/compare_page.hpp"
 #include "sim/cli/compare_report.hpp"
 #include "sim/cli/run_pool.hpp"
@@ -133,7 +134,7 @@ void run(const CompareArgs& args) {
     bimloc::cli::printCompareTables(report, std::cout, args.wide);
   if (staging && !args.json) std::cout << "\nThe page: " << (std::filesystem::path(args.out) / "index.html").string() << "\n";
   for (const auto& r : runs)
-    if (!r.error.empty()) std::cerr << "bimloc compare: error: " << r.name << ": " << r.error << "\n";
+    if (!r.error.empty()) std::cerr << "bimloc compare: error: " << r.name << ": " << printable(r.error) << "\n";
   if (report["errors"].get<int>() > 0) throw bimloc::cli::ExitCode{1};
 }
 

@@ -6,6 +6,7 @@
 // The same localizer as `bimloc run`, offline, on a recording; one loop for both kinds
 // (sim/runner/localize_recording.hpp).
 #include "sim/cli/commands.hpp"
+#include "sim/common/printable.hpp"
 #include "sim/cli/localize_output.hpp"
 #include "sim/cli/run_report.hpp"
 #include "sim/dataset/bag_reader.hpp"
@@ -213,7 +214,7 @@ void run(const LocalizeArgs& args) {
   r.recording->ground_truth = rec.checks.ground_truth;
   const std::vector<std::string> dropped = r.recording->warnings();
   r.warnings.insert(r.warnings.begin(), dropped.begin(), dropped.end());
-  for (const auto& w : dropped) std::cerr << "bimloc localize: warning: " << args.input << ": " << w << "\n";
+  for (const auto& w : dropped) std::cerr << "bimloc localize: warning: " << args.input << ": " << printable(w) << "\n";
   const auto& last = recording.last;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto report = bimloc::cli::runReport({r}, r.wall_seconds);

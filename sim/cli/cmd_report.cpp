@@ -3,6 +3,7 @@
 #include "sim/cli/commands.hpp"
 #include "sim/cli/run_report.hpp"
 #include "sim/cli/shards.hpp"
+#include "sim/common/json_errors.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -19,8 +20,8 @@ nlohmann::json readJson(const std::string& path) {
   text << in.rdbuf();
   try {
     return nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw std::runtime_error(path + ": not valid JSON (" + std::string(e.what()) + ")");
+  } catch (const nlohmann::json::exception& e) {  // a parse error, or a number out of range (1e99999)
+    throw std::runtime_error(path + ": " + bimloc::sim::jsonProblem(e));
   }
 }
 

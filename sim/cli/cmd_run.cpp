@@ -1,5 +1,6 @@
 // bimloc run SCENARIO... | --plan PLAN --all-rooms [--storey S|auto] [--method M] [--config FILE.yaml] [--starts rooms|outside] [--json] [--out DIR] [--jobs N] [--shard K/N] [--oracle] [--multi-storey] [--altitude]
 #include "sim/cli/commands.hpp"
+#include "sim/common/printable.hpp"
 #include "sim/cli/run_pool.hpp"
 #include "sim/cli/run_report.hpp"
 #include "sim/cli/shards.hpp"
@@ -109,7 +110,7 @@ void run(const RunArgs& args) {
   else
     bimloc::cli::printRunTable(results, report, std::cout);
   for (std::size_t i = 0; i < errors.size(); ++i)
-    if (!errors[i].empty()) std::cerr << "bimloc run: error: " << errors[i] << "\n";
+    if (!errors[i].empty()) std::cerr << "bimloc run: error: " << printable(errors[i]) << "\n";
   bool all_passed = true;
   for (const auto& r : results) all_passed = all_passed && r.passed;
   // A scenario that could not run (named above) did not localize either: its JSON entry says why.

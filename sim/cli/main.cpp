@@ -1,5 +1,6 @@
 // bimloc: one binary, git-style subcommands.
 #include "sim/cli/commands.hpp"
+#include "sim/common/printable.hpp"
 #include "sim/common/interrupt_cleanup.hpp"
 
 #include <bimloc/verbosity.hpp>
@@ -44,7 +45,7 @@ int main(int argc, char** argv) {
   } catch (const bimloc::cli::ExitCode& e) {
     return e.code;
   } catch (const std::exception& e) {
-    std::cerr << command() << ": error: " << e.what() << "\n";
+    std::cerr << command() << ": error: " << bimloc::sim::printable(e.what()) << "\n";
     return bimloc::cli::usesLocalizeExitCodes(command()) ? bimloc::cli::kExitUnusableInput : 1;
   }
   return 0;
