@@ -136,6 +136,13 @@ TEST(Shards, ArrayTasksMergeIntoTheUnshardedRun) {
   const auto huge = runBimloc("report merge '" + dir + "/huge.json' " + files);
   EXPECT_EQ(huge.exit_code, 2);
   EXPECT_NE(huge.err.find(dir + "/huge.json: number overflow"), std::string::npos) << huge.err;
+  // A key only the table reads, missing: the shard is named (it failed on the merged report).
+  auto lacking = nlohmann::json::parse(std::ifstream(dir + "/shard-2-of-3.json"));
+  for (auto& scenario : lacking["scenarios"]) scenario.erase("position_error_m");
+  std::ofstream(dir + "/lacking.json") << lacking.dump();
+  const auto unreadable = runBimloc("report merge " + file(1, 3, dir) + " '" + dir + "/lacking.json' " + file(3, 3, dir));
+  EXPECT_EQ(unreadable.exit_code, 2);
+  EXPECT_NE(unreadable.err.find(dir + "/lacking.json: malformed shard report"), std::string::npos) << unreadable.err;
   std::ofstream(dir + "/whole.json") << whole.out;
   const auto plain = runBimloc("report merge '" + dir + "/whole.json'");
   EXPECT_NE(plain.err.find(dir + "/whole.json: not the JSON of a sharded run"), std::string::npos) << plain.err;
