@@ -110,13 +110,15 @@ void run(const BagBenchArgs& args) {
     std::optional<std::size_t> prefetch;  // chunks read ahead; unset: the default
     int same_bag_as = -1;                 // reads the bag of an earlier format
   };
-  const std::vector<Format> formats = {{"ros1", "ros1", "", "dataset.bag"},
-                                       {"mcap", "mcap", "zstd", "rosbag2"},
-                                       {"mcap-1thread", "mcap", "zstd", "rosbag2", 4u << 20, false, 0, 1},
-                                       {"mcap-rosbag2", "mcap", "zstd", "rosbag2", 768u << 10, true},
-                                       {"mcap-lz4", "mcap", "lz4", "rosbag2"},
-                                       {"mcap-none", "mcap", "", "rosbag2"},
-                                       {"sqlite3", "sqlite3", "", "rosbag2"}};
+  constexpr std::size_t kChunk = 4u << 20, kRosbag2Chunk = 768u << 10;  // ours; rosbag2's default
+  const std::optional<std::size_t> kDefault;
+  const std::vector<Format> formats = {{"ros1", "ros1", "", "dataset.bag", kChunk, false, kDefault, -1},
+                                       {"mcap", "mcap", "zstd", "rosbag2", kChunk, false, kDefault, -1},
+                                       {"mcap-1thread", "mcap", "zstd", "rosbag2", kChunk, false, 0, 1},
+                                       {"mcap-rosbag2", "mcap", "zstd", "rosbag2", kRosbag2Chunk, true, kDefault, -1},
+                                       {"mcap-lz4", "mcap", "lz4", "rosbag2", kChunk, false, kDefault, -1},
+                                       {"mcap-none", "mcap", "", "rosbag2", kChunk, false, kDefault, -1},
+                                       {"sqlite3", "sqlite3", "", "rosbag2", kChunk, false, kDefault, -1}};
   nlohmann::json rows = nlohmann::json::array();
   bimloc::cli::Table table({"format", "bag [MB]", "chunks", "read [s]", "x ROS 1 (wall)", "read CPU [s]", "x ROS 1 (CPU)", "points"});
   struct Measured {
