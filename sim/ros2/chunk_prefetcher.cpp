@@ -41,9 +41,10 @@ ChunkPrefetcher::~ChunkPrefetcher() {
 }
 
 bool ChunkPrefetcher::canClaim() const {
-  // 1 ahead of the reader at first, then as many as it has taken, up to `ahead`.
-  const std::size_t window = std::max<std::size_t>(1, std::min(ahead_, taken_));
-  return next_load_ < count_ && next_load_ <= failed_at_ && next_load_ < taken_ + window;
+  // The chunks the reader asked for, and once it has taken two (it reads on: not the first
+  // cloud's read, which stops after one message) as many more as it has taken, up to `ahead`.
+  const std::size_t window = taken_ < 2 ? 0 : std::min(ahead_, taken_);
+  return next_load_ < count_ && next_load_ <= failed_at_ && next_load_ < std::max(requested_, taken_ + window);
 }
 
 void ChunkPrefetcher::work(Decompressor& z) {
@@ -88,6 +89,8 @@ LoadedChunk ChunkPrefetcher::next() {
   {
     std::unique_lock<std::mutex> lock(mutex_);
     if (taken_ >= count_) throw std::logic_error("ChunkPrefetcher: no chunk left");
+    requested_ = taken_ + 1;
+    changed_.notify_all();  // a worker waiting for the window may load this one
     changed_.wait(lock, [&] { return ready_.count(taken_) || workers_done_ == workers_.size(); });
     const auto it = ready_.find(taken_);
     if (it == ready_.end()) throw std::logic_error("ChunkPrefetcher: the workers stopped before chunk " + std::to_string(taken_));

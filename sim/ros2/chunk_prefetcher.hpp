@@ -43,8 +43,8 @@ class ChunkPrefetcher {
 
   // `count` chunks; `ahead`: how many may be loaded (or loading) beyond those the reader took,
   // by `workers` threads (ahead 0 or workers 0: none, each chunk is loaded by next() on the
-  // calling thread: the single-threaded read). The window opens as the reader takes chunks (1
-  // ahead at first), so a reader that stops after its first chunk wastes little.
+  // calling thread: the single-threaded read). The window opens once the reader has taken two
+  // chunks, so a reader that stops after its first (the first cloud's read) wastes nothing.
   ChunkPrefetcher(std::size_t count, std::size_t ahead, Load load, std::size_t workers = 1);
   ~ChunkPrefetcher();
   ChunkPrefetcher(const ChunkPrefetcher&) = delete;
@@ -70,7 +70,7 @@ class ChunkPrefetcher {
   std::mutex mutex_;
   std::condition_variable changed_;
   std::map<std::size_t, Slot> ready_;  // loaded chunks by index
-  std::size_t taken_ = 0, next_load_ = 0, failed_at_ = SIZE_MAX, workers_done_ = 0;
+  std::size_t taken_ = 0, requested_ = 0, next_load_ = 0, failed_at_ = SIZE_MAX, workers_done_ = 0;
   std::vector<std::vector<std::uint8_t>> pool_;
   bool stop_ = false;
   std::vector<std::thread> workers_;
