@@ -1,23 +1,36 @@
 // bimloc bench bags [SCENARIO] [--repeat N] [--json]
-// The cost of reading one run's recording as a ROS 1 bag, a ROS 2 MCAP bag (zstd chunks, as
-// rosbag2 writes by default; and lz4 and uncompressed chunks, the same bag as the uncompressed
-// ROS 1 one but for the container) and a ROS 2 SQLite3 bag: the input layer of `localize` (BagInput: topics, odometry, tf, every cloud
-// decoded), best of N, each against the ROS 1 bag in the same run. The reads take turns (ROS 1,
-// MCAP, SQLite3, then again), so that a load that comes and goes on a shared machine falls on
-// each format alike; the ratio is of CPU seconds (the process's), since wall time also counts
-// waiting for a core.
+// The cost of reading one run's recording as a ROS 1 bag and as ROS 2 bags: the input layer of
+// `localize` (BagInput: topics, odometry, tf, every cloud decoded and de-skewed), best of N,
+// each against the ROS 1 bag in the same run, by wall time and by CPU time. The formats:
+//   ros1          the ROS 1 bag of `simulate`
+//   mcap          MCAP, zstd chunks of 4 MiB (as `simulate --format mcap` writes it), read with
+//                 its chunks decompressed ahead on a worker thread (chunk_prefetcher.hpp)
+//   mcap-1thread  the same file read on one thread (BIMLOC_MCAP_PREFETCH=0)
+//   mcap-rosbag2  MCAP as `ros2 bag record -s mcap` writes it by default: zstd chunks of
+//                 768 KiB with their CRC, the topics interleaved in the order received
+//   mcap-lz4, mcap-none  MCAP with lz4 / uncompressed chunks (4 MiB)
+//   sqlite3       rosbag2's SQLite3 storage
+// The reads take turns (every format, then again), so that a load that comes and goes on a
+// shared machine falls on each format alike. Wall time is what a user waits; CPU time (the
+// process's, every thread) is what the machine spends; the reading thread's CPU time is the
+// read's critical path: its wall time where a core is free for the prefetch workers (on a
+// machine whose cores are all busy, wall time follows the CPU time instead).
 #include "sim/cli/commands.hpp"
 #include "sim/cli/table.hpp"
 #include "sim/dataset/bag_reader.hpp"
 #include "sim/dataset/dataset_writer.hpp"
+#include "sim/ros2/chunk_prefetcher.hpp"
 #include "sim/runner/run_scenario.hpp"
 #include "sim/simulation/simulator.hpp"
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <thread>
 
+#include <time.h>
 #include <unistd.h>
 
 namespace {
@@ -29,6 +42,58 @@ struct BagBenchArgs {
   std::string scenario = "scenarios/site_office_R101.yaml";
   int repeat = 3;
   bool json = false;
+};
+
+// The streams written as a recorder receives them, merged by stamp (received_order), or one
+// after the other: odometry, truth, then the clouds (an MCAP writer then puts the odometry in
+// chunks of its own).
+void writeStreams(const Simulator& sim, const std::vector<LidarScan>& scans, bool received_order, DatasetWriter& writer) {
+  const auto& odometry = sim.odometry();
+  const auto& truth = sim.groundTruth();
+  if (!received_order) {
+    for (const auto& o : odometry) writer.addOdometry(o);
+    for (const auto& g : truth) writer.addGroundTruth(g);
+    for (const auto& s : scans) writer.addScan(s);
+    return;
+  }
+  std::size_t o = 0, g = 0, c = 0;
+  while (o < odometry.size() || g < truth.size() || c < scans.size()) {
+    const double to = o < odometry.size() ? odometry[o].stamp_s : 1e300;
+    const double tg = g < truth.size() ? truth[g].stamp_s : 1e300;
+    const double tc = c < scans.size() ? scans[c].stamp_s : 1e300;
+    if (to <= tg && to <= tc) writer.addOdometry(odometry[o++]);
+    else if (tg <= tc) writer.addGroundTruth(truth[g++]);
+    else writer.addScan(scans[c++]);
+  }
+}
+
+double threadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// BIMLOC_MCAP_PREFETCH set for one read, and put back as it was.
+class PrefetchSetting {
+ public:
+  explicit PrefetchSetting(std::optional<std::size_t> chunks) {
+    if (!chunks) return;
+    if (const char* v = std::getenv(kName)) previous_ = v;
+    ::setenv(kName, std::to_string(*chunks).c_str(), 1);
+    set_ = true;
+  }
+  ~PrefetchSetting() {
+    if (!set_) return;
+    if (previous_) ::setenv(kName, previous_->c_str(), 1);
+    else ::unsetenv(kName);
+  }
+  PrefetchSetting(const PrefetchSetting&) = delete;
+  PrefetchSetting& operator=(const PrefetchSetting&) = delete;
+
+ private:
+  static constexpr const char* kName = "BIMLOC_MCAP_PREFETCH";
+  std::optional<std::string> previous_;
+  bool set_ = false;
 };
 
 std::uintmax_t bytesOf(const std::filesystem::path& p) {
@@ -49,52 +114,76 @@ void run(const BagBenchArgs& args) {
   const auto tmp = std::filesystem::temp_directory_path() / ("bimloc-bench-bags-" + std::to_string(::getpid()));
   struct Format {
     std::string name, bag_format, mcap_compression, input;
+    std::size_t chunk_bytes = 4u << 20;
+    bool received_order = false;
+    std::optional<std::size_t> prefetch;  // chunks read ahead; unset: the default
+    int same_bag_as = -1;                 // reads the bag of an earlier format
   };
-  const std::vector<Format> formats = {{"ros1", "ros1", "", "dataset.bag"},
-                                       {"mcap", "mcap", "zstd", "rosbag2"},
-                                       {"mcap-lz4", "mcap", "lz4", "rosbag2"},
-                                       {"mcap-none", "mcap", "", "rosbag2"},
-                                       {"sqlite3", "sqlite3", "", "rosbag2"}};
+  constexpr std::size_t kChunk = 4u << 20, kRosbag2Chunk = 768u << 10;  // ours; rosbag2's default
+  const std::optional<std::size_t> kDefault;
+  const std::vector<Format> formats = {{"ros1", "ros1", "", "dataset.bag", kChunk, false, kDefault, -1},
+                                       {"mcap", "mcap", "zstd", "rosbag2", kChunk, false, kDefault, -1},
+                                       {"mcap-1thread", "mcap", "zstd", "rosbag2", kChunk, false, 0, 1},
+                                       {"mcap-rosbag2", "mcap", "zstd", "rosbag2", kRosbag2Chunk, true, kDefault, -1},
+                                       {"mcap-lz4", "mcap", "lz4", "rosbag2", kChunk, false, kDefault, -1},
+                                       {"mcap-none", "mcap", "", "rosbag2", kChunk, false, kDefault, -1},
+                                       {"sqlite3", "sqlite3", "", "rosbag2", kChunk, false, kDefault, -1}};
   nlohmann::json rows = nlohmann::json::array();
-  bimloc::cli::Table table({"format", "bag [MB]", "read [s]", "read CPU [s]", "x ROS 1 (CPU)", "points"});
+  bimloc::cli::Table table({"format", "bag [MB]", "chunks", "read [s]", "x ROS 1 (wall)", "CPU [s]", "x ROS 1 (CPU)",
+                             "reading thread CPU [s]", "x ROS 1 (thread)", "points"});
   struct Measured {
     std::string input;
-    double wall_s = 1e300, cpu_s = 1e300;
+    double wall_s = 1e300, cpu_s = 1e300, thread_cpu_s = 1e300;
     std::size_t points = 0;
   };
   std::vector<Measured> measured(formats.size());
   try {
     for (std::size_t k = 0; k < formats.size(); ++k) {
+      const std::string dir = (tmp / formats[k].name).string();
+      if (formats[k].same_bag_as >= 0) {
+        measured[k].input = measured[static_cast<std::size_t>(formats[k].same_bag_as)].input;
+        continue;
+      }
       DatasetInfo info;
       info.T_base_lidar = scenario.sensor.T_base_lidar;
       info.bag_format = formats[k].bag_format;
       info.mcap_compression = formats[k].mcap_compression;
-      const std::string dir = (tmp / formats[k].name).string();
+      info.mcap_chunk_bytes = formats[k].chunk_bytes;
       DatasetWriter writer(dir, info);
-      for (const auto& o : sim.odometry()) writer.addOdometry(o);
-      for (const auto& g : sim.groundTruth()) writer.addGroundTruth(g);
-      for (const auto& s : scans) writer.addScan(s);
+      writeStreams(sim, scans, formats[k].received_order, writer);
       writer.commit();
       measured[k].input = dir + "/" + formats[k].input;
     }
     for (int i = 0; i < std::max(1, args.repeat); ++i)
-      for (Measured& m : measured) {
+      for (std::size_t k = 0; k < formats.size(); ++k) {
+        Measured& m = measured[k];
+        const PrefetchSetting prefetch(formats[k].prefetch);
         const auto t0 = Clock::now();
-        const double cpu0 = processCpuSeconds();
+        const double cpu0 = processCpuSeconds(), thread0 = threadCpuSeconds();
         const BagInput bag(m.input, BagInputOptions{});
         m.points = 0;
         bag.forEachTurn([&](const BagTurn& t) { m.points += t.points().size(); });
         m.cpu_s = std::min(m.cpu_s, processCpuSeconds() - cpu0);
+        m.thread_cpu_s = std::min(m.thread_cpu_s, threadCpuSeconds() - thread0);
         m.wall_s = std::min(m.wall_s, std::chrono::duration<double>(Clock::now() - t0).count());
       }
     for (std::size_t k = 0; k < formats.size(); ++k) {
       const Measured& m = measured[k];
-      const double ratio = m.cpu_s / measured[0].cpu_s;
+      const double cpu_ratio = m.cpu_s / measured[0].cpu_s, wall_ratio = m.wall_s / measured[0].wall_s;
+      const double thread_ratio = m.thread_cpu_s / measured[0].thread_cpu_s;
       const double mb = static_cast<double>(bytesOf(m.input)) / 1e6;
-      rows.push_back({{"format", formats[k].name}, {"compression", formats[k].mcap_compression}, {"bag_bytes", bytesOf(m.input)}, {"read_seconds", m.wall_s},
-                      {"read_cpu_seconds", m.cpu_s}, {"ratio_to_ros1", ratio}, {"points", m.points}, {"turns", scans.size()}});
+      const Format& f = formats[k];
+      const std::string chunks = f.bag_format != "mcap" ? "" : (f.mcap_compression.empty() ? "none" : f.mcap_compression) + " " +
+                                 std::to_string(f.chunk_bytes >> 10) + " KiB" + (f.received_order ? ", mixed" : "");
+      const std::size_t prefetch = f.bag_format != "mcap" ? 0 : f.prefetch ? *f.prefetch : bimloc::sim::ros2::defaultPrefetchChunks();
+      rows.push_back({{"format", f.name}, {"compression", f.mcap_compression}, {"chunk_bytes", f.bag_format == "mcap" ? f.chunk_bytes : 0},
+                      {"topics_interleaved", f.received_order}, {"prefetch_chunks", prefetch}, {"bag_bytes", bytesOf(m.input)},
+                      {"read_seconds", m.wall_s}, {"wall_ratio_to_ros1", wall_ratio}, {"read_cpu_seconds", m.cpu_s},
+                      {"ratio_to_ros1", cpu_ratio}, {"reading_thread_cpu_seconds", m.thread_cpu_s},
+                      {"thread_ratio_to_ros1", thread_ratio}, {"points", m.points}, {"turns", scans.size()}});
       using bimloc::cli::fixed;
-      table.add({formats[k].name, fixed(mb, 1), fixed(m.wall_s, 3), fixed(m.cpu_s, 3), fixed(ratio, 2), std::to_string(m.points)});
+      table.add({f.name, fixed(mb, 1), chunks, fixed(m.wall_s, 3), fixed(wall_ratio, 2), fixed(m.cpu_s, 3), fixed(cpu_ratio, 2),
+                 fixed(m.thread_cpu_s, 3), fixed(thread_ratio, 2), std::to_string(m.points)});
     }
   } catch (...) {
     std::filesystem::remove_all(tmp);
@@ -104,7 +193,7 @@ void run(const BagBenchArgs& args) {
   if (args.json) {
     std::cout << nlohmann::json{{"scenario", args.scenario}, {"repeat", args.repeat}, {"formats", rows}}.dump() << "\n";
   } else {
-    std::cout << args.scenario << ": " << scans.size() << " turns, best of " << args.repeat << "\n\n";
+    std::cout << args.scenario << ": " << scans.size() << " turns, best of " << args.repeat << " (wall and CPU each)\n\n";
     table.print(std::cout);
   }
 }
@@ -114,9 +203,12 @@ void run(const BagBenchArgs& args) {
 void addBenchBagsCommand(CLI::App& bench) {
   auto args = std::make_shared<BagBenchArgs>();
   CLI::App* cmd = bench.add_subcommand(
-      "bags", "Reading one run as a ROS 1 bag, a ROS 2 MCAP bag (chunks zstd, rosbag2's default: mcap; lz4: mcap-lz4; "
-              "uncompressed like the ROS 1 bag: mcap-none) and a ROS 2 SQLite3 bag (localize's input layer, every cloud decoded), "
-              "the reads taking turns: seconds, CPU seconds and the ratio of CPU to the ROS 1 bag's, in the same run.");
+      "bags", "Reading one run as a ROS 1 bag and as ROS 2 bags (localize's input layer, every cloud decoded), the reads "
+              "taking turns: wall seconds, CPU seconds and the reading thread's CPU seconds (the critical path, with "
+              "the MCAP chunks decompressed on worker threads), each with its ratio to the ROS 1 bag's in the same run. MCAP: zstd "
+              "chunks of 4 MiB as simulate writes them (mcap; mcap-1thread: the same file read with BIMLOC_MCAP_PREFETCH=0, "
+              "no chunk decompressed ahead on a worker thread), as ros2 bag record writes them by default (mcap-rosbag2: zstd, "
+              "768 KiB, the topics interleaved), lz4 (mcap-lz4) and uncompressed (mcap-none); and SQLite3.");
   cmd->add_option("scenario", args->scenario, "scenario file")->capture_default_str();
   cmd->add_option("--repeat", args->repeat, "reads of each bag; the best is kept")->capture_default_str()->check(CLI::Range(1, 100));
   cmd->add_flag("--json", args->json, "print one JSON object");

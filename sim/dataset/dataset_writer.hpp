@@ -45,6 +45,9 @@ struct DatasetInfo {
   std::string bag_format = "ros1";
   // An MCAP bag's chunk compression: "zstd" (rosbag2's default), "lz4" or "" (none).
   std::string mcap_compression = "zstd";
+  // Where an MCAP chunk is closed (its records' bytes): 4 MiB, or rosbag2's 768 KiB (a chunk
+  // then holds about one cloud; a message larger than this makes a chunk of its own).
+  std::size_t mcap_chunk_bytes = 4u << 20;
   // When > 0, every turn is also written as the VLP-16's own packets at this rpm: a
   // velodyne_msgs/VelodyneScan on /velodyne_packets in the bag and the UDP stream in
   // velodyne.pcap (`bimloc simulate --packets`).

@@ -126,7 +126,9 @@ class Ros2BagMessages final : public BagMessages {
 
   // The odometry, tf and pose topics are read by BagInput one after the other; in a bag whose
   // chunks mix every topic (MCAP as rosbag2 writes it), each would decompress the whole file.
-  // One pass keeps them all (they are small beside the clouds).
+  // One pass keeps them all (they are small beside the clouds), and decompresses a chunk only
+  // as far as its last message of them: the clouds after it are left to the clouds' pass, which
+  // reads every chunk with a cloud whole (and checks its CRC).
   bool isSmall(const std::string& topic) const {
     for (const auto kind : {BagMessageKind::kOdometry, BagMessageKind::kTFMessage, BagMessageKind::kPoseStamped})
       if (hasTopic(topic, kind)) return true;
@@ -139,7 +141,7 @@ class Ros2BagMessages final : public BagMessages {
       if (isSmall(name)) topics.push_back(name), small_[name];
     reader_.forEachMessage(topics, [&](const ros2::BagMessage& m) {
       small_[m.topic->name].push_back({m.log_time_ns, std::vector<std::uint8_t>(m.data, m.data + m.size), m.where});
-    });
+    }, /*whole_chunks=*/false);  // in a bag whose chunks mix the clouds in, their prefixes only
     small_filled_ = true;
   }
 

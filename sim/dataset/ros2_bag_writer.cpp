@@ -26,7 +26,7 @@ ros2::Vector3 vector3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; 
 }  // namespace
 
 Ros2BagWriter::Ros2BagWriter(const std::string& dir, const std::string& storage, const DatasetInfo& info)
-    : bag_(std::make_unique<ros2::Rosbag2Writer>(dir, storage, info.mcap_compression)), info_(info) {
+    : bag_(std::make_unique<ros2::Rosbag2Writer>(dir, storage, info.mcap_compression, info.mcap_chunk_bytes)), info_(info) {
   const std::pair<const char*, const char*> topics[] = {{kCloudTopic, "sensor_msgs/msg/PointCloud2"},
                                                         {kOdomTopic, "nav_msgs/msg/Odometry"},
                                                         {kTfTopic, "tf2_msgs/msg/TFMessage"},

@@ -33,7 +33,8 @@ Decompressor::Decompressor() : contexts_(std::make_unique<Contexts>()) {}
 Decompressor::~Decompressor() = default;
 
 void Decompressor::decompress(const std::string& compression, const std::uint8_t* data, std::size_t size,
-                              std::uint64_t uncompressed_size, const std::string& where, std::vector<std::uint8_t>& out) {
+                              std::uint64_t uncompressed_size, const std::string& where, std::vector<std::uint8_t>& out,
+                              std::uint64_t prefix) {
   auto fail = [&](const std::string& what) -> std::runtime_error {
     return std::runtime_error(where + ": " + (compression.empty() ? "uncompressed" : compression) + " chunk: " + what);
   };
@@ -49,12 +50,15 @@ void Decompressor::decompress(const std::string& compression, const std::uint8_t
                " compressed bytes can hold (or than a chunk of 1 GiB)");
   // Decompressed as a stream into a buffer that grows with what actually comes out: a damaged
   // size never allocates more than the data really holds (beyond what an earlier chunk needed).
-  out.resize(static_cast<std::size_t>(std::min<std::uint64_t>(uncompressed_size, std::max<std::size_t>(out.size(), 16u << 20))));
+  // The output is bounded by what the reader needs (`goal`): the whole chunk, or its prefix.
+  const std::uint64_t goal = std::min(uncompressed_size, prefix);
+  const bool partial = goal < uncompressed_size;
+  out.resize(static_cast<std::size_t>(std::min<std::uint64_t>(goal, std::max<std::size_t>(out.size(), 16u << 20))));
   std::size_t in_pos = 0, out_pos = 0;
   auto room = [&] {
     if (out_pos < out.size()) return true;
-    if (out.size() == uncompressed_size) return false;
-    out.resize(static_cast<std::size_t>(std::min<std::uint64_t>(uncompressed_size, 2 * static_cast<std::uint64_t>(out.size()))));
+    if (out.size() >= goal) return false;
+    out.resize(static_cast<std::size_t>(std::min<std::uint64_t>(goal, 2 * static_cast<std::uint64_t>(out.size()))));
     return true;
   };
   if (compression == "zstd") {
@@ -71,6 +75,7 @@ void Decompressor::decompress(const std::string& compression, const std::uint8_t
       const bool progressed = in.pos != in_pos || o.pos != out_pos;
       in_pos = in.pos, out_pos = o.pos;
       if (hint == 0 && in_pos == size) break;  // the frame is complete
+      if (partial && out_pos >= goal) break;    // as much as the reader needs
       if (!more_room && out_pos == out.size() && hint != 0)
         throw fail("decompresses to more than the " + std::to_string(uncompressed_size) + " bytes it declares");
       if (!progressed) throw fail("the zstd data ends early (" + std::to_string(in_pos) + " of " + std::to_string(size) + " bytes read)");
@@ -90,11 +95,16 @@ void Decompressor::decompress(const std::string& compression, const std::uint8_t
       if (LZ4F_isError(hint)) throw fail(std::string("does not decompress: ") + LZ4F_getErrorName(hint));
       in_pos += in_n, out_pos += out_n;
       if (hint == 0) break;  // the frame is complete
+      if (partial && out_pos >= goal) break;  // as much as the reader needs
       if (in_n == 0 && out_n == 0) {
         if (!more_room) throw fail("decompresses to more than the " + std::to_string(uncompressed_size) + " bytes it declares");
         throw fail("the LZ4 frame ends early (" + std::to_string(in_pos) + " of " + std::to_string(size) + " bytes read)");
       }
     }
+  }
+  if (partial && out_pos >= goal) {  // stopped early, on purpose: the rest is not checked
+    out.resize(out_pos);
+    return;
   }
   if (out_pos != uncompressed_size)
     throw fail("decompresses to " + std::to_string(out_pos) + " bytes, not the " + std::to_string(uncompressed_size) + " it declares");

@@ -20,6 +20,9 @@ std::vector<std::uint8_t> decompress(const std::string& compression, const std::
 // context for all of them (a fresh context per chunk costs its allocation and initialisation
 // every time), and the output written into `out`, whose capacity is reused from chunk to chunk.
 // Same bytes, same errors as decompress().
+// With `prefix` below uncompressed_size it stops once `prefix` bytes are out (a reader that
+// needs only the chunk's first records): `out` then holds at least `prefix` bytes, and the
+// data after them is neither decompressed nor checked.
 class Decompressor {
  public:
   Decompressor();
@@ -27,7 +30,7 @@ class Decompressor {
   Decompressor(const Decompressor&) = delete;
   Decompressor& operator=(const Decompressor&) = delete;
   void decompress(const std::string& compression, const std::uint8_t* data, std::size_t size, std::uint64_t uncompressed_size,
-                  const std::string& where, std::vector<std::uint8_t>& out);
+                  const std::string& where, std::vector<std::uint8_t>& out, std::uint64_t prefix = UINT64_MAX);
 
  private:
   struct Contexts;

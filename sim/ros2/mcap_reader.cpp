@@ -1,6 +1,7 @@
 #include "sim/ros2/mcap_reader.hpp"
 
 #include "sim/ros2/byte_cursor.hpp"
+#include "sim/ros2/chunk_prefetcher.hpp"
 #include "sim/ros2/mcap_records.hpp"
 
 #include <algorithm>
@@ -20,9 +21,12 @@ bool isMcapFile(const std::string& path) {
   return in.read(reinterpret_cast<char*>(magic), 8) && std::memcmp(magic, mcap::kMagic, 8) == 0;
 }
 
-McapReader::McapReader(const std::string& path) : path_(path), file_(path) {
+McapReader::McapReader(const std::string& path) : path_(path), file_(path), prefetch_chunks_(defaultPrefetchChunks()) {
   const std::uint8_t* d = file_.data();
   if (file_.size() < 8 || std::memcmp(d, mcap::kMagic, 8) != 0) throw std::runtime_error(path + ": not an MCAP file (no MCAP magic at its start)");
+  // Two workers when prefetching: while the reader decodes clouds one keeps up with it; in the
+  // small topics' pass, where the reader has little to do, two decompress twice as fast.
+  prefetch_workers_ = std::min<std::size_t>(2, prefetch_chunks_);
   data_end_ = file_.size();
   indexed_ = readSummary();
   if (!indexed_) scanData();
@@ -159,8 +163,8 @@ void McapReader::scanData() {
   }
 }
 
-std::vector<McapMessage> McapReader::chunkMessages(std::uint64_t at, const std::set<std::uint16_t>& wanted,
-                                                   std::vector<std::uint8_t>& buffer) const {
+std::size_t McapReader::chunkMessages(std::uint64_t at, const std::set<std::uint16_t>& wanted, Decompressor& z,
+                                      LoadedChunk& chunk, std::uint64_t prefix) const {
   const std::uint8_t* d = file_.data();
   if (at + mcap::kRecordHeaderBytes > data_end_ || d[at] != mcap::kChunk)
     throw std::runtime_error(path_ + ": at byte " + std::to_string(at) + ": a chunk index points at something that is not a Chunk record");
@@ -171,9 +175,10 @@ std::vector<McapMessage> McapReader::chunkMessages(std::uint64_t at, const std::
                              " bytes runs past the data section");
   ByteCursor c(d + at + mcap::kRecordHeaderBytes, static_cast<std::size_t>(length), path_, at + mcap::kRecordHeaderBytes);
   const ChunkHeader h = parseChunk(c);
-  const mcap::ChunkRecords records = inflate(h, path_, decompressor_, buffer);
+  const mcap::ChunkRecords records = inflate(h, path_, z, chunk.buffer, prefix);
   const std::string where = path_ + ": chunk at byte " + std::to_string(at) + ", record offset";
-  std::vector<McapMessage> out;
+  std::vector<McapMessage>& out = chunk.messages;
+  out.clear();
   const auto cut = walkRecords(records.data, records.size, 0, where, [&](std::uint8_t op, ByteCursor& m, std::uint64_t) {
     if (op != mcap::kMessage) return true;
     McapMessage msg;
@@ -192,39 +197,101 @@ std::vector<McapMessage> McapReader::chunkMessages(std::uint64_t at, const std::
   });
   if (cut) throw std::runtime_error(where + " " + std::to_string(*cut) + ": a record runs past the chunk's end");
   std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.log_time_ns < b.log_time_ns; });
+  return out.size();
+}
+
+std::vector<std::pair<std::uint64_t, std::uint64_t>> McapReader::messageIndexEntries(std::uint64_t offset, std::uint16_t channel) const {
+  const std::uint8_t* d = file_.data();
+  if (offset < 8 || offset > data_end_ || data_end_ - offset < mcap::kRecordHeaderBytes || d[offset] != mcap::kMessageIndex)
+    throw std::runtime_error(path_ + ": at byte " + std::to_string(offset) + ": a chunk index points at no MessageIndex record");
+  std::uint64_t length;
+  std::memcpy(&length, d + offset + 1, 8);
+  if (length > data_end_ - offset - mcap::kRecordHeaderBytes)
+    throw std::runtime_error(path_ + ": at byte " + std::to_string(offset) + ": a MessageIndex runs past the data section");
+  ByteCursor c(d + offset + mcap::kRecordHeaderBytes, static_cast<std::size_t>(length), path_, offset + mcap::kRecordHeaderBytes);
+  if (c.u16("MessageIndex channel_id") != channel) c.fail("a MessageIndex of another channel than its chunk index says");
+  const std::uint32_t n = c.u32("MessageIndex records");
+  ByteCursor entries(c.bytes(n, "MessageIndex records"), n, path_, c.fileOffset());
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> out;
+  while (!entries.done()) {
+    const std::uint64_t time = entries.u64("MessageIndex log_time");
+    out.emplace_back(time, entries.u64("MessageIndex offset"));
+  }
   return out;
+}
+
+std::uint64_t McapReader::wantedPrefix(const mcap::ChunkIndex& ci, const std::set<std::uint16_t>& wanted, std::size_t& count) const {
+  constexpr std::uint64_t kWhole = UINT64_MAX;
+  count = 0;
+  if (wanted.empty() || ci.message_index_offsets.empty()) return kWhole;
+  std::uint64_t last = 0;
+  std::vector<std::uint64_t> others;
+  try {
+    for (const auto& [channel, offset] : ci.message_index_offsets) {
+      const bool is_wanted = wanted.count(channel) > 0;
+      for (const auto& [time, at] : messageIndexEntries(offset, channel)) {
+        if (is_wanted) last = std::max(last, at), ++count;
+        else others.push_back(at);
+      }
+    }
+  } catch (const std::runtime_error&) {  // damaged indexes: the whole chunk, as a whole read finds it
+    return kWhole;
+  }
+  if (count == 0) return kWhole;
+  std::uint64_t end = kWhole;
+  for (const std::uint64_t at : others)
+    if (at > last) end = std::min(end, at);
+  return end;
 }
 
 std::optional<std::vector<std::uint64_t>> McapReader::indexedLogTimes(const std::set<std::uint16_t>& channel_ids) const {
   if (!indexed_) return std::nullopt;
-  const std::uint8_t* d = file_.data();
   std::vector<std::uint64_t> times;
   for (const auto& ci : chunk_indexes_) {
     if (ci.message_index_offsets.empty()) return std::nullopt;  // no message indexes: read the chunks
-    for (const auto& [channel, offset] : ci.message_index_offsets) {
-      if (!channel_ids.count(channel)) continue;
-      if (offset < 8 || offset > data_end_ || data_end_ - offset < mcap::kRecordHeaderBytes || d[offset] != mcap::kMessageIndex)
-        throw std::runtime_error(path_ + ": at byte " + std::to_string(offset) + ": a chunk index points at no MessageIndex record");
-      std::uint64_t length;
-      std::memcpy(&length, d + offset + 1, 8);
-      if (length > data_end_ - offset - mcap::kRecordHeaderBytes)
-        throw std::runtime_error(path_ + ": at byte " + std::to_string(offset) + ": a MessageIndex runs past the data section");
-      ByteCursor c(d + offset + mcap::kRecordHeaderBytes, static_cast<std::size_t>(length), path_, offset + mcap::kRecordHeaderBytes);
-      if (c.u16("MessageIndex channel_id") != channel) c.fail("a MessageIndex of another channel than its chunk index says");
-      const std::uint32_t n = c.u32("MessageIndex records");
-      ByteCursor entries(c.bytes(n, "MessageIndex records"), n, path_, c.fileOffset());
-      while (!entries.done()) {
-        times.push_back(entries.u64("MessageIndex log_time"));
-        entries.u64("MessageIndex offset");
-      }
-    }
+    for (const auto& [channel, offset] : ci.message_index_offsets)
+      if (channel_ids.count(channel))
+        for (const auto& [time, at] : messageIndexEntries(offset, channel)) times.push_back(time);
   }
   std::stable_sort(times.begin(), times.end());
   return times;
 }
 
-void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std::function<void(const McapMessage&)>& visit) const {
+void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std::function<void(const McapMessage&)>& visit,
+                                bool whole_chunks) const {
   const std::uint8_t* d = file_.data();
+  // The chunks to read, in the order the read reaches them: the prefetcher loads them ahead in
+  // that order (on worker threads unless prefetch_chunks_ is 0).
+  std::vector<std::uint64_t> chunks, starts;  // file offsets; indexed: their first message's log time
+  std::vector<const mcap::ChunkIndex*> indexes;
+  if (indexed_) {
+    for (const mcap::ChunkIndex& ci : chunk_indexes_) {
+      bool has_wanted = wanted.empty() || ci.message_index_offsets.empty();
+      for (const auto& [channel, offset] : ci.message_index_offsets) has_wanted = has_wanted || wanted.count(channel);
+      if (has_wanted) chunks.push_back(ci.chunk_start_offset), starts.push_back(ci.message_start_time), indexes.push_back(&ci);
+      // (else the message indexes say no message of these channels is there)
+    }
+  } else {
+    walkRecords(d + 8, data_end_ - 8, 8, path_, [&](std::uint8_t op, ByteCursor&, std::uint64_t at) {
+      if (op == mcap::kDataEnd || op == mcap::kFooter) return false;
+      if (op == mcap::kChunk) chunks.push_back(at);
+      return true;
+    });
+  }
+  const bool prefixes = !whole_chunks && indexed_ && !wanted.empty();
+  ChunkPrefetcher prefetcher(chunks.size(), prefetch_chunks_, [&](std::size_t i, Decompressor& z, LoadedChunk& chunk) {
+    if (prefixes) {
+      std::size_t count = 0;
+      const std::uint64_t prefix = wantedPrefix(*indexes[i], wanted, count);
+      if (prefix != UINT64_MAX) {
+        try {
+          if (chunkMessages(chunks[i], wanted, z, chunk, prefix) == count) return;
+        } catch (const std::runtime_error&) {  // damaged within the prefix: the whole read says how
+        }
+      }  // (and a prefix whose messages do not match the indexes: read whole)
+    }
+    chunkMessages(chunks[i], wanted, z, chunk);
+  }, prefetch_workers_);
   if (indexed_) {
     // Merged by log time over the chunks (sorted by their first message's time): a chunk is read
     // when the merge reaches its first message and released after its last, so that chunks
@@ -232,47 +299,39 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
     // are merged while only the chunks overlapping the time being read are in memory. Ties go
     // to the earlier chunk, then to the chunk's own order: a stable sort by log time.
     struct Live {
-      std::vector<std::uint8_t> buffer;
-      std::vector<McapMessage> messages;
+      LoadedChunk chunk;
       std::size_t next = 0;
-      std::uint64_t time() const { return messages[next].log_time_ns; }
+      std::uint64_t time() const { return chunk.messages[next].log_time_ns; }
     };
-    std::vector<std::vector<std::uint8_t>> pool;  // buffers of released chunks, their capacity reused
-    pool.swap(chunk_buffers_);                      // (taken out: a visit that reads the file again finds its own)
-    std::vector<Live> live;                         // in chunk order
+    std::vector<Live> live;  // in chunk order
     std::size_t k = 0;
     while (true) {
       int first = -1;
       for (int l = 0; l < static_cast<int>(live.size()); ++l)
         if (first < 0 || live[l].time() < live[first].time()) first = l;
-      if (k < chunk_indexes_.size() && (first < 0 || chunk_indexes_[k].message_start_time <= live[first].time())) {
-        const mcap::ChunkIndex& ci = chunk_indexes_[k++];
-        bool has_wanted = wanted.empty() || ci.message_index_offsets.empty();
-        for (const auto& [channel, offset] : ci.message_index_offsets) has_wanted = has_wanted || wanted.count(channel);
-        if (!has_wanted) continue;  // the message indexes say no message of these channels is here
-        Live chunk;
-        if (!pool.empty()) chunk.buffer = std::move(pool.back()), pool.pop_back();
-        chunk.messages = chunkMessages(ci.chunk_start_offset, wanted, chunk.buffer);
-        if (chunk.messages.empty()) pool.push_back(std::move(chunk.buffer));
+      if (k < chunks.size() && (first < 0 || starts[k] <= live[first].time())) {
+        ++k;
+        Live chunk{prefetcher.next()};
+        if (chunk.chunk.messages.empty()) prefetcher.recycle(std::move(chunk.chunk.buffer));
         else live.push_back(std::move(chunk));  // (a moved vector keeps its bytes where they are)
         continue;
       }
       if (first < 0) break;
       Live& chunk = live[static_cast<std::size_t>(first)];
-      visit(chunk.messages[chunk.next++]);
-      if (chunk.next == chunk.messages.size()) {
-        pool.push_back(std::move(chunk.buffer));
+      visit(chunk.chunk.messages[chunk.next++]);
+      if (chunk.next == chunk.chunk.messages.size()) {
+        prefetcher.recycle(std::move(chunk.chunk.buffer));
         live.erase(live.begin() + first);
       }
     }
-    pool.swap(chunk_buffers_);
     return;
   }
-  std::vector<std::uint8_t> buffer;
-  walkRecords(d + 8, data_end_ - 8, 8, path_, [&](std::uint8_t op, ByteCursor& c, std::uint64_t at) {
+  walkRecords(d + 8, data_end_ - 8, 8, path_, [&](std::uint8_t op, ByteCursor& c, std::uint64_t) {
     if (op == mcap::kDataEnd || op == mcap::kFooter) return false;
     if (op == mcap::kChunk) {
-      for (const McapMessage& m : chunkMessages(at, wanted, buffer)) visit(m);
+      LoadedChunk chunk = prefetcher.next();
+      for (const McapMessage& m : chunk.messages) visit(m);
+      prefetcher.recycle(std::move(chunk.buffer));
     } else if (op == mcap::kMessage) {
       McapMessage msg;
       const std::uint16_t channel = c.u16("Message channel_id");

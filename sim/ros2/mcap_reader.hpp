@@ -27,6 +27,8 @@ struct McapMessage {
   std::size_t size = 0;
 };
 
+struct LoadedChunk;
+
 class McapReader {
  public:
   explicit McapReader(const std::string& path);
@@ -43,7 +45,17 @@ class McapReader {
 
   // Calls `visit` for the messages of `channel_ids` (every channel when empty) in log-time order
   // (indexed; a linear scan keeps the file's order of chunks, each chunk sorted by log time).
-  void forEachMessage(const std::set<std::uint16_t>& channel_ids, const std::function<void(const McapMessage&)>& visit) const;
+  // `whole_chunks` false, for a pass over a few small topics: a chunk is decompressed only as
+  // far as its last message of these channels (its message indexes say where; the chunk's CRC
+  // is then left to a pass that reads it whole). The same messages either way: a chunk whose
+  // indexes do not match what its prefix holds, or whose prefix is damaged, is read whole.
+  void forEachMessage(const std::set<std::uint16_t>& channel_ids, const std::function<void(const McapMessage&)>& visit,
+                      bool whole_chunks = true) const;
+  // Chunks decompressed ahead on a worker thread by forEachMessage (chunk_prefetcher.hpp; 0:
+  // none, every chunk decompressed on the reading thread). The messages are the same either way.
+  // `workers` threads decompress them (several chunks at once when more than 1).
+  void setPrefetch(std::size_t chunks, std::size_t workers = 1) { prefetch_chunks_ = chunks, prefetch_workers_ = workers; }
+  std::size_t prefetchChunks() const { return prefetch_chunks_; }
   // The log times of these channels' messages, sorted, from the message indexes (no chunk is
   // decompressed); nothing when the file is not indexed (then read the messages).
   std::optional<std::vector<std::uint64_t>> indexedLogTimes(const std::set<std::uint16_t>& channel_ids) const;
@@ -51,16 +63,23 @@ class McapReader {
  private:
   bool readSummary();
   void scanData();  // the linear pass of the constructor: schemas, channels, counts
-  // The messages of the chunk record at file offset `at`, decompressed into `buffer`, sorted
-  // by log time; those of `wanted` channels only (all when empty).
-  std::vector<McapMessage> chunkMessages(std::uint64_t at, const std::set<std::uint16_t>& wanted,
-                                         std::vector<std::uint8_t>& buffer) const;
+  // The messages of the chunk record at file offset `at`, decompressed by `z` into `chunk`'s
+  // buffer, sorted by log time; those of `wanted` channels only (all when empty). Reads only
+  // what no read changes (the file, the channels): safe on the prefetch worker.
+  // Only the records in the chunk's first `prefix` bytes when it is less than the chunk's size.
+  // Returns how many messages it kept.
+  std::size_t chunkMessages(std::uint64_t at, const std::set<std::uint16_t>& wanted, Decompressor& z, LoadedChunk& chunk,
+                            std::uint64_t prefix = UINT64_MAX) const;
+  // Where the chunk's records after its last message of `wanted` start (UINT64_MAX: it is the
+  // last, or the indexes cannot tell), and how many messages of `wanted` it has.
+  std::uint64_t wantedPrefix(const mcap::ChunkIndex& ci, const std::set<std::uint16_t>& wanted, std::size_t& count) const;
+  // The (log_time, offset in the chunk) pairs of the MessageIndex record at `offset`.
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> messageIndexEntries(std::uint64_t offset, std::uint16_t channel) const;
 
   std::string path_;
   MappedFile file_;
-  // One decompression context for every chunk read (a reader is used by one thread at a time).
-  mutable Decompressor decompressor_;
-  mutable std::vector<std::vector<std::uint8_t>> chunk_buffers_;  // see forEachMessage
+  Decompressor decompressor_;  // the constructor's linear scan's
+  std::size_t prefetch_chunks_ = 0, prefetch_workers_ = 1;
   std::uint64_t data_end_ = 0;  // where the data section ends (the summary or the footer)
   std::map<std::uint16_t, mcap::Schema> schemas_;
   std::map<std::uint16_t, mcap::Channel> channels_;

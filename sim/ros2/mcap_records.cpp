@@ -2,6 +2,7 @@
 
 #include "sim/ros2/compression.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
@@ -58,12 +59,17 @@ ChunkHeader parseChunk(ByteCursor& c) {
   return h;
 }
 
-ChunkRecords inflate(const ChunkHeader& h, const std::string& where, Decompressor& z, std::vector<std::uint8_t>& buffer) {
+ChunkRecords inflate(const ChunkHeader& h, const std::string& where, Decompressor& z, std::vector<std::uint8_t>& buffer,
+                     std::uint64_t prefix) {
   ChunkRecords out{h.records, static_cast<std::size_t>(h.records_size)};
   if (!h.compression.empty() || h.uncompressed_size != h.records_size) {  // (a size that differs: refused below)
     z.decompress(h.compression, h.records, static_cast<std::size_t>(h.records_size), h.uncompressed_size,
-                 where + ": at byte " + std::to_string(h.records_at), buffer);
+                 where + ": at byte " + std::to_string(h.records_at), buffer, prefix);
     out = {buffer.data(), buffer.size()};
+  }
+  if (prefix < h.uncompressed_size) {  // (the decompression gave at least `prefix` bytes)
+    out.size = static_cast<std::size_t>(std::min<std::uint64_t>(out.size, prefix));
+    return out;
   }
   if (h.crc != 0 && crc32Update(0, out.data, out.size) != h.crc)
     throw std::runtime_error(where + ": at byte " + std::to_string(h.records_at) +

@@ -39,11 +39,14 @@ ChunkHeader parseChunk(ByteCursor& c);
 
 // The chunk's records, decompressed by `z` into `buffer` (the records in the file themselves
 // when the chunk is not compressed: no copy) and checked against their CRC (when it is not 0).
+// With `prefix` below the chunk's size, only its first `prefix` bytes (whole records, for a
+// reader that needs only those): the CRC, which needs every byte, is then not checked.
 // The bytes returned are valid while `buffer` and the file are.
 struct ChunkRecords {
   const std::uint8_t* data = nullptr;
   std::size_t size = 0;
 };
-ChunkRecords inflate(const ChunkHeader& h, const std::string& where, Decompressor& z, std::vector<std::uint8_t>& buffer);
+ChunkRecords inflate(const ChunkHeader& h, const std::string& where, Decompressor& z, std::vector<std::uint8_t>& buffer,
+                     std::uint64_t prefix = UINT64_MAX);
 
 }  // namespace bimloc::sim::ros2::mcap

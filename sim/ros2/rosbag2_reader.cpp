@@ -156,13 +156,14 @@ std::vector<std::uint64_t> Rosbag2Reader::logTimes(const std::string& topic) con
   return times;
 }
 
-void Rosbag2Reader::forEachMessage(const std::vector<std::string>& topics, const std::function<void(const BagMessage&)>& visit) const {
+void Rosbag2Reader::forEachMessage(const std::vector<std::string>& topics, const std::function<void(const BagMessage&)>& visit,
+                                   bool whole_chunks) const {
   for (const auto& file : files_) {
     file->forEachMessage(topics, [&](const BagMessage& m) {
       BagMessage out = m;
       out.topic = topic(m.topic->name);  // the bag's topic, its count over every file
       visit(out);
-    });
+    }, whole_chunks);
   }
 }
 

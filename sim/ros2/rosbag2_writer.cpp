@@ -16,9 +16,10 @@ namespace fs = std::filesystem;
 
 class McapStorageWriter final : public Rosbag2Writer::Storage {
  public:
-  McapStorageWriter(const std::string& path, const std::string& compression) : writer_(path, [&] {
+  McapStorageWriter(const std::string& path, const std::string& compression, std::size_t chunk_bytes) : writer_(path, [&] {
     McapWriterOptions o;
     o.compression = compression;
+    o.chunk_bytes = chunk_bytes;
     return o;
   }()) {}
   int addTopic(const std::string& name, const std::string& type, const std::string& qos) override {
@@ -56,7 +57,8 @@ std::string qosProfileYaml(bool transient_local) {
          "\n  avoid_ros_namespace_conventions: false";
 }
 
-Rosbag2Writer::Rosbag2Writer(const std::string& dir, const std::string& storage, const std::string& mcap_compression)
+Rosbag2Writer::Rosbag2Writer(const std::string& dir, const std::string& storage, const std::string& mcap_compression,
+                             std::size_t mcap_chunk_bytes)
     : dir_(dir), storage_(storage) {
   if (storage != "mcap" && storage != "sqlite3") throw std::invalid_argument("rosbag2: storage '" + storage + "' unknown");
   std::error_code ec;
@@ -65,7 +67,7 @@ Rosbag2Writer::Rosbag2Writer(const std::string& dir, const std::string& storage,
   file_ = storage == "mcap" ? "rosbag2_0.mcap" : "rosbag2_0.db3";
   const std::string path = (fs::path(dir) / file_).string();
   if (fs::exists(path, ec)) throw std::runtime_error(path + ": exists already");
-  if (storage == "mcap") out_ = std::make_unique<McapStorageWriter>(path, mcap_compression);
+  if (storage == "mcap") out_ = std::make_unique<McapStorageWriter>(path, mcap_compression, mcap_chunk_bytes);
   else out_ = createSqlite3Storage(path);
 }
 

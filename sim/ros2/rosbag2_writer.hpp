@@ -3,6 +3,7 @@
 // rosbag2_0.db3 (SQLite3, the tables of rosbag2_storage_default_plugins).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -17,8 +18,10 @@ std::string qosProfileYaml(bool transient_local);
 class Rosbag2Writer {
  public:
   // `storage`: "mcap" or "sqlite3". Creates `dir` (which must not exist or be empty) and the
-  // storage file. Throws std::runtime_error naming the path.
-  Rosbag2Writer(const std::string& dir, const std::string& storage, const std::string& mcap_compression = "zstd");
+  // storage file. Throws std::runtime_error naming the path. MCAP: the chunks' compression, and
+  // the size at which a chunk is closed (McapWriterOptions; rosbag2 closes them at 768 KiB).
+  Rosbag2Writer(const std::string& dir, const std::string& storage, const std::string& mcap_compression = "zstd",
+                std::size_t mcap_chunk_bytes = 4u << 20);
   ~Rosbag2Writer();
   Rosbag2Writer(const Rosbag2Writer&) = delete;
   Rosbag2Writer& operator=(const Rosbag2Writer&) = delete;

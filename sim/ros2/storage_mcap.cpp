@@ -50,7 +50,8 @@ class McapStorage final : public Rosbag2Storage {
     return Rosbag2Storage::logTimes(topic);
   }
 
-  void forEachMessage(const std::vector<std::string>& names, const std::function<void(const BagMessage&)>& visit) const override {
+  void forEachMessage(const std::vector<std::string>& names, const std::function<void(const BagMessage&)>& visit,
+                      bool whole_chunks) const override {
     std::set<std::uint16_t> wanted;
     for (const auto& [id, index] : channel_topic_)
       for (const auto& n : names)
@@ -66,7 +67,7 @@ class McapStorage final : public Rosbag2Storage {
       b.size = m.size;
       b.where = reader_.path() + ": " + b.topic->name + " message " + std::to_string(seen[index]++);
       visit(b);
-    });
+    }, whole_chunks);
   }
 
  private:

@@ -106,7 +106,8 @@ class SqliteStorage final : public Rosbag2Storage {
     return times;
   }
 
-  void forEachMessage(const std::vector<std::string>& names, const std::function<void(const BagMessage&)>& visit) const override {
+  void forEachMessage(const std::vector<std::string>& names, const std::function<void(const BagMessage&)>& visit,
+                      bool /*whole_chunks: no chunks*/) const override {
     std::string where_ids;
     for (const auto& n : names) {
       const auto it = ids_.find(n);
