@@ -136,6 +136,8 @@ struct Localizer::Impl {
   // then. No new goal until the count falls below it.
   std::optional<std::size_t> spent_count;
   double goal_stamp_s = -1e300;
+  double places_fitted_s = -1e300;  // when the places were last fitted (GuideConfig::places_interval_s)
+  bool places_due = false;          // ... on this step: the kept places are replaced
 
   Impl(const bim::Building& b, const Eigen::Isometry3d& mount, const LocalizerConfig& c)
       : building(b), T_base_lidar(mount), config(seeded(c)), follower(b, c.storeys) {}
@@ -211,6 +213,7 @@ LocalizationResult Localizer::step(double stamp_s, const Eigen::Isometry3d& T_od
     return r;
   }
   if (!m.base_height_m) m.firstStep(T_odom_base, r);
+  m.places_due = false;
   m.odom_z = T_odom_base.translation().z();
   if (m.altitude && std::isfinite(m.odom_z)) m.altitude_mean.add(*m.altitude, m.odom_z);
   // predict -> follow the storey -> observe (only what a stage will look at) -> track ->
@@ -288,8 +291,13 @@ void Localizer::Impl::search(const std::vector<planes::ObservedPlane>& walls, co
   }
   pf::StoreyBankReport report = bank->update(walls, &profile);
   // The places the report lists (while not converged), each a fitted pose, not a candidate of
-  // the path evidence's wide model: the filter has decided with the latter already.
-  if (report.filter.weighed) pf::detail::FilterAccess::fitPlaces(bank->filter(), report.filter);
+  // the path evidence's wide model: the filter has decided with the latter already. Advice, so
+  // at a stated rate (GuideConfig::places_interval_s); 1e-6 s: stamps are sums of float steps.
+  if (report.filter.weighed && r.stamp_s - places_fitted_s >= config.guide.places_interval_s - 1e-6) {
+    pf::detail::FilterAccess::fitPlaces(bank->filter(), report.filter);
+    places_fitted_s = r.stamp_s;
+    places_due = true;
+  }
   for (const auto& w : report.filter.warnings) r.warnings.push_back("pf: " + w);
   r.filter = std::move(report);
   if (bank->converged() && !convergence_stamp) convergence_stamp = r.stamp_s;
@@ -522,10 +530,11 @@ void Localizer::Impl::stepPeer(const Eigen::Isometry3d& T_odom_base, const Point
   placeInRoom(r);
 }
 
-// The places of this step's weighing (if the filter weighed): its best and the rivals within
-// the evidence margin, kept as map <- odom so that later steps move them with the odometry.
+// The places of this step's weighing (if it refreshed them, places_interval_s): its best and the
+// rivals within the evidence margin, kept as map <- odom so that later steps move them with the
+// odometry.
 void Localizer::Impl::keepPlaces(const Eigen::Isometry3d& T_odom_base, const LocalizationResult& r) {
-  if (!r.filter || !r.filter->filter.weighed) return;
+  if (!places_due || !r.filter) return;
   const pf::UpdateReport& u = r.filter->filter;
   const PlanarPose odom_inv = inverse(planarPose(T_odom_base));
   places.clear();

@@ -44,7 +44,7 @@ RecordingRun localizeRecording(const bim::Building& building, std::size_t truth_
     last = localizer.step(turn.stamp_s, turn.T_odom_base, points);
     if (last->filter && last->filter->decided && !r.storey_margin && r.storey_auto) r.storey_margin = last->filter->storey_margin;
     for (const auto& w : last->warnings) r.warnings.push_back(turn.name + ": " + w);
-    if (last->filter && last->filter->filter.path_best) last_verdict = last->filter->filter, verdict_storey = last->filter->leader;
+    if (last->filter && last->filter->filter.path_best && last->filter->filter.places_fitted) last_verdict = last->filter->filter, verdict_storey = last->filter->leader;
     map_error.step(*last, T_base_lidar, points);
     if (!first_stamp) first_stamp = turn.stamp_s;
     if (last_stamp && !period) period = turn.stamp_s - *last_stamp;

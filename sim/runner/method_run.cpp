@@ -101,7 +101,8 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
     if (trace && report.weighed)
       trace->push_back({t, planarPose(truth), planarPose(step.T_map_base), report,
                         r_.storey_auto ? building.storeys[bank.leader].name : std::string(), bank.storey_margin});
-    if (report.path_best) last_verdict_ = report, verdict_storey_ = bank.leader;
+    // The places listed at the end: the last fitted (the localizer fits them at its places_interval_s).
+    if (report.path_best && report.places_fitted) last_verdict_ = report, verdict_storey_ = bank.leader;
   }
   if (snapshot && updates_ == kClusteringUpdate && step.state == LocalizationState::Searching)
     snapshotNow("clustering", t, truth, snapshot);

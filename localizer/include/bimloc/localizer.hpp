@@ -118,7 +118,8 @@ struct LocalizationResult {
   std::vector<std::string> warnings;  // this step's, from every stage
   // While searching (the paper's method and its ablations, on the leading storey), when the path
   // evidence fits two or more places: the places (map pose of the base now, best first, with the
-  // evidence margin of the best over each: 0 for the best), as of the last weighing, and, with
+  // evidence margin of the best over each: 0 for the best), as of the last refresh (a weighing at
+  // most every config.guide.places_interval_s; moved on by the odometry since), and, with
   // config.guide.enabled, a goal from which their scans would differ most (guide/look_goal.hpp;
   // unset when nothing within reach tells them apart). Empty and unset otherwise.
   std::vector<guide::Place> places;

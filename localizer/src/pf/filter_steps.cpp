@@ -200,6 +200,7 @@ void ParticleFilter::Impl::fitPlaces(UpdateReport& report) const {
   }
   report.path_best = fitted.front().first;
   report.path_rivals.assign(fitted.begin() + 1, fitted.end());
+  report.places_fitted = true;
 }
 
 void ParticleFilter::Impl::resampleAfter(const std::vector<double>& w, UpdateReport& report) {

@@ -57,6 +57,15 @@ struct GuideConfig {
   // or when the places change.
   double replan_interval_s = 5.0;
   double goal_reached_m = 0.5;
+  // Localizer: the places listed while searching (each fitted within itself, the filter's
+  // fitPlaces) and the goal planned for them are refreshed at most this often, at the first
+  // weighing this long after the last refresh; in between, the places kept move with the
+  // odometry. They are advice (where the base might walk, what is left to tell apart): the
+  // decision is the path evidence's and is weighed at every weighing all the same. At 10 Hz
+  // scans and a weighing every 0.2 m, fitting every place and planning a goal at every weighing
+  // cost a quarter of the search on a 100-room floor (docs/results/2026-11-27-h28speed6.md).
+  // 0: at every weighing.
+  double places_interval_s = 1.0;
 };
 
 // A place the path still fits: the base's map pose now, and the evidence margin of the best

@@ -179,6 +179,10 @@ struct UpdateReport {
   // The other places the path fits nearly as well (map x, y, yaw now, and the margin of the
   // best over each), best first: the ambiguity left, when the plan cannot decide (yet).
   std::vector<std::pair<Eigen::Vector3d, double>> path_rivals;
+  // Whether path_best and path_rivals are fitted, each within its place (the Localizer does
+  // it at GuideConfig::places_interval_s while searching); else they are the path evidence's
+  // candidates, whose wide model lets furniture before a wall pull the pose within the place.
+  bool places_fitted = false;
   // When convergence was about to be counted: how much better the latest scans fit the
   // refined pose than any pose farther than converged_position_m from it within the place
   // (per face, as path_margin; ParticleFilterConfig::settle_pose); below the bar, that of the
