@@ -32,3 +32,20 @@ TEST(Printable, AnErrorQuotingGarbageIsValidUtf8AndNamesTheFile) {
   EXPECT_NE(r.err.find(dir + "/bad.json: not valid JSON"), std::string::npos) << r.err;
   EXPECT_EQ(printable(r.err), r.err) << "stderr holds bytes that are not valid UTF-8: " << r.err;
 }
+
+// A damaged byte in a --config value (found by scripts/damage_probe.py, seed 31): the library's
+// "invalid UTF-8 byte" surfaced with no file; now the file and line are named.
+TEST(Printable, ADamagedByteInAConfigIsRefusedAtItsLine) {
+  const std::string dir = bimloc::test::tempDir("printable-config");
+  std::ofstream(dir + "/c.yaml", std::ios::binary) << "pf:\n  particles: \xB6" "800\n";
+  const auto r = bimloc::test::runBimloc("run --plan '" + std::string(BIMLOC_WORLDS_DIR) +
+                                         "/site_office.ifc' --all-rooms --rooms R101 --duration 1 --config '" + dir + "/c.yaml'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(dir + "/c.yaml:2: '\\xB6800' is not valid UTF-8"), std::string::npos) << r.err;
+  EXPECT_EQ(printable(r.err), r.err);
+  std::ofstream(dir + "/k.yaml", std::ios::binary) << "pf:\n  parti\xFF" "cles: 800\n";
+  const auto k = bimloc::test::runBimloc("run --plan '" + std::string(BIMLOC_WORLDS_DIR) +
+                                         "/site_office.ifc' --all-rooms --rooms R101 --duration 1 --config '" + dir + "/k.yaml'");
+  EXPECT_EQ(k.exit_code, 2);
+  EXPECT_NE(k.err.find(dir + "/k.yaml:2: the key 'parti\\xFFcles' is not valid UTF-8"), std::string::npos) << k.err;
+}

@@ -26,6 +26,15 @@ std::size_t sequenceAt(const std::string& text, std::size_t i) {
 
 }  // namespace
 
+bool isValidUtf8(const std::string& text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = sequenceAt(text, i);
+    if (n == 0) return false;
+    i += n;
+  }
+  return true;
+}
+
 std::string printable(const std::string& text) {
   std::string out;
   out.reserve(text.size());

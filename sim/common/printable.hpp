@@ -10,4 +10,7 @@ namespace bimloc::sim {
 // newline and tab, written as \xNN. Valid UTF-8 (a room named "Küche") is kept as it is.
 std::string printable(const std::string& text);
 
+// Whether `text` is valid UTF-8 (RFC 3629), control characters allowed.
+bool isValidUtf8(const std::string& text);
+
 }  // namespace bimloc::sim

@@ -1,4 +1,5 @@
 #include "sim/scenario/yaml_mapping.hpp"
+#include "sim/common/printable.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -138,6 +139,9 @@ nlohmann::json toJsonBounded(const std::string& file, const YAML::Node& node, in
     nlohmann::json out = nlohmann::json::object();
     for (const auto& kv : node) {
       if (!kv.first.IsScalar()) fail(file, lineOf(kv.first), "keys must be plain words, got " + describe(kv.first));
+      // JSON holds UTF-8 only: a damaged byte would throw later, far from its line.
+      if (!isValidUtf8(kv.first.Scalar()))
+        fail(file, lineOf(kv.first), "the key '" + printable(kv.first.Scalar()) + "' is not valid UTF-8");
       out[kv.first.Scalar()] = toJsonBounded(file, kv.second, depth + 1, values);
     }
     return out;
@@ -153,6 +157,7 @@ nlohmann::json toJsonBounded(const std::string& file, const YAML::Node& node, in
     const bool integral = s.find_first_of(".eE") == std::string::npos && std::abs(v) < 9e15;
     return integral ? nlohmann::json(static_cast<long long>(v)) : nlohmann::json(v);
   }
+  if (!isValidUtf8(node.Scalar())) fail(file, lineOf(node), "'" + printable(node.Scalar()) + "' is not valid UTF-8");
   return node.Scalar();
 }
 
