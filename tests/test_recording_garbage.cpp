@@ -205,7 +205,9 @@ TEST(RecordingGarbage, PointsAreCountedByWhyTheyAreNoMeasurement) {
   std::vector<Eigen::Vector3f> xyz{{1, 0, 0}, {0, 0, 0}, {0.1f, 0, 0}, {150, 0, 0}, {1e30f, 0, 0},
                                    {std::numeric_limits<float>::infinity(), 0, 0}, {0, 99.9f, 0}, {3e38f, 3e38f, 0}};
   std::vector<double> times{0, 1, 2, 3, 4, 5, 6, 7};
-  const auto d = sim::keepUsablePoints(xyz, &times, sim::SensorRange{}, 2);
+  sim::PointDrops before;
+  before.non_finite = 2;
+  const auto d = sim::keepUsablePoints(xyz, &times, sim::SensorRange{}, before);
   EXPECT_EQ(d.read, 10u);
   EXPECT_EQ(d.non_finite, 3u);  // 2 before, +inf
   EXPECT_EQ(d.at_origin, 1u);

@@ -281,10 +281,10 @@ void BagInput::forEachTurn(const std::function<void(const BagTurn&)>& visit) con
     // Decoded and checked now (the bytes are in memory already): a scan with no usable point
     // is skipped before the localizer sees it. De-skewed only when the localizer asks.
     auto p = std::make_shared<CloudPoints>(decodeBagCloud(*cloud, where));
-    turn.drops = keepUsablePoints(p->xyz, &p->time_s, options_.range, p->non_finite);
-    turn.drops.read += p->below_min_range + p->beyond_max_range;  // the decoder's range filter (packets)
-    turn.drops.below_min_range += p->below_min_range;
-    turn.drops.beyond_max_range += p->beyond_max_range;
+    PointDrops decoding;  // dropped by the decoder: not finite, and a packet decoder's range filter
+    decoding.non_finite = p->non_finite;
+    decoding.below_min_range = p->below_min_range, decoding.beyond_max_range = p->beyond_max_range;
+    turn.drops = keepUsablePoints(p->xyz, &p->time_s, options_.range, decoding);
     turn.warnings = std::move(p->warnings);
     turn.points = [this, p, header_s, ref = turn.stamp_s] {
       if (options_.deskew && !p->time_s.empty()) {

@@ -40,10 +40,9 @@ PointDrops& PointDrops::operator+=(const PointDrops& o) {
 }
 
 PointDrops keepUsablePoints(std::vector<Eigen::Vector3f>& xyz, std::vector<double>* time_s, const SensorRange& range,
-                            std::size_t already_non_finite) {
-  PointDrops d;
-  d.read = xyz.size() + already_non_finite;
-  d.non_finite = already_non_finite;
+                            const PointDrops& before) {
+  PointDrops d = before;
+  d.read = xyz.size() + before.dropped();
   const bool timed = time_s && time_s->size() == xyz.size() && !time_s->empty();
   std::size_t kept = 0;
   for (std::size_t i = 0; i < xyz.size(); ++i) {

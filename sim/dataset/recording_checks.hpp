@@ -34,9 +34,10 @@ struct PointDrops {
 };
 
 // Keeps the points that a lidar can have measured (and their times, when `time_s` is not
-// null and not empty); counts the others. `already_non_finite`: dropped before (decodeCloud).
+// null and not empty); counts the others, with `before`: the points dropped before, by reason
+// (decodeCloud's non-finite ones, a packet decoder's range filter; its `read` is not used).
 PointDrops keepUsablePoints(std::vector<Eigen::Vector3f>& xyz, std::vector<double>* time_s, const SensorRange& range,
-                            std::size_t already_non_finite = 0);
+                            const PointDrops& before = {});
 
 // PoseSampleDrops (dataset_reader.hpp): odometry (or ground-truth) samples that are no pose.
 
