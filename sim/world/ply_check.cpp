@@ -42,9 +42,15 @@ std::uint64_t littleEndian(const unsigned char* p, std::size_t size) {
   return v;
 }
 
+// A face is a polygon: fewer than 3 corners is no surface, and assimp's triangulation aborts the
+// process on such a face (an ai_assert) instead of failing, whatever the format.
+void requirePolygon(const std::string& path, std::uint64_t face, std::uint64_t corners) {
+  if (corners < 3)
+    fail(path, "face " + std::to_string(face) + " has " + std::to_string(corners) + " vertex indices; a face needs at least 3");
+}
+
 // An ASCII body, walked as the binary one: every element's numbers present, every face a polygon of
-// existing vertices, nothing after the last element. assimp aborts the process on a face of fewer
-// than 3 corners whatever the format.
+// existing vertices, nothing after the last element.
 void checkAsciiBody(const std::string& path, const std::string& data, std::size_t at, const std::vector<Element>& elements) {
   std::istringstream body(data.substr(at));
   std::uint64_t vertices = 0;
@@ -61,16 +67,12 @@ void checkAsciiBody(const std::string& path, const std::string& data, std::size_
             fail(path, "element " + e.name + " " + std::to_string(i) + ": '" + word.substr(0, 40) + "' is not a number");
         };
         double v = 0;
-        if (p.count_size == 0) {
-          number(v);
-          continue;
-        }
         number(v);
+        if (p.count_size == 0) continue;
         if (!(v >= 0 && v <= 1e6 && v == std::floor(v)))
           fail(path, "element " + e.name + " " + std::to_string(i) + ": a list of '" + word.substr(0, 40) + "' items");
         const auto n = static_cast<std::uint64_t>(v);
-        if (e.name == "face" && n < 3)
-          fail(path, "face " + std::to_string(i) + " has " + std::to_string(n) + " vertex indices; a face needs at least 3");
+        if (e.name == "face") requirePolygon(path, i, n);
         for (std::uint64_t k = 0; k < n; ++k) {
           number(v);
           if (e.name == "face" && !(v >= 0 && v < static_cast<double>(vertices) && v == std::floor(v)))
@@ -144,10 +146,7 @@ void checkPly(const std::string& path) {
           at += p.count_size;
         }
         if (at + n * p.size > data.size()) fail(path, "truncated: element " + e.name + " " + std::to_string(i) + " is cut short");
-        // A face is a polygon: fewer than 3 corners is no surface, and assimp's triangulation
-        // aborts the process on such a face (an ai_assert) instead of failing.
-        if (p.count_size > 0 && e.name == "face" && n < 3)
-          fail(path, "face " + std::to_string(i) + " has " + std::to_string(n) + " vertex indices; a face needs at least 3");
+        if (p.count_size > 0 && e.name == "face") requirePolygon(path, i, n);
         if (p.count_size > 0 && e.name == "face" && (p.size == 4 || p.size == 2 || p.size == 1))
           for (std::uint64_t k = 0; k < n; ++k)
             if (littleEndian(bytes + at + k * p.size, p.size) >= vertices)

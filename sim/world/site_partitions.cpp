@@ -15,12 +15,12 @@ constexpr int kDrawsPerPartition = 400;
 // A door's leaf and swing: kept this much further from a partition than a wall is.
 constexpr double kPartitionDoorSwing_m = 1.0;
 
-
 }  // namespace
 
 double segmentDistance(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1, const Eigen::Vector2d& b0, const Eigen::Vector2d& b1) {
   if (bim::segmentsCross(a0, a1, b0, b1)) return 0.0;
-  return std::min({bim::distanceToSegment(a0, b0, b1), bim::distanceToSegment(a1, b0, b1), bim::distanceToSegment(b0, a0, a1), bim::distanceToSegment(b1, a0, a1)});
+  return std::min({bim::distanceToSegment(a0, b0, b1), bim::distanceToSegment(a1, b0, b1), bim::distanceToSegment(b0, a0, a1),
+                   bim::distanceToSegment(b1, a0, a1)});
 }
 
 void placePartitions(const bim::Storey& storey, std::size_t storey_index, const SiteWalls& config,
