@@ -149,7 +149,7 @@ struct Localizer::Impl {
   void track(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
   void search(const std::vector<planes::ObservedPlane>& walls, const pf::RangeProfile& profile, LocalizationResult& r);
   void handOver(double stamp_s, const Eigen::Isometry3d& T_odom_base, const std::vector<planes::ObservedPlane>& walls, LocalizationResult& r);
-  void searchAgain(LocalizationResult& r);
+  void searchAgain(const Eigen::Isometry3d& T_odom_base, LocalizationResult& r);
   Eigen::Isometry3d levelled(const Eigen::Isometry3d& T_odom_base) const {
     Eigen::Isometry3d T = T_odom_base;
     T.translation().z() -= z_shift_m;
@@ -272,7 +272,7 @@ void Localizer::Impl::track(double stamp_s, const Eigen::Isometry3d& T_odom_base
     if (follower.climbing()) {
       pending_search = true;  // on the stairs: search once on a floor
     } else {
-      searchAgain(r);
+      searchAgain(T_odom_base, r);
     }
   } else if (was_lost && !lost()) {
     filter_active = false;  // the tracker found the plan again by itself: the search is moot
@@ -321,7 +321,9 @@ void Localizer::Impl::handOver(double stamp_s, const Eigen::Isometry3d& T_odom_b
 
 // The tracker lost the plan: the filter searches again on the tracked storey, its particles
 // around the last tracked pose (the tracker keeps going too, and may find the plan first).
-void Localizer::Impl::searchAgain(LocalizationResult& r) {
+// `T_odom_base`: this step's (levelled) odometry, which the new filter is given before its
+// first update, as every filter is (step() predicted the old one this step).
+void Localizer::Impl::searchAgain(const Eigen::Isometry3d& T_odom_base, LocalizationResult& r) {
   pf::ParticleFilterConfig c = config.pf;
   c.prior_rooms.clear();
   c.prior_pose = planarPose(last_track->T_map_base);
@@ -338,6 +340,10 @@ void Localizer::Impl::searchAgain(LocalizationResult& r) {
   // walls that fix the pose.
   c.match_wall_lines = false;
   bank = std::make_unique<pf::StoreyBank>(building, std::vector<std::size_t>{*tracked_storey}, T_base_lidar, c);
+  // Without it the first weighing placed its scan at the odometry's origin: in the path
+  // evidence's window (a wrong path for every place) and, had that weighing converged, in
+  // map <- odom (12.5 m off on StoreyChange's landing with one agreeing weighing).
+  bank->predict(T_odom_base);
   filter_active = true;
   r.warnings.push_back("tracking lost: searching again within " + std::to_string(c.prior_sigma_m) + " m of the last pose" +
                        (arrival_unconfirmed ? " (the new storey's walls not confirmed after the stairs)" : ""));
@@ -381,7 +387,7 @@ void Localizer::Impl::follow(double stamp_s, const Eigen::Isometry3d& odom, Loca
   if (const auto arrival = follower.step(stamp_s, storey, base, *base_height_m, altitude)) {
     arrive(*arrival, stamp_s, odom, r);
   } else if (pending_search && !follower.climbing()) {
-    searchAgain(r);  // lost on the stairs, back on the floor it left
+    searchAgain(odom, r);  // lost on the stairs, back on the floor it left
   }
 }
 
