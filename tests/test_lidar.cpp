@@ -101,6 +101,39 @@ TEST(Vlp16, EveryReturnInABoxRoomIsAnalyticAndCarriesItsFiringTime) {
   }
 }
 
+TEST(Vlp16, TheHeadYawKeptPerCycleCastsTheRaysOfTheYawComputedAtEachCycle) {
+  // The oracle: each ray's direction with the head's yaw computed afresh at its cycle (cos and
+  // sin of -omega t_cycle, as the scan did before it kept them per sensor), then the firings'
+  // turn and the elevation, in the same operations: the same floats, turn after turn.
+  const sim::World world = sim::World::fromMesh(test::boxRoomFile(kBox.cast<float>()));
+  for (const double rpm : {600.0, 300.0}) {
+    auto config = noiseFree();
+    config.rpm = rpm;
+    const sim::Vlp16 lidar(config);
+    const double omega = 2.0 * M_PI * rpm / 60.0;
+    for (const std::uint64_t turn : {0ull, 7ull}) {
+      sim::RayRecord rays;
+      lidar.scan(world, 0, turningBase(0.3), 0.1 * static_cast<double>(turn), 1, turn, &rays);
+      const auto cycles = static_cast<std::size_t>(lidar.cyclesPerTurn());
+      ASSERT_EQ(rays.directions.size(), cycles * 16u);
+      for (std::size_t c = 0; c < cycles; ++c) {
+        const double t_cycle = static_cast<double>(c) * sim::kVlp16CyclePeriod_s;
+        const Eigen::Isometry3d T = turningBase(0.3)(0.1 * static_cast<double>(turn) + t_cycle) * config.T_base_lidar;
+        const Eigen::Matrix3f R = T.linear().cast<float>();
+        const double c_yaw = std::cos(-omega * t_cycle), s_yaw = std::sin(-omega * t_cycle);
+        for (int k = 0; k < 16; ++k) {
+          const double el = sim::vlp16ElevationDeg(k) * M_PI / 180.0;
+          const double cf = std::cos(-omega * k * sim::kVlp16FiringPeriod_s), sf = std::sin(-omega * k * sim::kVlp16FiringPeriod_s);
+          const double cc = c_yaw * cf - s_yaw * sf, ss = s_yaw * cf + c_yaw * sf;
+          const Eigen::Vector3f local(float(std::cos(el) * cc), float(std::cos(el) * ss), float(std::sin(el)));
+          const Eigen::Vector3f want = R * local;
+          ASSERT_EQ(rays.directions[c * 16 + static_cast<std::size_t>(k)], want) << "rpm " << rpm << " turn " << turn << " cycle " << c << " laser " << k;
+        }
+      }
+    }
+  }
+}
+
 TEST(Vlp16, TurningBaseGivesThePredictedSkewAndTheSwitchRemovesIt) {
   const sim::World world = sim::World::fromMesh(test::boxRoomFile(kBox.cast<float>()));
   const double yaw_rate = 1.0;  // rad/s: the base turns 0.1 rad (5.7 deg) during the turn

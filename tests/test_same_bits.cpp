@@ -224,6 +224,50 @@ TEST(SameBits, TheDeskewWithKeptSamplesIsAFreshLookUpPerFiring) {
   }
 }
 
+TEST(SameBits, TheDeskewsSlerpIsEigensStandingStillAndPastAHalfTurn) {
+  // The slerp's branches: two samples of one rotation (|dot| = 1, Eigen's linear blend), and
+  // yaws past +-180 deg, whose quaternions (w >= 0 from a rotation matrix) have a negative dot.
+  std::vector<sim::StampedPose> odometry;
+  for (int k = 0; k <= 40; ++k) {
+    sim::StampedPose s;
+    s.stamp_s = 3.0 + 0.02 * k;
+    const double yaw = k < 10 ? 0.4 : 0.4 + 0.35 * (k - 10);  // still, then several half turns
+    s.pose = Eigen::Translation3d(0.1 * k, 0.0, 0.2) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+             Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitX());
+    odometry.push_back(s);
+  }
+  const auto fresh = [&](double t) {
+    const auto after = std::lower_bound(odometry.begin(), odometry.end(), t, [](const sim::StampedPose& s, double v) { return s.stamp_s < v; });
+    if (after == odometry.begin()) return odometry.front().pose;
+    if (after == odometry.end()) return odometry.back().pose;
+    const double f = (t - std::prev(after)->stamp_s) / (after->stamp_s - std::prev(after)->stamp_s);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = (1 - f) * std::prev(after)->pose.translation() + f * after->pose.translation();
+    T.linear() = Eigen::Quaterniond(std::prev(after)->pose.linear()).slerp(f, Eigen::Quaterniond(after->pose.linear())).toRotationMatrix();
+    return T;
+  };
+  int negative_dots = 0, still = 0;
+  for (std::size_t k = 1; k < odometry.size(); ++k) {
+    const double dot = Eigen::Quaterniond(odometry[k - 1].pose.linear()).dot(Eigen::Quaterniond(odometry[k].pose.linear()));
+    negative_dots += dot < 0 ? 1 : 0;
+    still += std::abs(dot) >= 1.0 - Eigen::NumTraits<double>::epsilon() ? 1 : 0;
+  }
+  ASSERT_GT(negative_dots, 0);
+  ASSERT_GT(still, 0);
+  const Eigen::Isometry3d T_base_lidar = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Vector3f> points;
+  std::vector<double> time_s;
+  for (int f = 0; f < 4000; ++f) points.emplace_back(1.0f + 0.001f * f, -2.0f, 0.5f), time_s.push_back(-0.1 + f * 2e-4);
+  const double stamp_s = 3.1, reference_s = 3.5;
+  const Eigen::Isometry3d T_ref_odom = (fresh(reference_s) * T_base_lidar).inverse();
+  std::vector<Eigen::Vector3f> want = points;
+  for (std::size_t i = 0; i < want.size(); ++i)
+    want[i] = (T_ref_odom * fresh(stamp_s + time_s[i]) * T_base_lidar).cast<float>() * want[i];
+  sim::deskew(points, time_s, stamp_s, reference_s, odometry, T_base_lidar);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    ASSERT_EQ(std::memcmp(points[i].data(), want[i].data(), 3 * sizeof(float)), 0) << "point " << i;
+}
+
 TEST(SameBits, FitPlaneSumsTheSecondMomentsAsTheOuterProducts) {
   std::mt19937 rng(2814);
   std::normal_distribution<float> noise(0.0f, 0.01f);

@@ -18,6 +18,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <tuple>
 
 namespace bimloc::sim {
 namespace {
@@ -220,6 +221,32 @@ double distanceToBox(const Eigen::Vector2d& p, const ClutterTruth& c) {
   const double along = std::max(0.0, std::abs(d.dot(u)) - 0.5 * c.size_m.x());
   const double across = std::max(0.0, std::abs(d.dot(n)) - 0.5 * c.size_m.y());
   return std::hypot(along, across);
+}
+
+TEST(SiteTurns, ATurnIsTheSameWhicheverTurnsWereCastBefore) {
+  // The loop casts a turn only when a localizer reads its points (run_scenario.cpp); that is
+  // the loop that casts every turn only if a turn depends on its index alone: its noise, the
+  // site's effects and where the people walk, with nothing carried over from the turns cast
+  // before it. The oracle: the same turns from a simulator that cast every turn in order.
+  const Scenario s = loadScenario(std::string(BIMLOC_SCENARIOS_DIR) + "/site_office_R101_construction.yaml");
+  const World plan = World::load(s.world);
+  const Simulator every(s, plan), some(s, plan);
+  ASSERT_GT(every.world().siteTruth().people.size(), 0u) << "no people to move between turns";
+  const auto bits = [](const LidarPoint& p) {
+    return std::make_tuple(p.x, p.y, p.z, p.intensity, p.ring, p.time);
+  };
+  std::size_t compared = 0;
+  for (std::size_t i = 0; i < 40; ++i) {
+    const LidarScan all = every.turn(i);
+    if (i % 7 != 3) continue;  // the other simulator casts only these
+    const LidarScan one = some.turn(i);
+    ASSERT_EQ(one.stamp_s, all.stamp_s);
+    ASSERT_EQ(one.stamp_s, some.turnStamp(i));
+    ASSERT_EQ(one.points.size(), all.points.size()) << "turn " << i;
+    for (std::size_t k = 0; k < one.points.size(); ++k) ASSERT_EQ(bits(one.points[k]), bits(all.points[k])) << "turn " << i << " point " << k;
+    compared += one.points.size();
+  }
+  EXPECT_GT(compared, 100000u);
 }
 
 TEST(SiteClutter, BoxesStandWhereTheTruthSaysAndTheRobotsPathStaysClear) {

@@ -23,20 +23,40 @@ class PoseInterpolator {
       if (after_ == samples_.end()) return samples_.back().pose;
       qa_ = Eigen::Quaterniond(std::prev(after_)->pose.linear());
       qb_ = Eigen::Quaterniond(after_->pose.linear());
+      // What Eigen's slerp computes from the two rotations alone, kept with them.
+      dot_ = qa_.dot(qb_);
+      abs_dot_ = std::abs(dot_);
+      if (!(abs_dot_ >= kSlerpOne)) theta_ = std::acos(abs_dot_), sin_theta_ = std::sin(theta_);
     }
     const StampedPose& a = *std::prev(after_);
     const StampedPose& b = *after_;
     const double f = (t - a.stamp_s) / (b.stamp_s - a.stamp_s);
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.translation() = (1 - f) * a.pose.translation() + f * b.pose.translation();
-    T.linear() = qa_.slerp(f, qb_).toRotationMatrix();
+    T.linear() = slerp(f).toRotationMatrix();
     return T;
   }
 
  private:
+  // Eigen's QuaternionBase::slerp (Eigen 3.4, Quaternion.h), step by step with its acos and
+  // sin of the pair kept: the same operations on the same numbers, so the same rotation to the
+  // bit (tests/test_same_bits.cpp holds it to Eigen's), at two sines a time instead of four
+  // transcendental calls.
+  static constexpr double kSlerpOne = 1.0 - Eigen::NumTraits<double>::epsilon();
+  Eigen::Quaterniond slerp(double f) const {
+    double scale0 = 1.0 - f, scale1 = f;
+    if (!(abs_dot_ >= kSlerpOne)) {
+      scale0 = std::sin((1.0 - f) * theta_) / sin_theta_;
+      scale1 = std::sin(f * theta_) / sin_theta_;
+    }
+    if (dot_ < 0.0) scale1 = -scale1;
+    return Eigen::Quaterniond(scale0 * qa_.coeffs() + scale1 * qb_.coeffs());
+  }
+
   const std::vector<StampedPose>& samples_;
   std::vector<StampedPose>::const_iterator after_ = samples_.end();
   Eigen::Quaterniond qa_, qb_;
+  double dot_ = 0, abs_dot_ = 0, theta_ = 0, sin_theta_ = 1;
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include "sim/lidar/lidar_site.hpp"
 #include "sim/world/world.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace bimloc::sim {
@@ -37,6 +38,11 @@ std::uint16_t vlp16Ring(int laser) { return static_cast<std::uint16_t>((kElevati
 Vlp16::Vlp16(const Vlp16Config& config) : config_(config) {
   cycles_ = static_cast<int>(std::floor(turnPeriod_s() / kVlp16CyclePeriod_s));
   for (int k = 0; k < kVlp16Lasers; ++k) offsets_[k] = Eigen::Vector3d(0, 0, vlp16VerticalOffsetM(k));
+  const double omega = 2.0 * M_PI * config_.rpm / 60.0;  // as scan() computes it
+  for (int c = 0; c < std::max(0, cycles_); ++c) {
+    const double t_cycle = c * kVlp16CyclePeriod_s;
+    cos_cycle_.push_back(std::cos(-omega * t_cycle)), sin_cycle_.push_back(std::sin(-omega * t_cycle));
+  }
 }
 
 LidarScan Vlp16::scan(const World& world, std::size_t storey, const std::function<Eigen::Isometry3d(double)>& T_map_base,
@@ -77,7 +83,7 @@ LidarScan Vlp16::scan(const World& world, std::size_t storey, const std::functio
       const Eigen::Isometry3d T = config_.motion_distortion ? T_map_base(t0_s + t_cycle) * config_.T_base_lidar : T_static;
       const Eigen::Matrix3f R = T.linear().cast<float>();
       const Eigen::Vector3f t_lidar = T.translation().cast<float>(), up = R.col(2);
-      const double c_yaw = std::cos(-omega * t_cycle), s_yaw = std::sin(-omega * t_cycle);
+      const double c_yaw = cos_cycle_[static_cast<std::size_t>(c0 + j)], s_yaw = sin_cycle_[static_cast<std::size_t>(c0 + j)];
       for (int k = 0; k < kVlp16Lasers; ++k) {
         times[j][k] = static_cast<float>(t_cycle + k * kVlp16FiringPeriod_s);
         const double c = c_yaw * cos_fire[k] - s_yaw * sin_fire[k], s_ = s_yaw * cos_fire[k] + c_yaw * sin_fire[k];

@@ -53,6 +53,9 @@ class Vlp16 {
   Vlp16Config config_;
   int cycles_ = 0;
   std::array<Eigen::Vector3d, kVlp16Lasers> offsets_;  // laser origin in the sensor frame
+  // The head's yaw at each cycle of a turn (cos, sin of -omega t_cycle): the same every turn,
+  // computed once instead of once a cycle of every turn.
+  std::vector<double> cos_cycle_, sin_cycle_;
 };
 
 }  // namespace bimloc::sim

@@ -80,13 +80,23 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
   const auto step_start = std::chrono::steady_clock::now();
   // The barometer's altitude first (issue 31): every method reads the same (its own stream of the seed).
   if (barometer_) localizer_->observeAltitude(t, barometer_->read(t, truth.translation().z()), barometer_->sigma_m());
-  const LocalizationResult step = localizer_->step(t, T_odom_base, points);
+  // The turn is cast and de-skewed when a localizer first reads it (run_scenario.cpp), inside
+  // its step: the simulator's time, not the localizer's, whichever method reads first.
+  double turn_seconds = 0;
+  const Localizer::PointSource timed = [&] {
+    const auto turn_start = std::chrono::steady_clock::now();
+    std::vector<Eigen::Vector3f> read = points();
+    turn_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - turn_start).count();
+    return read;
+  };
+  const LocalizationResult step = localizer_->step(t, T_odom_base, timed);
   estimate_ = step.T_map_base;
   storey_ = step.storey;
   last_state_ = step.state, last_goal_ = step.goal;
   const auto minute = static_cast<std::size_t>(t / 60.0);
   if (r_.localizer_seconds_by_minute.size() <= minute) r_.localizer_seconds_by_minute.resize(minute + 1, 0.0);
-  r_.localizer_seconds_by_minute[minute] += std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
+  r_.localizer_seconds_by_minute[minute] +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count() - turn_seconds;
   ++updates_;
   searching_ = step.state == LocalizationState::Searching;
   for (const auto& w : step.warnings) r_.warnings.push_back("t=" + std::to_string(t) + ": " + w);

@@ -93,10 +93,15 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   for (std::size_t i = 0; i < sim.turnCount(); ++i) {
     const double cpu_turn = processCpuSeconds();
     const bool searching = runs.empty() || runs.front().searching();
-    const LidarScan scan =
-        walk ? sim.turnAlong(i, [&walk](double t) { return walk->T_map_base(t); }) : sim.turn(i);
+    // The turn is cast when a localizer (or the oracle) first reads its points, as its de-skew
+    // is: a searching filter weighs every 0.2 m or 20 deg, a tracker at its keyframes, and most
+    // turns are read by none. A turn is a pure function of its index and the base's poses over
+    // it (its noise and site drawn from the turn's own seed), so a turn cast or skipped changes
+    // no other; the poses over it are decided before the step (the walk follows after it).
+    const double stamp_s = sim.turnStamp(i);
+    const auto castTurn = [&] { return walk ? sim.turnAlong(i, [&walk](double t) { return walk->T_map_base(t); }) : sim.turn(i); };
     // The turn sweeps for a whole period: its planes are best explained by the mid-turn pose.
-    const double t = scan.stamp_s + half_turn;
+    const double t = stamp_s + half_turn;
     const OdometrySample reading = readingAt(readingIndex(t));
     const Eigen::Isometry3d T_odom_base = reading.T_odom_base;
     const Eigen::Isometry3d truth = truthAt(t);
@@ -107,7 +112,7 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
       // De-skewed into the lidar frame at the reading the localizer is given with the turn.
       // Non-finite and out-of-range points are the plane extraction's to drop.
       if (!points)
-        points = deskewedTurn(scan, deskew_turns ? readingsOver(scan.stamp_s, scan.stamp_s + 2 * half_turn) : std::vector<StampedPose>{},
+        points = deskewedTurn(castTurn(), deskew_turns ? readingsOver(stamp_s, stamp_s + 2 * half_turn) : std::vector<StampedPose>{},
                               reading.stamp_s, s.sensor.T_base_lidar);
       return *points;
     };
