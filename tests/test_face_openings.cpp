@@ -148,10 +148,11 @@ TEST(FaceOpenings, TheFzkHausHasTheSameOpeningsInBothExports) {
   EXPECT_EQ(doors, 1);
 }
 
-TEST(FaceOpenings, TheSGraphTakesNoPlaneInAFaceOpeningForTheWall) {
-  // A plan wall node along x (face 0 looking +y at y = 0, 5 m long) with a window
-  // [1.5, 3.5] x [0.9, 2.1]; a keyframe 3 m in front of it, looking at it; an observed plane
-  // 0.12 m behind the face (the glass): inside the gate, and its support inside the window.
+namespace {
+
+// A plan wall node along x, face 0 looking +y at y = 0 (face 1 `thickness_m` behind), with
+// `opening` in face 0; and a keyframe 3 m in front of it, looking at it (lidar = base).
+sgraph::detail::WallNode wallNodeAlongX(double length_m, double thickness_m, const bim::FaceOpening& opening) {
   sgraph::detail::WallNode node;
   node.face[0].centre = Eigen::Vector2d(2.5, 0.0);
   node.face[0].e = Eigen::Vector2d::UnitY();
@@ -159,14 +160,29 @@ TEST(FaceOpenings, TheSGraphTakesNoPlaneInAFaceOpeningForTheWall) {
   node.face[0].h = 0.0;
   node.face[1] = node.face[0];
   node.face[1].side = -1.0;
-  node.face[1].h = -0.3;
-  node.start = {Eigen::Vector2d(0, 0), Eigen::Vector2d(5, -0.3)};
-  node.end = {Eigen::Vector2d(5, 0), Eigen::Vector2d(0, -0.3)};
-  node.openings[0] = {{1.5, 3.5, 0.9, 2.1}};
+  node.face[1].h = -thickness_m;
+  node.start = {Eigen::Vector2d(0, 0), Eigen::Vector2d(length_m, -thickness_m)};
+  node.end = {Eigen::Vector2d(length_m, 0), Eigen::Vector2d(0, -thickness_m)};
+  node.openings[0] = {opening};
+  return node;
+}
+
+sgraph::detail::Keyframe keyframeBeforeTheWall() {
   sgraph::detail::Keyframe kf;
   kf.pose = {2.5, 3.0, -M_PI / 2};  // looking -y, at the wall
   kf.A = Eigen::Matrix3d::Identity();
   kf.b = Eigen::Vector3d::Zero();
+  return kf;
+}
+
+}  // namespace
+
+TEST(FaceOpenings, TheSGraphTakesNoPlaneInAFaceOpeningForTheWall) {
+  // A plan wall node along x (face 0 looking +y at y = 0, 5 m long) with a window
+  // [1.5, 3.5] x [0.9, 2.1]; a keyframe 3 m in front of it, looking at it; an observed plane
+  // 0.12 m behind the face (the glass): inside the gate, and its support inside the window.
+  sgraph::detail::WallNode node = wallNodeAlongX(5.0, 0.3, {1.5, 3.5, 0.9, 2.1});
+  const sgraph::detail::Keyframe kf = keyframeBeforeTheWall();
   sgraph::SGraphConfig config;
   sgraph::detail::ScanObservation glass;
   glass.minimal = planes::minimalPlane(Eigen::Vector3d(-1, 0, 0), 3.12);  // in the lidar frame: ahead, 3.12 m
@@ -195,21 +211,8 @@ TEST(FaceOpenings, TheSGraphJudgesAPaneByWhereItStandsNotByItsCentroid) {
   // its centroid lies 0.15 m west of the middle of where it stands (0.5-5.1 m) and its heights'
   // mean 0.45 m below their middle (0.3-2.2 m). Centroid -+ half the extents (0.2-5.1 m, z
   // -0.15-1.75) overflows the grown opening (0.25-5.4, z -0.05-2.65); where it stands does not.
-  sgraph::detail::WallNode node;
-  node.face[0].centre = Eigen::Vector2d(2.5, 0.0);
-  node.face[0].e = Eigen::Vector2d::UnitY();
-  node.face[0].side = 1.0;
-  node.face[0].h = 0.0;
-  node.face[1] = node.face[0];
-  node.face[1].side = -1.0;
-  node.face[1].h = -0.417;
-  node.start = {Eigen::Vector2d(0, 0), Eigen::Vector2d(8.4, -0.417)};
-  node.end = {Eigen::Vector2d(8.4, 0), Eigen::Vector2d(0, -0.417)};
-  node.openings[0] = {{0.4, 5.25, 0.1, 2.5}};
-  sgraph::detail::Keyframe kf;
-  kf.pose = {2.5, 3.0, -M_PI / 2};
-  kf.A = Eigen::Matrix3d::Identity();
-  kf.b = Eigen::Vector3d::Zero();
+  sgraph::detail::WallNode node = wallNodeAlongX(8.4, 0.417, {0.4, 5.25, 0.1, 2.5});
+  const sgraph::detail::Keyframe kf = keyframeBeforeTheWall();
   sgraph::SGraphConfig config;
   // Seen from a pose 0.34 m north of the truth, the pane lies 0.03 m behind the face: in the gate.
   sgraph::detail::ScanObservation pane;
