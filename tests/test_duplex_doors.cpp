@@ -133,5 +133,23 @@ TEST(DuplexDoors, ARoomWhoseCentreIsWalledInIsStillReachedAndTheBathroomStartLea
   EXPECT_GT(in_living_s, 1.0) << "the base never reached the living room";
 }
 
+// The living room's furniture is no floor: A102's start of `run --all-rooms --rooms A102`,
+// seed 1, and the room's centre (the floor the starts are drawn on) stand over a table top
+// 0.38 m up and a table 0.46 m up; the base stands on the floor (its finish's top, 0.019 m)
+// there as elsewhere. Taken at the table, the run was planned and its odometry started 0.37 m
+// up, and the localizer saw the window's pane below the sill
+// (docs/results/2026-11-27-h28duplex.md).
+TEST(DuplexDoors, TheLivingRoomsFurnitureIsNoFloor) {
+  BIMLOC_REQUIRE_SHARED(path, "Duplex_A_20110907.ifc");
+  const World& world = duplex(path);
+  const std::size_t level1 = world.storeyIndex("Level 1");
+  const bim::Room* living = world.building().storeys[level1].findRoom("A102");
+  ASSERT_TRUE(living);
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(1.095, -16.088), living->centre, Eigen::Vector2d(5.5, -14.0)}) {
+    SCOPED_TRACE(p.transpose());
+    EXPECT_NEAR(bodyCentreZ(world, level1, p, 0.5), 0.519, 0.01);
+  }
+}
+
 }  // namespace
 }  // namespace bimloc::sim

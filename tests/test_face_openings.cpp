@@ -148,10 +148,11 @@ TEST(FaceOpenings, TheFzkHausHasTheSameOpeningsInBothExports) {
   EXPECT_EQ(doors, 1);
 }
 
-TEST(FaceOpenings, TheSGraphTakesNoPlaneInAFaceOpeningForTheWall) {
-  // A plan wall node along x (face 0 looking +y at y = 0, 5 m long) with a window
-  // [1.5, 3.5] x [0.9, 2.1]; a keyframe 3 m in front of it, looking at it; an observed plane
-  // 0.12 m behind the face (the glass): inside the gate, and its support inside the window.
+namespace {
+
+// A plan wall node along x, face 0 looking +y at y = 0 (face 1 `thickness_m` behind), with
+// `opening` in face 0; and a keyframe 3 m in front of it, looking at it (lidar = base).
+sgraph::detail::WallNode wallNodeAlongX(double length_m, double thickness_m, const bim::FaceOpening& opening) {
   sgraph::detail::WallNode node;
   node.face[0].centre = Eigen::Vector2d(2.5, 0.0);
   node.face[0].e = Eigen::Vector2d::UnitY();
@@ -159,14 +160,29 @@ TEST(FaceOpenings, TheSGraphTakesNoPlaneInAFaceOpeningForTheWall) {
   node.face[0].h = 0.0;
   node.face[1] = node.face[0];
   node.face[1].side = -1.0;
-  node.face[1].h = -0.3;
-  node.start = {Eigen::Vector2d(0, 0), Eigen::Vector2d(5, -0.3)};
-  node.end = {Eigen::Vector2d(5, 0), Eigen::Vector2d(0, -0.3)};
-  node.openings[0] = {{1.5, 3.5, 0.9, 2.1}};
+  node.face[1].h = -thickness_m;
+  node.start = {Eigen::Vector2d(0, 0), Eigen::Vector2d(length_m, -thickness_m)};
+  node.end = {Eigen::Vector2d(length_m, 0), Eigen::Vector2d(0, -thickness_m)};
+  node.openings[0] = {opening};
+  return node;
+}
+
+sgraph::detail::Keyframe keyframeBeforeTheWall() {
   sgraph::detail::Keyframe kf;
   kf.pose = {2.5, 3.0, -M_PI / 2};  // looking -y, at the wall
   kf.A = Eigen::Matrix3d::Identity();
   kf.b = Eigen::Vector3d::Zero();
+  return kf;
+}
+
+}  // namespace
+
+TEST(FaceOpenings, TheSGraphTakesNoPlaneInAFaceOpeningForTheWall) {
+  // A plan wall node along x (face 0 looking +y at y = 0, 5 m long) with a window
+  // [1.5, 3.5] x [0.9, 2.1]; a keyframe 3 m in front of it, looking at it; an observed plane
+  // 0.12 m behind the face (the glass): inside the gate, and its support inside the window.
+  sgraph::detail::WallNode node = wallNodeAlongX(5.0, 0.3, {1.5, 3.5, 0.9, 2.1});
+  const sgraph::detail::Keyframe kf = keyframeBeforeTheWall();
   sgraph::SGraphConfig config;
   sgraph::detail::ScanObservation glass;
   glass.minimal = planes::minimalPlane(Eigen::Vector3d(-1, 0, 0), 3.12);  // in the lidar frame: ahead, 3.12 m
@@ -186,6 +202,37 @@ TEST(FaceOpenings, TheSGraphTakesNoPlaneInAFaceOpeningForTheWall) {
   sgraph::detail::ScanObservation wall = glass;
   wall.minimal[2] = 3.0, wall.centroid_map.y() = 0.0, wall.extent_m = 4.0, wall.height_extent_m = 2.4, wall.z_map = 1.2;
   EXPECT_LT(sgraph::detail::matchDistance2(node, 0, kf, wall, config), config.association_gate_mahalanobis2);
+}
+
+TEST(FaceOpenings, TheSGraphJudgesAPaneByWhereItStandsNotByItsCentroid) {
+  // The Duplex's living-room window (A102, the south wall): 4.85 m wide, along 0.4-5.25, z
+  // 0.1-2.5 (node as above: face 0 looking +y at y = 0); a keyframe 3 m before it. The pane 0.37
+  // m behind the face is seen from near the window's west end: its returns are dense there, so
+  // its centroid lies 0.15 m west of the middle of where it stands (0.5-5.1 m) and its heights'
+  // mean 0.45 m below their middle (0.3-2.2 m). Centroid -+ half the extents (0.2-5.1 m, z
+  // -0.15-1.75) overflows the grown opening (0.25-5.4, z -0.05-2.65); where it stands does not.
+  sgraph::detail::WallNode node = wallNodeAlongX(8.4, 0.417, {0.4, 5.25, 0.1, 2.5});
+  const sgraph::detail::Keyframe kf = keyframeBeforeTheWall();
+  sgraph::SGraphConfig config;
+  // Seen from a pose 0.34 m north of the truth, the pane lies 0.03 m behind the face: in the gate.
+  sgraph::detail::ScanObservation pane;
+  pane.minimal = planes::minimalPlane(Eigen::Vector3d(-1, 0, 0), 3.03);
+  pane.covariance = Eigen::Vector3d(1e-4, 1e-4, 4e-4).asDiagonal();
+  pane.normal_map = Eigen::Vector2d::UnitY();
+  pane.centroid_map = Eigen::Vector2d(2.65, -0.03);
+  pane.extent_m = 4.9;  // the whole support, a strip of the reveal included
+  pane.height_extent_m = 1.9;
+  pane.axis = bim::WallAxis::Y;
+  // What the graph read before: the centroid's height, no span. The pane is the wall.
+  pane.z_map = 0.8;
+  EXPECT_LT(sgraph::detail::matchDistance2(node, 0, kf, pane, config), config.association_gate_mahalanobis2);
+  // Where the support stands (the plane's wall span) and its heights' middle: the window.
+  pane.span_middle_map = Eigen::Vector2d(2.8, -0.03), pane.span_m = 4.6;
+  pane.z_map = 1.25;
+  EXPECT_TRUE(std::isinf(sgraph::detail::matchDistance2(node, 0, kf, pane, config)));
+  // The same support where the face is solid is the wall.
+  node.openings[0].clear();
+  EXPECT_LT(sgraph::detail::matchDistance2(node, 0, kf, pane, config), config.association_gate_mahalanobis2);
 }
 
 TEST(FaceOpenings, ARectangleIsInsideTheHolesWhereOpeningsSideBySideCoverIt) {

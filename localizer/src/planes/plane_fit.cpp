@@ -129,6 +129,7 @@ ObservedPlane describePlane(const Cloud& cloud, const Indices& support, const Pl
   plane.wall_span_m = wall_hi - wall_lo;
   plane.wall_span_middle = plane.centroid + h * (0.5 * (wall_lo + wall_hi) - h.dot(plane.centroid));
   plane.height_extent_m = z_max - z_min;
+  plane.height_middle = plane.centroid + Eigen::Vector3d::UnitZ() * (0.5 * (z_min + z_max) - plane.centroid.z());
   plane.rms_m = std::sqrt(sum_r2 / double(support.size()));
   plane.covariance = minimalCovariance(cloud, support, plane.normal, plane.d);
   return plane;

@@ -105,8 +105,12 @@ std::vector<ScanObservation> prepareObservations(const Keyframe& kf, const std::
     o.normal_map = n_map.head<2>().normalized();
     const Eigen::Vector3d centroid_map = T_map_lidar * w.centroid;
     o.centroid_map = centroid_map.head<2>();
-    o.z_map = centroid_map.z();
+    const Eigen::Vector3d height_middle = T_map_lidar * w.height_middle;
+    o.z_map = height_middle.allFinite() ? height_middle.z() : centroid_map.z();
     o.extent_m = std::isfinite(w.extent_m) ? w.extent_m : 0.0;
+    const Eigen::Vector3d span_middle = T_map_lidar * w.wall_span_middle;
+    if (span_middle.allFinite() && std::isfinite(w.wall_span_m) && w.wall_span_m > 0.0)
+      o.span_middle_map = span_middle.head<2>(), o.span_m = w.wall_span_m;
     o.height_extent_m = std::isfinite(w.height_extent_m) ? w.height_extent_m : 0.0;
     o.axis = std::abs(o.normal_map.x()) >= std::abs(o.normal_map.y()) ? bim::WallAxis::X : bim::WallAxis::Y;
     out.push_back(o);
@@ -131,11 +135,18 @@ double matchDistance2(const WallNode& node, int k, const Keyframe& kf, const Sca
   // The observed wall's points must lie along the face, not beside its end.
   const double u = node.along(k, o.centroid_map);
   if (u < -c.segment_margin_m || u > node.length(k) + c.segment_margin_m) return kInfinity;
-  // ... and not in a hole of it. The support's box (centroid -+ half its extents) inside an
-  // opening grown by the margin the pose and the extents' estimate need.
-  const double hu = 0.5 * o.extent_m, hz = 0.5 * o.height_extent_m;
+  // ... and not in a hole of it. The support's box (where it stands along the face -+ half its
+  // span, its heights about their middle) inside an opening grown by the margin the pose and
+  // the extents' estimate need. Not the centroid -+ half the extents: the centroid lies where
+  // the returns are dense, near the sensor and at the rings' heights, and the pane filling the
+  // Duplex's living-room window (4.85 m wide) "overflowed" it by 0.015 m along: matched to the
+  // wall's face 0.37 m before it, it held a pose 0.34 m off in the S-Graph for 11 s (A102 seed
+  // 1, docs/results/2026-11-27-h28duplex.md). The filter's rule has been by the span since.
+  const bool span_known = o.span_m > 0.0;
+  const double m = span_known ? node.along(k, o.span_middle_map) : u, hu = 0.5 * (span_known ? o.span_m : o.extent_m);
+  const double hz = 0.5 * o.height_extent_m;
   if (node.kind == WallNode::Kind::Plan &&
-      bim::insideOpening(node.openings[static_cast<std::size_t>(k)], u - hu, u + hu, o.z_map - hz, o.z_map + hz, c.opening_margin_m))
+      bim::insideOpening(node.openings[static_cast<std::size_t>(k)], m - hu, m + hu, o.z_map - hz, o.z_map + hz, c.opening_margin_m))
     return kInfinity;
   return m2;
 }

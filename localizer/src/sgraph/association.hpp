@@ -21,7 +21,12 @@ struct ScanObservation {
   Eigen::Vector2d normal_map = Eigen::Vector2d::UnitX();
   Eigen::Vector2d centroid_map = Eigen::Vector2d::Zero();
   double extent_m = 0;
-  double z_map = 0;            // the centroid's height in the map
+  double z_map = 0;            // the middle of the support's heights in the map (not the centroid's)
+  // Where along the plane the support stands as a wall (planes::ObservedPlane::wall_span_*): the
+  // openings rule's, as the filter's (pf/measurement.cpp). span_m 0: unknown, the centroid -+
+  // half the extent stand for it.
+  Eigen::Vector2d span_middle_map = Eigen::Vector2d::Zero();
+  double span_m = 0;
   double height_extent_m = 0;  // the support's vertical span
   bim::WallAxis axis = bim::WallAxis::X;
 };

@@ -58,6 +58,13 @@ struct ObservedPlane {
   int inliers = 0;              // support voxels (after downsampling) within the fit's final band
   double extent_m = 0;          // span of the support along the plane's horizontal direction n × z
   double height_extent_m = 0;   // vertical span of the support
+  // The centroid moved along the sensor's z to the middle of that span: the span reaches
+  // height_extent_m / 2 above and below it. The centroid's own height is where the returns are
+  // dense (the lower rings, nearer the sensor), not the middle: on the Duplex's walls and window
+  // panes 2-4 m away, centroid -+ half the span sat 0.15-0.2 m lower than the support, enough to
+  // put a pane's support below its window's sill, out of the opening that tells it from the
+  // wall (docs/results/2026-11-27-h28duplex.md). Not finite: unknown.
+  Eigen::Vector3d height_middle = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // of the raw returns the plane was fitted to
   // Where along the plane the support stands as a wall (points at several heights, not the one
   // height of a floor's or a slab's strip in its band): its length, and its middle at the
