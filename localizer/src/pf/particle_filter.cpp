@@ -104,8 +104,7 @@ std::vector<detail::Observation> ParticleFilter::Impl::observe(const std::vector
     if (middle.allFinite() && std::isfinite(w.wall_span_m) && w.wall_span_m > 0.0)
       o.span_middle_base = middle.head<2>(), o.wall_span_m = w.wall_span_m;
     // The support's heights about their middle (not the centroid's height: plane_extraction.hpp).
-    const Eigen::Vector3d height_middle = R_bl * w.height_middle + t_bl;
-    const double z_middle = height_middle.allFinite() ? height_middle.z() : centroid.z();
+    const double z_middle = (R_bl * w.heightMiddleOrCentroid() + t_bl).z();
     if (std::isfinite(z_middle) && std::isfinite(w.height_extent_m) && w.height_extent_m > 0.0)
       o.z_low = z_middle - 0.5 * w.height_extent_m, o.z_high = z_middle + 0.5 * w.height_extent_m;
     observations.push_back(o);

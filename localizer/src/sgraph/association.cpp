@@ -105,8 +105,7 @@ std::vector<ScanObservation> prepareObservations(const Keyframe& kf, const std::
     o.normal_map = n_map.head<2>().normalized();
     const Eigen::Vector3d centroid_map = T_map_lidar * w.centroid;
     o.centroid_map = centroid_map.head<2>();
-    const Eigen::Vector3d height_middle = T_map_lidar * w.height_middle;
-    o.z_map = height_middle.allFinite() ? height_middle.z() : centroid_map.z();
+    o.z_map = (T_map_lidar * w.heightMiddleOrCentroid()).z();
     o.extent_m = std::isfinite(w.extent_m) ? w.extent_m : 0.0;
     const Eigen::Vector3d span_middle = T_map_lidar * w.wall_span_middle;
     if (span_middle.allFinite() && std::isfinite(w.wall_span_m) && w.wall_span_m > 0.0)

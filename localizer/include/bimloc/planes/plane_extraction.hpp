@@ -66,6 +66,9 @@ struct ObservedPlane {
   // wall (docs/results/2026-11-27-h28duplex.md). Not finite: unknown.
   Eigen::Vector3d height_middle = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // of the raw returns the plane was fitted to
+  // The point the support's heights are taken about, by the filter and the S-Graph alike:
+  // height_middle where known, else the centroid (a plane not made by the extraction).
+  Eigen::Vector3d heightMiddleOrCentroid() const { return height_middle.allFinite() ? height_middle : centroid; }
   // Where along the plane the support stands as a wall (points at several heights, not the one
   // height of a floor's or a slab's strip in its band): its length, and its middle at the
   // centroid's height and depth, so that it reaches wall_span_m / 2 either side of it. The
