@@ -323,6 +323,8 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
       // The converter skips some bodies (e.g. profiles over IfcIndexedPolyCurve): read the
       // extrusion ourselves. Spaces always: their profile is the exact room footprint.
       p.extrusion = profiles.bodyExtrusion(product, p.geometry_problem);
+    } else if (!is_space) {
+      p.sole_body = profiles.soleBodyExtrusion(product);
     }
     if (is_space) p.long_name = label(dynamic_pointer_cast<IfcSpace>(product)->m_LongName);
     readStairAttributes(product, raw.length_unit_m, p);
@@ -346,11 +348,12 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
   std::sort(raw.stairs.begin(), raw.stairs.end(),
             [](const RawProduct& a, const RawProduct& b) { return a.entity_id < b.entity_id; });
 
-  // Openings of the elements rebuilt from their extrusions: IFC++ cut the others already.
+  // Openings of the elements rebuilt from their extrusions (no IFC++ mesh), and of those whose
+  // body is one extruded solid (openings.hpp cuts them again, exactly and the same every run).
   std::unordered_set<int> rebuilt;
   for (const auto* group : {&raw.walls, &raw.elements})
     for (const auto& p : *group)
-      if (p.mesh.empty() && p.extrusion) rebuilt.insert(p.entity_id);
+      if ((p.mesh.empty() && p.extrusion) || p.sole_body) rebuilt.insert(p.entity_id);
   for (const auto& [id, entity] : model->getMapIfcEntities()) {
     auto rel = dynamic_pointer_cast<IfcRelVoidsElement>(entity);
     if (!rel || !rel->m_RelatingBuildingElement || !rel->m_RelatedOpeningElement) continue;
@@ -362,6 +365,7 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
     o.ifc_class = opening->className();
     o.voided_entity_id = rel->m_RelatingBuildingElement->m_entity_id;
     o.extrusion = profiles.bodyExtrusion(opening, o.geometry_problem);
+    o.sole = o.extrusion && profiles.soleBodyExtrusion(opening).has_value();
     raw.openings.push_back(std::move(o));
   }
 

@@ -54,6 +54,24 @@ class ProfileReader {
     return {o.x, o.y, o.z};
   }
 
+  // The product's 'Body' representation when it is exactly one extruded solid, directly (no
+  // boolean clipping, no mapped item, no other item): then the extrusion is the whole body.
+  std::optional<Extrusion> soleBodyExtrusion(const shared_ptr<IfcProduct>& product) const {
+    if (!product->m_Representation) return std::nullopt;
+    std::size_t items = 0;
+    bool solid = false;
+    for (const auto& rep : product->m_Representation->m_Representations) {
+      if (!rep || !rep->m_RepresentationIdentifier || rep->m_RepresentationIdentifier->m_value != L"Body") continue;
+      for (const auto& item : rep->m_Items) {
+        ++items;
+        solid = static_cast<bool>(dynamic_pointer_cast<IfcExtrudedAreaSolid>(item));
+      }
+    }
+    if (items != 1 || !solid) return std::nullopt;
+    std::string problem;
+    return bodyExtrusion(product, problem);
+  }
+
   // The first extruded solid of the product's 'Body' representation, in world coordinates.
   // Returns nothing and says why in `problem` when there is none it can read.
   std::optional<Extrusion> bodyExtrusion(const shared_ptr<IfcProduct>& product, std::string& problem) const {

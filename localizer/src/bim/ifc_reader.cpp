@@ -49,12 +49,13 @@ int storeyFor(const RawProduct& p, const std::vector<int>& new_index, const std:
   return best;
 }
 
-// IFC++'s mesh, else the body rebuilt from its extrusion with its openings cut out.
+// The body rebuilt from its extrusion with its openings cut out (openings.hpp: every body
+// IFC++ could not mesh, and every one-box body with box openings), else IFC++'s mesh.
 const TriangleMesh& bodyMesh(const RawProduct& p, const std::unordered_map<int, TriangleMesh>& rebuilt) {
   static const TriangleMesh none;
-  if (!p.mesh.empty()) return p.mesh;
   const auto it = rebuilt.find(p.entity_id);
-  return it == rebuilt.end() ? none : it->second;
+  if (it != rebuilt.end()) return it->second;
+  return p.mesh.empty() ? none : p.mesh;
 }
 
 bool isSlab(const RawProduct& p) {

@@ -212,7 +212,22 @@ std::unordered_map<int, TriangleMesh> rebuiltBodies(const RawModel& raw, std::ve
   std::unordered_map<int, TriangleMesh> bodies;
   for (const auto* group : {&raw.walls, &raw.elements})
     for (const auto& p : *group) {
-      if (!p.mesh.empty() || !p.extrusion) continue;
+      if (!p.mesh.empty()) {
+        // IFC++ cut its openings with Carve, whose CSG orders by heap address: on some plans
+        // (Office_A_20110811.ifc) it cuts a different subset of a wall's windows from run to
+        // run. A body that is one box with box openings is cut here instead, exactly; any
+        // other keeps IFC++'s mesh.
+        const auto& own = openings_of[p.entity_id];
+        if (!p.sole_body || own.empty() ||
+            !std::all_of(own.begin(), own.end(), [](const RawOpening* o) { return o->extrusion && o->sole; }))
+          continue;
+        std::vector<Extrusion> solids;
+        for (const RawOpening* o : own) solids.push_back(*o->extrusion);
+        OpeningCut cut = cutOpenings(*p.sole_body, solids);
+        if (cut.not_cut.empty() && cut.cut == solids.size()) bodies.emplace(p.entity_id, std::move(cut.mesh));
+        continue;
+      }
+      if (!p.extrusion) continue;
       std::vector<Extrusion> solids;
       std::vector<const RawOpening*> readable;
       const std::string owner = describe(p.ifc_class, p.global_id, p.name);

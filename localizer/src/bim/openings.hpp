@@ -28,9 +28,11 @@ struct OpeningCut {
 // prismMesh(body).
 OpeningCut cutOpenings(const Extrusion& body, const std::vector<Extrusion>& openings);
 
-// The mesh of every wall and element whose body is read from its extrusion (no IFC++ mesh),
-// by entity id, with its openings cut out. Every opening it could not subtract is named in
-// `warnings`, with the element it belongs to.
+// By entity id, with its openings cut out: the mesh of every wall and element whose body is
+// read from its extrusion (no IFC++ mesh; every opening it could not subtract is named in
+// `warnings`, with the element it belongs to), and of every element with openings whose body
+// is one box extrusion and whose openings are all boxes along it (RawProduct::sole_body):
+// IFC++'s own cut of those changes from run to run on some plans. The others keep IFC++'s.
 std::unordered_map<int, TriangleMesh> rebuiltBodies(const RawModel& raw, std::vector<std::string>& warnings);
 
 }  // namespace bimloc::bim::detail

@@ -42,6 +42,10 @@ struct RawProduct {
                             // a curtain wall's plates and members (IFC4 IfcCurtainWall)
   TriangleMesh mesh;      // world frame, metres
   std::optional<Extrusion> extrusion;
+  // The Body representation when it is exactly one extruded solid (no clipping, no other
+  // item), read for an element with openings whatever IFC++ made of it: openings.hpp cuts
+  // them from it exactly (IFC++'s CSG cuts a different subset of them from run to run).
+  std::optional<Extrusion> sole_body;
   std::string geometry_problem;  // why there is neither mesh nor extrusion
   std::string predefined_type;   // IfcSlab's PredefinedType (LANDING, FLOOR, ...), else empty
   std::optional<FlightAttributes> flight;  // IfcStairFlight only
@@ -69,6 +73,7 @@ struct RawOpening {
   std::string ifc_class;  // IfcOpeningElement, IfcVoidingFeature, ...
   int voided_entity_id = 0;             // RawProduct::entity_id of the element it cuts
   std::optional<Extrusion> extrusion;   // its body, world frame; read only for rebuilt elements
+  bool sole = false;                    // the body is exactly that one extruded solid
   std::string geometry_problem;         // why there is no extrusion
 };
 
