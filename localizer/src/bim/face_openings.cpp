@@ -5,7 +5,7 @@
 // few centimetres to decimetres behind it (FZK-Haus: the panes 0.12-0.18 m behind the face of
 // its 0.30 m outer walls). Inside the association gate of the face, a plane fitted to one of
 // them is taken for the wall and pulls the pose by that much. The wall's body mesh, with its
-// openings already cut by IFC++ (or by cutOpenings for rebuilt bodies), knows where the face
+// openings already cut (by cutOpenings for box bodies and rebuilt ones, else by IFC++), knows where the face
 // is: we rasterise the body's triangles lying on each face, and the empty parts of the face
 // that are enclosed by it are its openings.
 #include "extraction.hpp"
