@@ -95,6 +95,9 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
           const auto more = facesOf(storey, other, buried, lines);
           faces.insert(faces.end(), more.begin(), more.end());
         }
+    std::array<std::vector<Landmark>, 2> split;
+    for (const Landmark& l : faces) split[l.axis == bim::WallAxis::X ? 0 : 1].push_back(l);
+    by_axis_.push_back(std::move(split));
     landmarks_.push_back(std::move(faces));
     for (const auto& p : room.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   }
