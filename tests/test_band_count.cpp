@@ -1,6 +1,7 @@
 // Issue 28, Speed (h28speed8): RANSAC's inlier count (planes/band_count.hpp), vectorized and
 // stopped once it cannot beat the best count, against the point-by-point count and against
-// points placed at known distances from their plane.
+// points placed at known distances from their plane; and the raw returns near a plane
+// (indicesInBand) against Eigen's own n.dot(p) + d, point by point.
 #include "planes/band_count.hpp"
 
 #include <gtest/gtest.h>
@@ -73,5 +74,31 @@ TEST(BandCount, IsThePointByPointCountWhereverItCanBeatTheBest) {
       else
         EXPECT_LE(got, best) << "trial " << trial << " best " << best;
     }
+  }
+}
+
+TEST(BandCount, TheReturnsNearAPlaneAreThoseEigensResidualKeeps) {
+  // pointsNearPlane's test was |n.dot(p) + d| > band in Eigen's float arithmetic, point by
+  // point: the packed test must keep exactly the same points, those on the band's edge too.
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<float> xyz(-30.0f, 30.0f), unit(-1.0f, 1.0f);
+  for (int trial = 0; trial < 300; ++trial) {
+    const std::size_t n = std::size_t(trial * 11 % 3000);
+    Eigen::Vector3f normal(unit(rng), unit(rng), 0.2f * unit(rng));
+    normal.normalize();
+    const float d = xyz(rng), band = 0.04f;
+    std::vector<Eigen::Vector3f> cloud;
+    Points pts;
+    for (std::size_t i = 0; i < n; ++i) {
+      Eigen::Vector3f p(xyz(rng), xyz(rng), 3.0f * unit(rng));
+      if (i % 2 == 0) p -= (normal.dot(p) + d - band * unit(rng) * 1.01f) * normal;  // in and near the band's edges
+      cloud.push_back(p);
+      pts.x.push_back(p.x()), pts.y.push_back(p.y()), pts.z.push_back(p.z());
+    }
+    std::vector<int> expected, got;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!(std::abs(normal.dot(cloud[i]) + d) > band)) expected.push_back(static_cast<int>(i));
+    indicesInBand(pts.x.data(), pts.y.data(), pts.z.data(), n, normal.x(), normal.y(), normal.z(), d, band, got);
+    ASSERT_EQ(got, expected) << "trial " << trial;
   }
 }

@@ -86,6 +86,39 @@ bool hasAvx2() {
 }
 #endif
 
+// Eigen's Vector3f::dot(p) + d (its unrolled sum: the first product plus the sum of the other two).
+inline bool nearPlane(float nx, float ny, float nz, float d, float t, float x, float y, float z) {
+  return !(std::abs(nx * x + (ny * y + nz * z) + d) > t);
+}
+
+void indicesInBandPlain(const float* x, const float* y, const float* z, std::size_t from, std::size_t n, float nx, float ny,
+                        float nz, float d, float t, std::vector<int>& out) {
+  for (std::size_t i = from; i < n; ++i)
+    if (nearPlane(nx, ny, nz, d, t, x[i], y[i], z[i])) out.push_back(static_cast<int>(i));
+}
+
+#if BIMLOC_BAND_COUNT_X86
+__attribute__((target("avx2"))) void indicesInBandAvx2(const float* x, const float* y, const float* z, std::size_t n, float nx,
+                                                       float ny, float nz, float d, float t, std::vector<int>& out) {
+  const std::size_t wide = n & ~std::size_t(7);
+  const __m256 vx = _mm256_set1_ps(nx), vy = _mm256_set1_ps(ny), vz = _mm256_set1_ps(nz), vd = _mm256_set1_ps(d);
+  const __m256 vt = _mm256_set1_ps(t), sign = _mm256_set1_ps(-0.0f);
+  for (std::size_t i = 0; i < wide; i += 8) {
+    const __m256 r = _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(vx, _mm256_loadu_ps(x + i)),
+                      _mm256_add_ps(_mm256_mul_ps(vy, _mm256_loadu_ps(y + i)), _mm256_mul_ps(vz, _mm256_loadu_ps(z + i)))),
+        vd);
+    // Not greater (unordered: true), as !(a > t).
+    unsigned mask = static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(_mm256_andnot_ps(sign, r), vt, _CMP_NGT_UQ)));
+    while (mask) {
+      out.push_back(static_cast<int>(i) + __builtin_ctz(mask));
+      mask &= mask - 1;
+    }
+  }
+  indicesInBandPlain(x, y, z, wide, n, nx, ny, nz, d, t, out);
+}
+#endif
+
 }  // namespace
 
 std::size_t countInBand(const float* x, const float* y, const float* z, std::size_t n, float a, float b, float c, float d, float t,
@@ -96,6 +129,14 @@ std::size_t countInBand(const float* x, const float* y, const float* z, std::siz
   (void)best;
   return countInBandPlain(x, y, z, n, a, b, c, d, t);
 #endif
+}
+
+void indicesInBand(const float* x, const float* y, const float* z, std::size_t n, float nx, float ny, float nz, float d, float t,
+                   std::vector<int>& out) {
+#if BIMLOC_BAND_COUNT_X86
+  if (hasAvx2()) return indicesInBandAvx2(x, y, z, n, nx, ny, nz, d, t, out);
+#endif
+  indicesInBandPlain(x, y, z, 0, n, nx, ny, nz, d, t, out);
 }
 
 std::size_t countInBandPlain(const float* x, const float* y, const float* z, std::size_t n, float a, float b, float c, float d,

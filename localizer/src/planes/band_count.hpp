@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 namespace bimloc::planes::detail {
 
@@ -21,5 +22,12 @@ std::size_t countInBand(const float* x, const float* y, const float* z, std::siz
 // The same count, point by point in plain C++ (the reference the tests hold it to).
 std::size_t countInBandPlain(const float* x, const float* y, const float* z, std::size_t n, float a, float b, float c, float d,
                              float t);
+
+// The indices i (ascending) of the points with !(|r_i| > t), the residual r_i computed in float
+// as Eigen's n.dot(p) + d for 3-vectors: (n_x x_i + (n_y y_i + n_z z_i)) + d, eight points at a
+// time where AVX2 is (the raw returns near a plane: every return of the scan, for every
+// candidate plane). Appended to `out`.
+void indicesInBand(const float* x, const float* y, const float* z, std::size_t n, float nx, float ny, float nz, float d, float t,
+                   std::vector<int>& out);
 
 }  // namespace bimloc::planes::detail
