@@ -1,13 +1,17 @@
 // Issue 28, Speed (h28speed8): RANSAC's inlier count (planes/band_count.hpp), vectorized and
 // stopped once it cannot beat the best count, against the point-by-point count and against
 // points placed at known distances from their plane; and the raw returns near a plane
-// (indicesInBand) against Eigen's own n.dot(p) + d, point by point.
+// (indicesInBand) against Eigen's own n.dot(p) + d, point by point; and a wall's runs found
+// through buckets (runsAlong) against the sorted positions (runsAlongBySorting).
 #include "planes/band_count.hpp"
+#include "planes/plane_steps.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <random>
 #include <vector>
@@ -100,5 +104,34 @@ TEST(BandCount, TheReturnsNearAPlaneAreThoseEigensResidualKeeps) {
       if (!(std::abs(normal.dot(cloud[i]) + d) > band)) expected.push_back(static_cast<int>(i));
     indicesInBand(pts.x.data(), pts.y.data(), pts.z.data(), n, normal.x(), normal.y(), normal.z(), d, band, got);
     ASSERT_EQ(got, expected) << "trial " << trial;
+  }
+}
+
+TEST(BandCount, RunsFoundInBucketsAreTheSortedPositionsRuns) {
+  // Points along a wall in clusters, with gaps around the cut (gap_m exactly, a hair under and
+  // over it in double, several buckets wide), some clusters wider than a bucket, indices in
+  // ascending order (as RANSAC's inliers and the bands are) and a subset of the cloud.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double gap = 0.5;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Eigen::Vector3d dir = Eigen::Vector3d(std::cos(trial * 0.7), std::sin(trial * 0.7), 0.0).normalized();
+    const Eigen::Vector3d across(-dir.y(), dir.x(), 0.0);
+    std::vector<Eigen::Vector3f> cloud;
+    double u = -20.0 * unit(rng);
+    const int clusters = 1 + trial % 9;
+    for (int c = 0; c < clusters; ++c) {
+      const int count = 1 + static_cast<int>(60 * unit(rng));
+      const double width = trial % 3 == 0 ? 3.0 * unit(rng) : 0.4 * unit(rng);
+      for (int k = 0; k < count; ++k)
+        cloud.push_back((dir * (u + width * unit(rng)) + across * 0.02 * unit(rng) + Eigen::Vector3d(0, 0, 2.5 * unit(rng))).cast<float>());
+      const double kinds[] = {gap, std::nextafter(gap, 0.0), std::nextafter(gap, 1.0), 0.3, 0.7, 2.6 * gap};
+      u += width + kinds[(trial + c) % 6];
+    }
+    std::shuffle(cloud.begin(), cloud.end(), rng);
+    std::vector<int> indices;
+    for (int i = 0; i < static_cast<int>(cloud.size()); ++i)
+      if (trial % 2 == 0 || unit(rng) < 0.7) indices.push_back(i);
+    ASSERT_EQ(runsAlong(cloud, indices, dir, gap), runsAlongBySorting(cloud, indices, dir, gap)) << "trial " << trial;
   }
 }

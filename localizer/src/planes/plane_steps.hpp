@@ -73,8 +73,12 @@ Eigen::Vector3d planeHorizontal(const Eigen::Vector3d& normal);
 // along it (each run ascending). Along a wall's horizontal direction: one wall per run, not two
 // coplanar walls a doorway or a room apart. Vertical gaps are ignored on purpose: a far wall's
 // scan rings are further apart than any useful tolerance, and coplanar walls are never stacked.
+// Without sorting where it can (buckets gap_m wide); runsAlongBySorting sorts the positions: the
+// same runs.
 std::vector<Indices> runsAlong(const Cloud& cloud, const Indices& indices, const Eigen::Vector3d& direction,
                                double gap_m);
+std::vector<Indices> runsAlongBySorting(const Cloud& cloud, const Indices& indices, const Eigen::Vector3d& direction,
+                                        double gap_m);
 // The run with the most points; the run sharing the most points with `reference` (null if none).
 const Indices* largestRun(const std::vector<Indices>& runs);
 const Indices* runOverlapping(const std::vector<Indices>& runs, const Indices& reference);
