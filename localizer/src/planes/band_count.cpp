@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
-#if defined(__x86_64__) || defined(__i386__)
+#if defined(__x86_64__) && defined(__SSE2__)
 #include <immintrin.h>
 #define BIMLOC_BAND_COUNT_X86 1
 #endif
@@ -81,7 +81,10 @@ __attribute__((target("avx2"))) std::size_t countAvx2(const float* x, const floa
 }
 
 bool hasAvx2() {
-  static const bool yes = __builtin_cpu_supports("avx2");
+  static const bool yes = [] {
+    __builtin_cpu_init();  // harmless when libgcc's constructor has run it already
+    return __builtin_cpu_supports("avx2") != 0;
+  }();
   return yes;
 }
 #endif
