@@ -136,3 +136,41 @@ TEST(RoomGrid, TheLocalizersRoomBoxRulesOutOnlyWhatRoomAtRulesOut) {
   EXPECT_GT(ruled_out, 100000);
   EXPECT_GT(in_room, 10000);
 }
+
+// The localizer's RoomIndex::roomAt, whose cells far from every footprint edge answer without
+// asking the polygons (h28speed8), against the scan over every room (the first room holding
+// the point, else the first holding one of the doorway probes, as roomAt defines it): on the
+// random footprints (overlapping, concave, far from the origin) and the default world.
+TEST(RoomGrid, TheLocalizersRoomAtIsTheScanOverEveryRoom) {
+  std::mt19937_64 rng(31);
+  std::vector<bim::Storey> storeys;
+  for (int k = 0; k < 30; ++k) storeys.push_back(randomStorey(rng, k % 2 ? Eigen::Vector2d(-3, 7) : Eigen::Vector2d(483211.37, 5712893.91)));
+  const bim::Building office = bim::readIfc(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc");
+  storeys.push_back(office.storeys.at(0));
+  const auto scanned = [](const bim::Storey& s, const Eigen::Vector2d& p) {
+    const auto index = [&](const Eigen::Vector2d& q) {
+      const bim::Room* r = sim::roomAt(s, q);
+      return r ? static_cast<int>(r - s.rooms.data()) : -1;
+    };
+    if (const int r = index(p); r >= 0) return r;
+    for (const double step : {0.15, 0.3})
+      for (const Eigen::Vector2d d : {Eigen::Vector2d(1, 0), Eigen::Vector2d(-1, 0), Eigen::Vector2d(0, 1), Eigen::Vector2d(0, -1)})
+        if (const int r = index(p + step * d); r >= 0) return r;
+    return -1;
+  };
+  int in_room = 0;
+  for (const auto& s : storeys) {
+    const pf::detail::RoomIndex index(s, true);
+    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    for (const auto& r : s.rooms)
+      for (const auto& p : r.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    std::uniform_real_distribution<double> u(-0.1, 1.1);
+    for (int q = 0; q < 20000; ++q) {
+      const Eigen::Vector2d p(lo.x() + u(rng) * (hi.x() - lo.x()), lo.y() + u(rng) * (hi.y() - lo.y()));
+      const int room = index.roomAt(p.x(), p.y());
+      ASSERT_EQ(room, scanned(s, p)) << "(" << p.x() << ", " << p.y() << ")";
+      in_room += room >= 0;
+    }
+  }
+  EXPECT_GT(in_room, 100000);
+}
