@@ -107,6 +107,24 @@ TEST(RoomGrid, SameRoomAsTheScanOverEveryRoomOnTheWorldsAndSharedPlans) {
   }
 }
 
+namespace {
+
+// Points spread over a storey's rooms' bounding box and a tenth of it beyond each side.
+std::vector<Eigen::Vector2d> pointsOver(const bim::Storey& s, std::mt19937_64& rng, int count) {
+  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (const auto& r : s.rooms)
+    for (const auto& p : r.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  std::uniform_real_distribution<double> u(-0.1, 1.1);
+  std::vector<Eigen::Vector2d> points;
+  for (int q = 0; q < count; ++q) {
+    const double x = lo.x() + u(rng) * (hi.x() - lo.x());
+    points.emplace_back(x, lo.y() + u(rng) * (hi.y() - lo.y()));
+  }
+  return points;
+}
+
+}  // namespace
+
 // The localizer's RoomIndex::mayBeIn, the pose hypotheses' quick test: false only where
 // roomAt (footprints, then doorways) cannot give that room.
 TEST(RoomGrid, TheLocalizersRoomBoxRulesOutOnlyWhatRoomAtRulesOut) {
@@ -118,12 +136,7 @@ TEST(RoomGrid, TheLocalizersRoomBoxRulesOutOnlyWhatRoomAtRulesOut) {
   int ruled_out = 0, in_room = 0;
   for (const auto& s : storeys) {
     const pf::detail::RoomIndex index(s, true);
-    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-    for (const auto& r : s.rooms)
-      for (const auto& p : r.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    std::uniform_real_distribution<double> u(-0.1, 1.1);
-    for (int q = 0; q < 20000; ++q) {
-      const Eigen::Vector2d p(lo.x() + u(rng) * (hi.x() - lo.x()), lo.y() + u(rng) * (hi.y() - lo.y()));
+    for (const Eigen::Vector2d& p : pointsOver(s, rng, 20000)) {
       const int room = index.roomAt(p.x(), p.y());
       for (int r = 0; r < static_cast<int>(index.roomCount()); ++r)
         if (!index.mayBeIn(r, p.x(), p.y())) {
@@ -161,12 +174,7 @@ TEST(RoomGrid, TheLocalizersRoomAtIsTheScanOverEveryRoom) {
   int in_room = 0;
   for (const auto& s : storeys) {
     const pf::detail::RoomIndex index(s, true);
-    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-    for (const auto& r : s.rooms)
-      for (const auto& p : r.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    std::uniform_real_distribution<double> u(-0.1, 1.1);
-    for (int q = 0; q < 20000; ++q) {
-      const Eigen::Vector2d p(lo.x() + u(rng) * (hi.x() - lo.x()), lo.y() + u(rng) * (hi.y() - lo.y()));
+    for (const Eigen::Vector2d& p : pointsOver(s, rng, 20000)) {
       const int room = index.roomAt(p.x(), p.y());
       ASSERT_EQ(room, scanned(s, p)) << "(" << p.x() << ", " << p.y() << ")";
       in_room += room >= 0;
