@@ -107,6 +107,24 @@ TEST(RoomGrid, SameRoomAsTheScanOverEveryRoomOnTheWorldsAndSharedPlans) {
   }
 }
 
+namespace {
+
+// Points spread over a storey's rooms' bounding box and a tenth of it beyond each side.
+std::vector<Eigen::Vector2d> pointsOver(const bim::Storey& s, std::mt19937_64& rng, int count) {
+  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (const auto& r : s.rooms)
+    for (const auto& p : r.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  std::uniform_real_distribution<double> u(-0.1, 1.1);
+  std::vector<Eigen::Vector2d> points;
+  for (int q = 0; q < count; ++q) {
+    const double x = lo.x() + u(rng) * (hi.x() - lo.x());
+    points.emplace_back(x, lo.y() + u(rng) * (hi.y() - lo.y()));
+  }
+  return points;
+}
+
+}  // namespace
+
 // The localizer's RoomIndex::mayBeIn, the pose hypotheses' quick test: false only where
 // roomAt (footprints, then doorways) cannot give that room.
 TEST(RoomGrid, TheLocalizersRoomBoxRulesOutOnlyWhatRoomAtRulesOut) {
@@ -118,12 +136,7 @@ TEST(RoomGrid, TheLocalizersRoomBoxRulesOutOnlyWhatRoomAtRulesOut) {
   int ruled_out = 0, in_room = 0;
   for (const auto& s : storeys) {
     const pf::detail::RoomIndex index(s, true);
-    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-    for (const auto& r : s.rooms)
-      for (const auto& p : r.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    std::uniform_real_distribution<double> u(-0.1, 1.1);
-    for (int q = 0; q < 20000; ++q) {
-      const Eigen::Vector2d p(lo.x() + u(rng) * (hi.x() - lo.x()), lo.y() + u(rng) * (hi.y() - lo.y()));
+    for (const Eigen::Vector2d& p : pointsOver(s, rng, 20000)) {
       const int room = index.roomAt(p.x(), p.y());
       for (int r = 0; r < static_cast<int>(index.roomCount()); ++r)
         if (!index.mayBeIn(r, p.x(), p.y())) {
@@ -135,4 +148,37 @@ TEST(RoomGrid, TheLocalizersRoomBoxRulesOutOnlyWhatRoomAtRulesOut) {
   }
   EXPECT_GT(ruled_out, 100000);
   EXPECT_GT(in_room, 10000);
+}
+
+// The localizer's RoomIndex::roomAt, whose cells far from every footprint edge answer without
+// asking the polygons (h28speed8), against the scan over every room (the first room holding
+// the point, else the first holding one of the doorway probes, as roomAt defines it): on the
+// random footprints (overlapping, concave, far from the origin) and the default world.
+TEST(RoomGrid, TheLocalizersRoomAtIsTheScanOverEveryRoom) {
+  std::mt19937_64 rng(31);
+  std::vector<bim::Storey> storeys;
+  for (int k = 0; k < 30; ++k) storeys.push_back(randomStorey(rng, k % 2 ? Eigen::Vector2d(-3, 7) : Eigen::Vector2d(483211.37, 5712893.91)));
+  const bim::Building office = bim::readIfc(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc");
+  storeys.push_back(office.storeys.at(0));
+  const auto scanned = [](const bim::Storey& s, const Eigen::Vector2d& p) {
+    const auto index = [&](const Eigen::Vector2d& q) {
+      const bim::Room* r = sim::roomAt(s, q);
+      return r ? static_cast<int>(r - s.rooms.data()) : -1;
+    };
+    if (const int r = index(p); r >= 0) return r;
+    for (const double step : {0.15, 0.3})
+      for (const Eigen::Vector2d d : {Eigen::Vector2d(1, 0), Eigen::Vector2d(-1, 0), Eigen::Vector2d(0, 1), Eigen::Vector2d(0, -1)})
+        if (const int r = index(p + step * d); r >= 0) return r;
+    return -1;
+  };
+  int in_room = 0;
+  for (const auto& s : storeys) {
+    const pf::detail::RoomIndex index(s, true);
+    for (const Eigen::Vector2d& p : pointsOver(s, rng, 20000)) {
+      const int room = index.roomAt(p.x(), p.y());
+      ASSERT_EQ(room, scanned(s, p)) << "(" << p.x() << ", " << p.y() << ")";
+      in_room += room >= 0;
+    }
+  }
+  EXPECT_GT(in_room, 100000);
 }

@@ -1,6 +1,7 @@
 #include "sim/runner/run_scenario.hpp"
 
 #include "sim/dataset/deskew.hpp"
+#include "sim/lidar/vlp16.hpp"
 #include "sim/runner/guided_walk.hpp"
 #include "sim/runner/method_run.hpp"
 #include "sim/base/outside_rooms.hpp"
@@ -111,9 +112,10 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
     const Localizer::PointSource source = [&] {
       // De-skewed into the lidar frame at the reading the localizer is given with the turn.
       // Non-finite and out-of-range points are the plane extraction's to drop.
+      // One pose per firing cycle: the simulator casts a cycle from one pose (deskew.hpp).
       if (!points)
         points = deskewedTurn(castTurn(), deskew_turns ? readingsOver(stamp_s, stamp_s + 2 * half_turn) : std::vector<StampedPose>{},
-                              reading.stamp_s, s.sensor.T_base_lidar);
+                              reading.stamp_s, s.sensor.T_base_lidar, kVlp16CyclePeriod_s);
       return *points;
     };
     if (with_oracle) {

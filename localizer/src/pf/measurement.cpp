@@ -141,6 +141,8 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       for (const Landmark* l : shortlist->match[k]) consider(*l);
     else if (indexed)
       index->forEachNear(centroid, radius, consider);
+    else if (!via_index)  // a room's faces: those of the plane's axis, the others would be passed over
+      for (const auto& l : rooms.landmarks(outside ? 0 : p.room, axis)) consider(l);
     else
       for (const auto& l : landmarks) consider(l);
     // The local search (the converged pose's refinement) also knows what no face can explain:

@@ -32,6 +32,9 @@ namespace {
 // A doorway belongs to no room's footprint: the robot crossing it is walking from one room
 // into the next, and either room's walls are what it sees. Walls are at most 0.6 m thick.
 constexpr double kDoorwayM = 0.3;
+// A cell is decided as a whole when no footprint edge comes within this many cells of its
+// centre: a cell's half diagonal (0.71) and a margin.
+constexpr double kCellSureFactor = 0.75;
 
 // A face as a landmark, with its wall line.
 Landmark landmarkOf(const bim::Storey& storey, std::size_t w, int f, const std::vector<LineSpan>& lines) {
@@ -95,6 +98,9 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
           const auto more = facesOf(storey, other, buried, lines);
           faces.insert(faces.end(), more.begin(), more.end());
         }
+    std::array<std::vector<Landmark>, 2> split;
+    for (const Landmark& l : faces) split[l.axis == bim::WallAxis::X ? 0 : 1].push_back(l);
+    by_axis_.push_back(std::move(split));
     landmarks_.push_back(std::move(faces));
     for (const auto& p : room.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   }
@@ -121,6 +127,28 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
     for (int ix = x0; ix <= x1; ++ix)
       for (int iy = y0; iy <= y1; ++iy) cells_[static_cast<std::size_t>(iy * nx_ + ix)].push_back(r);
   }
+  // A cell no footprint edge of its candidates comes near is inside or outside each of them as
+  // a whole: the crossing test gives every point of it the answer it gives the centre (its
+  // rounding is 1e-14 m at a storey's coordinates, the margin a cell's half diagonal and more).
+  const double sure_m = kCellSureFactor * cell_m_;
+  sure_.assign(cells_.size(), kUnsure);
+  for (int iy = 0; iy < ny_; ++iy)
+    for (int ix = 0; ix < nx_; ++ix) {
+      const std::size_t k = static_cast<std::size_t>(iy * nx_ + ix);
+      const Eigen::Vector2d centre = origin_ + cell_m_ * Eigen::Vector2d(ix + 0.5, iy + 0.5);
+      int answer = -1;
+      bool sure = true;
+      for (const int r : cells_[k]) {
+        const auto& f = rooms_[static_cast<std::size_t>(r)]->footprint;
+        for (std::size_t i = 0, n = f.size(), j = n - 1; i < n && sure; j = i++) sure = bim::distanceToSegment(centre, f[j], f[i]) > sure_m;
+        if (!sure) break;
+        if (bim::pointInPolygon(f, centre)) {
+          answer = r;  // the first candidate holding it, as containing() returns
+          break;
+        }
+      }
+      if (sure) sure_[k] = answer;
+    }
 }
 
 int RoomIndex::roomAt(double x, double y) const {
@@ -135,6 +163,7 @@ int RoomIndex::containing(double x, double y) const {
   const int ix = static_cast<int>(std::floor((x - origin_.x()) / cell_m_));
   const int iy = static_cast<int>(std::floor((y - origin_.y()) / cell_m_));
   if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_) return -1;
+  if (const int sure = sure_[static_cast<std::size_t>(iy * nx_ + ix)]; sure != kUnsure) return sure;
   for (const int r : cells_[static_cast<std::size_t>(iy * nx_ + ix)])
     if (bim::pointInPolygon(rooms_[static_cast<std::size_t>(r)]->footprint, {x, y})) return r;
   return -1;

@@ -38,6 +38,13 @@ class RoomIndex {
     if (!use_rooms_) return all_faces_ ? all_faces_->faces() : landmarks_[0];
     return landmarks_[static_cast<std::size_t>(room)];
   }
+  // The same faces of one axis (the paper's classes: an x plane matches only x faces), in the
+  // same order: what a match of an observation goes through, without the other half. Without
+  // the room factor, every face of either axis (the caller checks the axis).
+  const std::vector<Landmark>& landmarks(int room, bim::WallAxis axis) const {
+    if (!use_rooms_) return landmarks(room);
+    return by_axis_[static_cast<std::size_t>(room)][axis == bim::WallAxis::X ? 0 : 1];
+  }
   // Every face of the storey by where it is, so that a match costs the faces near the
   // observation, not the building: without the room factor, and for a pose outside every
   // room. Null only when built with index_faces = false (the tests' brute-force oracle).
@@ -56,12 +63,18 @@ class RoomIndex {
   bool use_rooms_ = true;
   std::vector<const bim::Room*> rooms_;
   std::vector<std::vector<Landmark>> landmarks_;
+  std::vector<std::array<std::vector<Landmark>, 2>> by_axis_;  // landmarks_ split by axis (x, y), in order
   std::shared_ptr<const FaceIndex> all_faces_;  // shared: copies of the index share it
   std::shared_ptr<const FaceIndex> fine_faces_;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   double cell_m_ = 0.5;
   int nx_ = 0, ny_ = 0;
   std::vector<std::vector<int>> cells_;  // candidate rooms per cell
+  // Per cell, what containing() answers for every point of it, where that does not depend on the
+  // point: the room (or -1, none) when every footprint edge of the cell's candidates lies
+  // farther from the cell's centre than kCellSureM; kUnsure (the polygons asked) otherwise.
+  static constexpr int kUnsure = -2;
+  std::vector<int> sure_;
   std::vector<std::array<double, 4>> boxes_;  // per room: x and y least, x and y most, grown (mayBeIn)
   int containing(double x, double y) const;
 };

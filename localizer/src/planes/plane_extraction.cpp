@@ -58,7 +58,8 @@ struct Support {
   detail::Indices run;     // pool voxels of the wall's stretch of the band
   detail::Indices voxels;  // those of them on the surface (in the band the returns ended in)
 };
-Support findSupport(const detail::Cloud& voxels, const detail::Cloud& raw, const detail::Indices& pool,
+Support findSupport(const detail::Cloud& voxels, const detail::Cloud& raw, const detail::PackedCloud& raw_packed,
+                    const detail::Indices& pool,
                     const detail::RansacPlane& candidate, bool wall, double threshold_m, double voxel_m) {
   const double gap_m = kSupportGapVoxels * voxel_m;
   Support s;
@@ -85,7 +86,7 @@ Support findSupport(const detail::Cloud& voxels, const detail::Cloud& raw, const
     lo = std::min(lo, u), hi = std::max(hi, u);
   }
   const detail::Indices near =
-      detail::pointsNearPlane(raw, coarse.fit, threshold_m, wall ? &along : nullptr, lo - voxel_m, hi + voxel_m);
+      detail::pointsNearPlane(raw, raw_packed, coarse.fit, threshold_m, wall ? &along : nullptr, lo - voxel_m, hi + voxel_m);
   const detail::RefinedPlane fine = near.size() >= 3 ? detail::refinePlane(raw, near, 0.5 * threshold_m) : coarse;
   s.fit = fine.fit;
   // Voxel centroids are no noisier than the returns they average: the returns' band holds them.
@@ -101,6 +102,7 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
   const detail::Cloud raw = detail::validPoints(points_sensor, config.min_range_m, config.max_range_m);
   result.valid_points = raw.size();
   const detail::Cloud cloud = detail::voxelDownsample(raw, config.voxel_size_m);
+  const detail::PackedCloud raw_packed(raw);  // every candidate's band test reads every return
 
   const std::size_t min_inliers = std::size_t(std::max(config.min_inliers, 3));
   const double sin_vertical = std::sin(config.vertical_tolerance_deg * M_PI / 180.0);
@@ -123,7 +125,7 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
     // standing stage), not only the standing ones the candidate was drawn from: the standing
     // test chooses where walls are searched, not what a wall's band holds, so a wall found
     // either way has the same support (its foot's strip of floor included, as RANSAC counts it).
-    const Support support = findSupport(cloud, raw, also ? *also : search, candidate, wall_band,
+    const Support support = findSupport(cloud, raw, raw_packed, also ? *also : search, candidate, wall_band,
                                         config.distance_threshold_m, voxel_m);
     ObservedPlane plane = detail::describePlane(cloud, support.voxels, support.fit);
     const double nz = std::abs(plane.normal.z());

@@ -73,8 +73,12 @@ Eigen::Vector3d planeHorizontal(const Eigen::Vector3d& normal);
 // along it (each run ascending). Along a wall's horizontal direction: one wall per run, not two
 // coplanar walls a doorway or a room apart. Vertical gaps are ignored on purpose: a far wall's
 // scan rings are further apart than any useful tolerance, and coplanar walls are never stacked.
+// Without sorting where it can (buckets gap_m wide); runsAlongBySorting sorts the positions: the
+// same runs.
 std::vector<Indices> runsAlong(const Cloud& cloud, const Indices& indices, const Eigen::Vector3d& direction,
                                double gap_m);
+std::vector<Indices> runsAlongBySorting(const Cloud& cloud, const Indices& indices, const Eigen::Vector3d& direction,
+                                        double gap_m);
 // The run with the most points; the run sharing the most points with `reference` (null if none).
 const Indices* largestRun(const std::vector<Indices>& runs);
 const Indices* runOverlapping(const std::vector<Indices>& runs, const Indices& reference);
@@ -92,10 +96,17 @@ struct RefinedPlane {
 };
 RefinedPlane refinePlane(const Cloud& cloud, const Indices& indices, double max_band_m);
 
+// A cloud coordinate by coordinate (x, y, z each contiguous): what a band test over every point
+// reads eight at a time (band_count.hpp).
+struct PackedCloud {
+  explicit PackedCloud(const Cloud& cloud);
+  std::vector<float> x, y, z;
+};
+
 // The raw returns within band_m of a plane and, if `along` is given (a wall), whose position
-// along it lies in [along_min_m, along_max_m].
-Indices pointsNearPlane(const Cloud& cloud, const PlaneFit& fit, double band_m, const Eigen::Vector3d* along,
-                        double along_min_m, double along_max_m);
+// along it lies in [along_min_m, along_max_m]. `packed`: the same cloud, packed.
+Indices pointsNearPlane(const Cloud& cloud, const PackedCloud& packed, const PlaneFit& fit, double band_m,
+                        const Eigen::Vector3d* along, double along_min_m, double along_max_m);
 
 // The full description of a fitted plane over its support: normal towards the origin,
 // extents, RMS, covariance of the minimal parameters (see ObservedPlane); `vertical` unset.

@@ -2,6 +2,7 @@
 // through PCL's model and estimator directly rather than pcl::SACSegmentation, so that the
 // sampling can be seeded: PCL seeds every model's generator with the constant 12345 (or the
 // wall clock), which would give every call the same sample sequence and no way to vary it.
+#include "band_count.hpp"
 #include "plane_steps.hpp"
 
 #include <bimloc/verbosity.hpp>
@@ -19,9 +20,6 @@
 #include <cstdint>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 // Here, where PCL is used: its level is one global, set before every use, so the library is
 // quiet without its user having to call anything.
@@ -46,11 +44,16 @@ bool lineLike(const Cloud& cloud, const Indices& pool) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const int i : pool) mean += cloud[i].cast<double>();
   mean /= double(pool.size());
-  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  // The six distinct entries of the sum of q q^T (q_i q_j and q_j q_i are the same product):
+  // the same sums, at two thirds of the work (as fitPlane's moments).
+  double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
   for (const int i : pool) {
     const Eigen::Vector3d q = cloud[i].cast<double>() - mean;
-    scatter += q * q.transpose();
+    xx += q.x() * q.x(), xy += q.x() * q.y(), xz += q.x() * q.z();
+    yy += q.y() * q.y(), yz += q.y() * q.z(), zz += q.z() * q.z();
   }
+  Eigen::Matrix3d scatter;
+  scatter << xx, xy, xz, xy, yy, yz, xz, yz, zz;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter / double(pool.size()));
   return eig.eigenvalues()[1] < kMinPoolWidth_m * kMinPoolWidth_m;  // ascending: [1] is the middle one
 }
@@ -60,7 +63,12 @@ bool lineLike(const Cloud& cloud, const Indices& pool) {
 // so the draws, hence the plane, depend only on the points, the pool and the seed. And its
 // scoring loop, which RANSAC runs once per hypothesis over the whole pool and which PCL's
 // generic build runs through indices and dynamic-size vectors (about 14 ns a point), runs over
-// a packed copy of the pool instead: the same count (|n·p + d| < threshold) at a thirtieth of the cost.
+// a packed copy of the pool instead (band_count.hpp): the same count (|n·p + d| < threshold),
+// at a thirtieth of the cost and less, stopped once it cannot beat the best count so far.
+// That best is the largest count returned: RandomSampleConsensus::computeModel (PCL 1.13,
+// ransac.hpp), single-threaded, keeps a hypothesis exactly when its count exceeds every
+// earlier one, starting from 0, and calls countWithinDistance for nothing else. A count
+// stopped early is no larger than that best, and discarded as the full count would be.
 class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
  public:
   SeededPlaneModel(const PointCloudConstPtr& cloud, const pcl::Indices& indices, std::uint32_t seed)
@@ -75,24 +83,9 @@ class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
 
   std::size_t countWithinDistance(const Eigen::VectorXf& model, const double threshold) const override {
     if (!isModelValid(model)) return 0;
-    const float a = model[0], b = model[1], c = model[2], d = model[3], t = static_cast<float>(threshold);
-    const std::size_t n = x_.size();
-    std::size_t i = 0, count = 0;
-#if defined(__SSE2__)
-    // Four points at a time (SSE2 is every x86-64's baseline); an inlier's mask lane is -1.
-    const __m128 va = _mm_set1_ps(a), vb = _mm_set1_ps(b), vc = _mm_set1_ps(c), vd = _mm_set1_ps(d);
-    const __m128 vt = _mm_set1_ps(t), sign = _mm_set1_ps(-0.0f);
-    __m128i lanes = _mm_setzero_si128();
-    for (; i + 4 <= n; i += 4) {
-      const __m128 r = _mm_add_ps(_mm_add_ps(_mm_mul_ps(va, _mm_loadu_ps(&x_[i])), _mm_mul_ps(vb, _mm_loadu_ps(&y_[i]))),
-                                  _mm_add_ps(_mm_mul_ps(vc, _mm_loadu_ps(&z_[i])), vd));
-      lanes = _mm_sub_epi32(lanes, _mm_castps_si128(_mm_cmplt_ps(_mm_andnot_ps(sign, r), vt)));
-    }
-    alignas(16) std::int32_t sums[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(sums), lanes);
-    count = std::size_t(sums[0]) + std::size_t(sums[1]) + std::size_t(sums[2]) + std::size_t(sums[3]);
-#endif
-    for (; i < n; ++i) count += std::abs(a * x_[i] + b * y_[i] + c * z_[i] + d) < t;
+    const std::size_t count = countInBand(x_.data(), y_.data(), z_.data(), x_.size(), model[0], model[1], model[2], model[3],
+                                          static_cast<float>(threshold), best_);
+    best_ = std::max(best_, count);
     return count;
   }
 
@@ -108,6 +101,7 @@ class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
 
  private:
   std::vector<float> x_, y_, z_;
+  mutable std::size_t best_ = 0;  // the largest count returned: RANSAC's best so far
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 // floor's band. Least squares over the whole band keeps that lean; trimmed least squares,
 // repeated with a band scaled by the residuals' own robust spread, lets the dense surface win
 // whatever the sensor's noise.
+#include "band_count.hpp"
 #include "plane_steps.hpp"
 
 #include <algorithm>
@@ -47,19 +48,26 @@ RefinedPlane refinePlane(const Cloud& cloud, const Indices& indices, double max_
   return r;
 }
 
-Indices pointsNearPlane(const Cloud& cloud, const PlaneFit& fit, double band_m, const Eigen::Vector3d* along,
-                        double along_min_m, double along_max_m) {
+PackedCloud::PackedCloud(const Cloud& cloud) {
+  x.reserve(cloud.size()), y.reserve(cloud.size()), z.reserve(cloud.size());
+  for (const auto& p : cloud) x.push_back(p.x()), y.push_back(p.y()), z.push_back(p.z());
+}
+
+Indices pointsNearPlane(const Cloud& cloud, const PackedCloud& packed, const PlaneFit& fit, double band_m,
+                        const Eigen::Vector3d* along, double along_min_m, double along_max_m) {
+  // The band in float, as n.dot(p) + d of Eigen's 3-vectors (band_count.hpp), every point;
+  // then, for a wall, where each point in it lies along the wall.
   Indices near;
   const Eigen::Vector3f n = fit.normal.cast<float>();
-  const float d = static_cast<float>(fit.d), band = static_cast<float>(band_m);
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    if (std::abs(n.dot(cloud[i]) + d) > band) continue;
-    if (along) {
-      const double u = along->dot(cloud[i].cast<double>());
-      if (u < along_min_m || u > along_max_m) continue;
-    }
-    near.push_back(static_cast<int>(i));
+  indicesInBand(packed.x.data(), packed.y.data(), packed.z.data(), packed.x.size(), n.x(), n.y(), n.z(), static_cast<float>(fit.d),
+                static_cast<float>(band_m), near);
+  if (!along) return near;
+  std::size_t kept = 0;
+  for (const int i : near) {
+    const double u = along->dot(cloud[static_cast<std::size_t>(i)].cast<double>());
+    if (u >= along_min_m && u <= along_max_m) near[kept++] = i;
   }
+  near.resize(kept);
   return near;
 }
 

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <utility>
 
@@ -18,8 +19,8 @@ Eigen::Vector3d planeHorizontal(const Eigen::Vector3d& normal) {
   return h.normalized();
 }
 
-std::vector<Indices> runsAlong(const Cloud& cloud, const Indices& indices, const Eigen::Vector3d& direction,
-                               double gap_m) {
+std::vector<Indices> runsAlongBySorting(const Cloud& cloud, const Indices& indices, const Eigen::Vector3d& direction,
+                                        double gap_m) {
   std::vector<std::pair<double, int>> along;
   along.reserve(indices.size());
   for (const int i : indices) along.emplace_back(direction.dot(cloud[i].cast<double>()), i);
@@ -35,6 +36,52 @@ std::vector<Indices> runsAlong(const Cloud& cloud, const Indices& indices, const
     runs.push_back(std::move(run));
     begin = k;
   }
+  return runs;
+}
+
+namespace {
+// Buckets beyond this many (a plane tens of kilometres long, or gap_m tiny): sort instead.
+constexpr double kMaxRunBuckets = 1 << 16;
+}  // namespace
+
+std::vector<Indices> runsAlong(const Cloud& cloud, const Indices& indices, const Eigen::Vector3d& direction, double gap_m) {
+  // The same runs without sorting: the positions in buckets gap_m wide. Where each bucket's
+  // points span no more than gap_m (computed as the sort compares them: no neighbour in it is
+  // further apart), a run can only end between two buckets, and it does where the next
+  // occupied bucket's least position is more than gap_m past this one's greatest: those two are
+  // neighbours in the sorted order, and their difference is the one the sort would test. The
+  // indices given ascending (RANSAC's inliers, a band of the pool), each run's come out ascending.
+  std::vector<double> u(indices.size());
+  double lo = INFINITY, hi = -INFINITY;
+  bool finite = true;
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    u[k] = direction.dot(cloud[indices[k]].cast<double>());
+    finite &= std::isfinite(u[k]);
+    lo = std::min(lo, u[k]), hi = std::max(hi, u[k]);
+  }
+  if (indices.empty() || !finite || !(gap_m > 0.0) || !std::isfinite(hi - lo) || (hi - lo) / gap_m > kMaxRunBuckets ||
+      !std::is_sorted(indices.begin(), indices.end()))
+    return runsAlongBySorting(cloud, indices, direction, gap_m);
+  const std::size_t n = static_cast<std::size_t>((hi - lo) / gap_m) + 1;
+  std::vector<double> least(n, INFINITY), most(n, -INFINITY);
+  std::vector<std::size_t> bucket(indices.size());
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    const std::size_t b = std::min(n - 1, static_cast<std::size_t>((u[k] - lo) / gap_m));
+    bucket[k] = b;
+    least[b] = std::min(least[b], u[k]), most[b] = std::max(most[b], u[k]);
+  }
+  std::vector<int> run_of(n, -1);
+  int runs_count = 0;
+  double last = 0;
+  for (std::size_t b = 0; b < n; ++b) {
+    if (!(least[b] <= most[b])) continue;  // empty
+    if (most[b] - least[b] > gap_m) return runsAlongBySorting(cloud, indices, direction, gap_m);
+    if (runs_count == 0 || least[b] - last > gap_m) ++runs_count;
+    run_of[b] = runs_count - 1;
+    last = most[b];
+  }
+  std::vector<Indices> runs(static_cast<std::size_t>(runs_count));
+  for (std::size_t k = 0; k < indices.size(); ++k) runs[static_cast<std::size_t>(run_of[bucket[k]])].push_back(indices[k]);
   return runs;
 }
 
