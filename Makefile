@@ -22,7 +22,7 @@ DEB_PACKAGES := build-essential cmake pkg-config libifcplusplus-dev libboost-dev
                 libyaml-cpp-dev libboost-filesystem-dev librosbag-storage-dev libsensor-msgs-dev \
                 libnav-msgs-dev libtf2-msgs-dev pluginlib-dev librcpputils-dev libament-index-cpp-dev \
                 python3-rosbag python3-numpy libpcl-dev libosmesa6-dev libpng-dev libceres-dev \
-                libsqlite3-dev libzstd-dev liblz4-dev zlib1g-dev tcpdump \
+                libsqlite3-dev libzstd-dev liblz4-dev zlib1g-dev libisal-dev tcpdump \
                 slurm-wlm munge chromium
 
 .PHONY: all deps build test demo bench results worlds meshes clean

@@ -55,7 +55,7 @@ McapRead readWholeMcap(const std::string& path, std::size_t prefetch, int pause_
     reader.forEachMessage(channels, [&](const ros2::McapMessage& m) {
       r.messages.push_back({m.channel->id, m.sequence, m.log_time_ns, std::string(reinterpret_cast<const char*>(m.data), m.size)});
       if (pause_us > 0 && rng() % 8 == 0) std::this_thread::sleep_for(std::chrono::microseconds(rng() % pause_us));
-    }, whole_chunks);
+    }, whole_chunks ? ros2::ReadPlan::kAll : ros2::ReadPlan::kSmallTopics);
   } catch (const std::exception& e) {
     r.error = e.what();
   }
@@ -215,6 +215,96 @@ TEST(McapPrefetch, APassOverSomeChannelsReadsChunkPrefixesAndTheSameMessages) {
     writeMcapBytes(damaged, bytes);
     expectPrefetchedAsOneThread(damaged, {1}, false);
     expectPrefetchedAsOneThread(damaged, {0, 2}, false);
+  }
+}
+
+// The first cloud's read (ReadPlan::kFirst) stops after a message or a few: no chunk is read
+// ahead for it, and the chunk it stopped in serves the whole read that follows, which then
+// decompresses every chunk once. The messages are those of a read from scratch whatever the
+// plans, and a damaged first chunk gives the same error as a whole read's.
+TEST(McapPrefetch, TheFirstMessagesReadHandsItsChunkToTheNextRead) {
+  const std::string dir = bimloc::test::tempDir("mcap-first");
+  struct Stop {};
+  for (const std::string compression : {"zstd", "lz4", ""})
+    for (const bool summary : {true, false})
+      for (const bool jitter : {false, true}) {
+        std::string path = writeSmallChunkMcap(dir, compression, summary);
+        if (!jitter) {  // in order: no two chunks overlap in time, so the first read stops in one
+          path = dir + "/ordered_" + (compression.empty() ? "none" : compression) + (summary ? "" : "_nosummary") + ".mcap";
+          ros2::McapWriterOptions options;
+          options.compression = compression, options.chunk_bytes = 2048, options.summary = summary;
+          ros2::McapWriter w(path, options);
+          const std::uint16_t schema = w.addSchema("test_msgs/msg/Blob", "ros2msg", "uint8[] data");
+          std::vector<std::uint16_t> ids;
+          for (const char* topic : {"/a", "/b", "/c"}) ids.push_back(w.addChannel(schema, topic, "cdr"));
+          std::mt19937 rng(31);
+          for (int i = 0; i < 600; ++i) w.write(ids[rng() % 3], 1000ull * static_cast<std::uint64_t>(i + 1), std::vector<std::uint8_t>(1 + rng() % 600, 7));
+          w.close();
+        }
+        for (const std::set<std::uint16_t>& channels : {std::set<std::uint16_t>{}, std::set<std::uint16_t>{1}}) {
+          const McapRead truth = readWholeMcap(path, 0, 0, 1, channels);
+          ASSERT_EQ(truth.error, "");
+          std::uint64_t whole_loads = 0;
+          {
+            ros2::McapReader fresh(path);
+            fresh.forEachMessage(channels, [](const ros2::McapMessage&) {});
+            whole_loads = fresh.chunkLoads();
+          }
+          for (const std::size_t stop_after : {1u, 2u, 5u, 40u})
+            for (const std::size_t prefetch : {0u, 3u}) {
+              const std::string what = path + ", stop after " + std::to_string(stop_after) + ", prefetch " + std::to_string(prefetch);
+              ros2::McapReader reader(path);
+              reader.setPrefetch(prefetch, 2);
+              std::vector<SeenMessage> first;
+              auto see = [](std::vector<SeenMessage>& into, const ros2::McapMessage& m) {
+                into.push_back({m.channel->id, m.sequence, m.log_time_ns, std::string(reinterpret_cast<const char*>(m.data), m.size)});
+              };
+              EXPECT_THROW(reader.forEachMessage(channels, [&](const ros2::McapMessage& m) {
+                see(first, m);
+                if (first.size() == stop_after) throw Stop{};
+              }, ros2::ReadPlan::kFirst), Stop);
+              ASSERT_EQ(first.size(), stop_after) << what;
+              EXPECT_TRUE(std::equal(first.begin(), first.end(), truth.messages.begin())) << what;
+              if (!jitter && summary && stop_after == 1) {
+                EXPECT_EQ(reader.chunkLoads(), 1u) << what;  // nothing read ahead
+              }
+              const std::uint64_t first_loads = reader.chunkLoads();
+              std::vector<SeenMessage> all;
+              reader.forEachMessage(channels, [&](const ros2::McapMessage& m) { see(all, m); });
+              EXPECT_TRUE(all == truth.messages) << what;
+              // In order (no two chunks held at once): the chunk it stopped in is not loaded again.
+              if (!jitter) {
+                EXPECT_EQ(reader.chunkLoads(), first_loads - 1 + whole_loads) << what;
+              }
+              // The chunk serves one read only; another plan or other channels load their own.
+              std::vector<SeenMessage> again;
+              reader.forEachMessage(channels, [&](const ros2::McapMessage& m) { see(again, m); });
+              EXPECT_TRUE(again == truth.messages) << what;
+              EXPECT_THROW(reader.forEachMessage(channels, [&](const ros2::McapMessage&) { throw Stop{}; }, ros2::ReadPlan::kFirst), Stop);
+              std::vector<SeenMessage> others;
+              reader.forEachMessage({2}, [&](const ros2::McapMessage& m) { see(others, m); });
+              std::vector<SeenMessage> expected_others;
+              for (const SeenMessage& m : readWholeMcap(path, 0, 0, 1).messages)
+                if (m.channel == 2) expected_others.push_back(m);
+              EXPECT_TRUE(others == expected_others) << what;
+            }
+        }
+      }
+  // A bad CRC in the first chunk: the first message's read says so, as the whole read does.
+  const std::string path = writeSmallChunkMcap(dir, "zstd", true);
+  std::string bytes = bimloc::test::readFile(path);
+  const std::vector<std::uint64_t> chunks = mcapChunkOffsets(bytes);
+  bytes[chunks[0] + 9 + 24] = static_cast<char>(bytes[chunks[0] + 9 + 24] ^ 1);  // uncompressed_crc
+  const std::string damaged = dir + "/damaged_first.mcap";
+  writeMcapBytes(damaged, bytes);
+  const McapRead whole = readWholeMcap(damaged, 0, 0, 1);
+  ASSERT_NE(whole.error, "");
+  ros2::McapReader reader(damaged);
+  try {
+    reader.forEachMessage({}, [&](const ros2::McapMessage&) { throw Stop{}; }, ros2::ReadPlan::kFirst);
+    ADD_FAILURE() << "the first message's read of " << damaged << " did not throw";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), whole.error);
   }
 }
 

@@ -87,6 +87,10 @@ class BagMessages {
   virtual std::vector<double> receiveTimes(const std::string& topic) const = 0;
   // `visit` returns false to stop.
   virtual void forEachCloud(const std::string& topic, const std::function<bool(std::shared_ptr<const BagCloud>)>& visit) const = 0;
+  // The topic's first cloud, its bytes owned (nullptr when it has none): forEachCloud stopped
+  // after one, unless the format knows a cheaper way (a ROS 2 MCAP bag reads no chunk ahead
+  // for it, and keeps the chunk for the clouds' read that follows).
+  virtual std::shared_ptr<const BagCloud> firstCloud(const std::string& topic) const;
 
  protected:
   std::string path_;

@@ -219,11 +219,7 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
       std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
       turn_period_s_ = gaps[gaps.size() / 2];
     }
-    std::shared_ptr<const BagCloud> first;
-    bag.forEachCloud(options.cloud_topic, [&](std::shared_ptr<const BagCloud> c) {
-      first = std::make_shared<const BagCloud>(c->owned());  // kept past the visit
-      return false;
-    });
+    const std::shared_ptr<const BagCloud> first = bag.firstCloud(options.cloud_topic);
     if (!first) fail(options.cloud_topic + ": the first message cannot be read as " + bag.typeName(BagMessageKind::kPointCloud2));
     lidar_frame_ = frameName(first->frame_id);
     // The driver stamps a turn at its first firing (times >= 0) or, configured so, at its last

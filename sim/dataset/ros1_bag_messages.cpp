@@ -144,6 +144,15 @@ bool BagMessages::hasTopic(const std::string& topic, BagMessageKind kind) const 
   return it != topics_.end() && it->second.type == typeName(kind);
 }
 
+std::shared_ptr<const BagCloud> BagMessages::firstCloud(const std::string& topic) const {
+  std::shared_ptr<const BagCloud> first;
+  forEachCloud(topic, [&](std::shared_ptr<const BagCloud> c) {
+    first = std::make_shared<const BagCloud>(c->owned());  // kept past the visit
+    return false;
+  });
+  return first;
+}
+
 std::unique_ptr<BagMessages> openRos1Bag(const std::string& path) { return std::make_unique<Ros1BagMessages>(path); }
 
 }  // namespace bimloc::sim

@@ -66,6 +66,20 @@ class Ros2BagMessages final : public BagMessages {
   }
 
   void forEachCloud(const std::string& topic, const std::function<bool(std::shared_ptr<const BagCloud>)>& visit) const override {
+    clouds(topic, visit, ros2::ReadPlan::kAll);
+  }
+
+  std::shared_ptr<const BagCloud> firstCloud(const std::string& topic) const override {
+    std::shared_ptr<const BagCloud> first;
+    clouds(topic, [&](std::shared_ptr<const BagCloud> c) {
+      first = std::make_shared<const BagCloud>(c->owned());  // kept past the visit
+      return false;
+    }, ros2::ReadPlan::kFirst);
+    return first;
+  }
+
+ private:
+  void clouds(const std::string& topic, const std::function<bool(std::shared_ptr<const BagCloud>)>& visit, ros2::ReadPlan plan) const {
     const bool packets = hasTopic(topic, BagMessageKind::kVelodyneScan);
     forEach(topic, [&](ros2::CdrReader& in, const ros2::BagMessage&) {
       if (packets) {
@@ -85,10 +99,9 @@ class Ros2BagMessages final : public BagMessages {
       out->layout.width = c.width, out->layout.height = c.height, out->layout.point_step = c.point_step;
       out->layout.row_step = c.row_step, out->layout.is_bigendian = c.is_bigendian;
       return visit(out);
-    });
+    }, plan);
   }
 
- private:
   struct Stored {  // a message of a small topic, kept after the one pass that reads them all
     std::uint64_t log_time_ns;
     std::vector<std::uint8_t> data;
@@ -96,7 +109,8 @@ class Ros2BagMessages final : public BagMessages {
   };
 
   // Decodes each message of `topic` as CDR; `decode` returns false to stop.
-  void forEach(const std::string& topic, const std::function<bool(ros2::CdrReader&, const ros2::BagMessage&)>& decode) const {
+  void forEach(const std::string& topic, const std::function<bool(ros2::CdrReader&, const ros2::BagMessage&)>& decode,
+               ros2::ReadPlan plan = ros2::ReadPlan::kAll) const {
     if (const auto it = non_cdr_.find(topic); it != non_cdr_.end())
       throw std::runtime_error(path_ + ": topic " + topic + " is serialized as '" + it->second + "', not cdr");
     struct Stop {};
@@ -118,7 +132,7 @@ class Ros2BagMessages final : public BagMessages {
           one(m);
         }
       } else {
-        reader_.forEachMessage({topic}, one);
+        reader_.forEachMessage({topic}, one, plan);
       }
     } catch (const Stop&) {
     }
@@ -141,7 +155,7 @@ class Ros2BagMessages final : public BagMessages {
       if (isSmall(name)) topics.push_back(name), small_[name];
     reader_.forEachMessage(topics, [&](const ros2::BagMessage& m) {
       small_[m.topic->name].push_back({m.log_time_ns, std::vector<std::uint8_t>(m.data, m.data + m.size), m.where});
-    }, /*whole_chunks=*/false);  // in a bag whose chunks mix the clouds in, their prefixes only
+    }, ros2::ReadPlan::kSmallTopics);  // in a bag whose chunks mix the clouds in, their prefixes only
     small_filled_ = true;
   }
 

@@ -1,10 +1,6 @@
 #include "sim/ros2/byte_cursor.hpp"
 
-#include <zlib.h>
-
-#include <algorithm>
 #include <cstring>
-#include <limits>
 #include <stdexcept>
 
 namespace bimloc::sim::ros2 {
@@ -52,15 +48,6 @@ std::map<std::string, std::string> ByteCursor::stringMap(const char* field) {
     m[key] = inner.string(field);
   }
   return m;
-}
-
-std::uint32_t crc32Update(std::uint32_t crc, const std::uint8_t* data, std::size_t n) {
-  while (n > 0) {  // zlib takes a uInt length
-    const uInt step = static_cast<uInt>(std::min<std::size_t>(n, std::numeric_limits<uInt>::max()));
-    crc = static_cast<std::uint32_t>(::crc32(crc, data, step));
-    data += step, n -= step;
-  }
-  return crc;
 }
 
 }  // namespace bimloc::sim::ros2

@@ -42,7 +42,4 @@ class ByteCursor {
   std::uint64_t base_;
 };
 
-// The CRC-32 MCAP uses (zlib's, ISO-HDLC), over `n` bytes, continuing from `crc`.
-std::uint32_t crc32Update(std::uint32_t crc, const std::uint8_t* data, std::size_t n);
-
 }  // namespace bimloc::sim::ros2

@@ -41,10 +41,9 @@ ChunkPrefetcher::~ChunkPrefetcher() {
 }
 
 bool ChunkPrefetcher::canClaim() const {
-  // The chunks the reader asked for, and once it has taken two (it reads on: not the first
-  // cloud's read, which stops after one message) as many more as it has taken, up to `ahead`.
-  const std::size_t window = taken_ < 2 ? 0 : std::min(ahead_, taken_);
-  return next_load_ < count_ && next_load_ <= failed_at_ && next_load_ < std::max(requested_, taken_ + window);
+  // The chunk the reader waits for, and up to `ahead` after those it has taken, from the start:
+  // the first chunks load in parallel while the reader waits for the first.
+  return next_load_ < count_ && next_load_ <= failed_at_ && next_load_ < std::max(requested_, taken_ + ahead_);
 }
 
 void ChunkPrefetcher::work(Decompressor& z) {

@@ -43,8 +43,8 @@ class ChunkPrefetcher {
 
   // `count` chunks; `ahead`: how many may be loaded (or loading) beyond those the reader took,
   // by `workers` threads (ahead 0 or workers 0: none, each chunk is loaded by next() on the
-  // calling thread: the single-threaded read). The window opens once the reader has taken two
-  // chunks, so a reader that stops after its first (the first cloud's read) wastes nothing.
+  // calling thread: the single-threaded read). The workers start at once, on the first `ahead`
+  // chunks: a read that stops early should ask for none ahead (McapReader's ReadPlan::kFirst).
   ChunkPrefetcher(std::size_t count, std::size_t ahead, Load load, std::size_t workers = 1);
   ~ChunkPrefetcher();
   ChunkPrefetcher(const ChunkPrefetcher&) = delete;

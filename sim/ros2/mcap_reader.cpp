@@ -21,6 +21,15 @@ bool isMcapFile(const std::string& path) {
   return in.read(reinterpret_cast<char*>(magic), 8) && std::memcmp(magic, mcap::kMagic, 8) == 0;
 }
 
+struct McapReader::KeptChunk {
+  std::size_t index = 0;           // in the read's list of chunks
+  std::uint64_t offset = 0;        // the Chunk record's, in the file
+  std::set<std::uint16_t> wanted;  // the channels whose messages `chunk` holds
+  LoadedChunk chunk;
+};
+
+McapReader::~McapReader() = default;
+
 McapReader::McapReader(const std::string& path) : path_(path), file_(path), prefetch_chunks_(defaultPrefetchChunks()) {
   const std::uint8_t* d = file_.data();
   if (file_.size() < 8 || std::memcmp(d, mcap::kMagic, 8) != 0) throw std::runtime_error(path + ": not an MCAP file (no MCAP magic at its start)");
@@ -174,6 +183,7 @@ std::size_t McapReader::chunkMessages(std::uint64_t at, const std::set<std::uint
     throw std::runtime_error(path_ + ": at byte " + std::to_string(at) + ": a Chunk of " + std::to_string(length) +
                              " bytes runs past the data section");
   ByteCursor c(d + at + mcap::kRecordHeaderBytes, static_cast<std::size_t>(length), path_, at + mcap::kRecordHeaderBytes);
+  chunk_loads_.fetch_add(1, std::memory_order_relaxed);
   const ChunkHeader h = parseChunk(c);
   const mcap::ChunkRecords records = inflate(h, path_, z, chunk.buffer, prefix);
   const std::string where = path_ + ": chunk at byte " + std::to_string(at) + ", record offset";
@@ -258,7 +268,7 @@ std::optional<std::vector<std::uint64_t>> McapReader::indexedLogTimes(const std:
 }
 
 void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std::function<void(const McapMessage&)>& visit,
-                                bool whole_chunks) const {
+                                ReadPlan plan) const {
   const std::uint8_t* d = file_.data();
   // The chunks to read, in the order the read reaches them: the prefetcher loads them ahead in
   // that order (on worker threads unless prefetch_chunks_ is 0).
@@ -278,8 +288,20 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
       return true;
     });
   }
-  const bool prefixes = !whole_chunks && indexed_ && !wanted.empty();
-  ChunkPrefetcher prefetcher(chunks.size(), prefetch_chunks_, [&](std::size_t i, Decompressor& z, LoadedChunk& chunk) {
+  // The chunk an earlier kFirst read of these channels stopped in, when this read starts there.
+  std::unique_ptr<KeptChunk> kept;
+  {
+    std::lock_guard<std::mutex> lock(kept_mutex_);
+    kept = std::move(kept_);
+  }
+  if (kept && (plan != ReadPlan::kAll || kept->index >= chunks.size() || kept->offset != chunks[kept->index] || kept->wanted != wanted))
+    kept.reset();
+  const bool prefixes = plan == ReadPlan::kSmallTopics && indexed_ && !wanted.empty();
+  ChunkPrefetcher prefetcher(chunks.size(), plan == ReadPlan::kFirst ? 0 : prefetch_chunks_, [&](std::size_t i, Decompressor& z, LoadedChunk& chunk) {
+    if (kept && i == kept->index) {  // (the one load that touches `kept->chunk`; the reading thread never does)
+      chunk = std::move(kept->chunk);
+      return;
+    }
     if (prefixes) {
       std::size_t count = 0;
       const std::uint64_t prefix = wantedPrefix(*indexes[i], wanted, count);
@@ -292,6 +314,15 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
     }
     chunkMessages(chunks[i], wanted, z, chunk);
   }, prefetch_workers_);
+  // A kFirst read that stops (its visit throws) in a chunk, the only one it holds, keeps it.
+  std::size_t taken = 0;
+  const auto keep = [&](LoadedChunk& chunk, std::size_t index) {
+    if (plan != ReadPlan::kFirst) return;
+    auto k = std::make_unique<KeptChunk>();
+    k->index = index, k->offset = chunks[index], k->wanted = wanted, k->chunk = std::move(chunk);
+    std::lock_guard<std::mutex> lock(kept_mutex_);
+    kept_ = std::move(k);
+  };
   if (indexed_) {
     // Merged by log time over the chunks (sorted by their first message's time): a chunk is read
     // when the merge reaches its first message and released after its last, so that chunks
@@ -300,25 +331,29 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
     // to the earlier chunk, then to the chunk's own order: a stable sort by log time.
     struct Live {
       LoadedChunk chunk;
+      std::size_t index = 0;  // in `chunks`
       std::size_t next = 0;
       std::uint64_t time() const { return chunk.messages[next].log_time_ns; }
     };
     std::vector<Live> live;  // in chunk order
-    std::size_t k = 0;
     while (true) {
       int first = -1;
       for (int l = 0; l < static_cast<int>(live.size()); ++l)
         if (first < 0 || live[l].time() < live[first].time()) first = l;
-      if (k < chunks.size() && (first < 0 || starts[k] <= live[first].time())) {
-        ++k;
-        Live chunk{prefetcher.next()};
+      if (taken < chunks.size() && (first < 0 || starts[taken] <= live[first].time())) {
+        Live chunk{prefetcher.next(), taken++};
         if (chunk.chunk.messages.empty()) prefetcher.recycle(std::move(chunk.chunk.buffer));
         else live.push_back(std::move(chunk));  // (a moved vector keeps its bytes where they are)
         continue;
       }
       if (first < 0) break;
       Live& chunk = live[static_cast<std::size_t>(first)];
-      visit(chunk.chunk.messages[chunk.next++]);
+      try {
+        visit(chunk.chunk.messages[chunk.next++]);
+      } catch (...) {
+        if (live.size() == 1) keep(chunk.chunk, chunk.index);
+        throw;
+      }
       if (chunk.next == chunk.chunk.messages.size()) {
         prefetcher.recycle(std::move(chunk.chunk.buffer));
         live.erase(live.begin() + first);
@@ -330,7 +365,13 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
     if (op == mcap::kDataEnd || op == mcap::kFooter) return false;
     if (op == mcap::kChunk) {
       LoadedChunk chunk = prefetcher.next();
-      for (const McapMessage& m : chunk.messages) visit(m);
+      const std::size_t index = taken++;
+      try {
+        for (const McapMessage& m : chunk.messages) visit(m);
+      } catch (...) {
+        keep(chunk, index);
+        throw;
+      }
       prefetcher.recycle(std::move(chunk.buffer));
     } else if (op == mcap::kMessage) {
       McapMessage msg;

@@ -8,10 +8,14 @@
 #include "sim/ros2/compression.hpp"
 #include "sim/ros2/mapped_file.hpp"
 #include "sim/ros2/mcap_format.hpp"
+#include "sim/ros2/read_plan.hpp"
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
@@ -32,6 +36,9 @@ struct LoadedChunk;
 class McapReader {
  public:
   explicit McapReader(const std::string& path);
+  ~McapReader();
+  McapReader(const McapReader&) = delete;
+  McapReader& operator=(const McapReader&) = delete;
 
   const std::string& path() const { return path_; }
   const std::map<std::uint16_t, mcap::Schema>& schemas() const { return schemas_; }
@@ -45,17 +52,25 @@ class McapReader {
 
   // Calls `visit` for the messages of `channel_ids` (every channel when empty) in log-time order
   // (indexed; a linear scan keeps the file's order of chunks, each chunk sorted by log time).
-  // `whole_chunks` false, for a pass over a few small topics: a chunk is decompressed only as
-  // far as its last message of these channels (its message indexes say where; the chunk's CRC
-  // is then left to a pass that reads it whole). The same messages either way: a chunk whose
-  // indexes do not match what its prefix holds, or whose prefix is damaged, is read whole.
+  // The same messages whatever the plan (read_plan.hpp), which says how the chunks are read:
+  // - kAll: decompressed ahead on the worker threads (setPrefetch) from the first chunk on;
+  // - kSmallTopics: the same, but a chunk is decompressed only as far as its last message of
+  //   these channels (its message indexes say where; the chunk's CRC is then left to a pass
+  //   that reads it whole); a chunk whose indexes do not match what its prefix holds, or whose
+  //   prefix is damaged, is read whole;
+  // - kFirst: each chunk decompressed on the calling thread when the read reaches it (nothing
+  //   ahead: the visit is about to stop, by throwing). The chunk it stops in (whole,
+  //   CRC-checked; the only one it then holds) is kept, and the next kAll read of the same
+  //   channels takes it instead of decompressing it again. The kept chunk serves that one read.
   void forEachMessage(const std::set<std::uint16_t>& channel_ids, const std::function<void(const McapMessage&)>& visit,
-                      bool whole_chunks = true) const;
+                      ReadPlan plan = ReadPlan::kAll) const;
   // Chunks decompressed ahead on a worker thread by forEachMessage (chunk_prefetcher.hpp; 0:
   // none, every chunk decompressed on the reading thread). The messages are the same either way.
   // `workers` threads decompress them (several chunks at once when more than 1).
   void setPrefetch(std::size_t chunks, std::size_t workers = 1) { prefetch_chunks_ = chunks, prefetch_workers_ = workers; }
   std::size_t prefetchChunks() const { return prefetch_chunks_; }
+  // How many chunks the reads so far have loaded (decompressed, or read in place, and indexed).
+  std::uint64_t chunkLoads() const { return chunk_loads_.load(std::memory_order_relaxed); }
   // The log times of these channels' messages, sorted, from the message indexes (no chunk is
   // decompressed); nothing when the file is not indexed (then read the messages).
   std::optional<std::vector<std::uint64_t>> indexedLogTimes(const std::set<std::uint16_t>& channel_ids) const;
@@ -87,6 +102,10 @@ class McapReader {
   std::vector<mcap::ChunkIndex> chunk_indexes_;
   bool indexed_ = false;
   std::vector<std::string> warnings_;
+  struct KeptChunk;  // the chunk a kFirst read stopped in, and the channels it holds the messages of
+  mutable std::unique_ptr<KeptChunk> kept_;
+  mutable std::mutex kept_mutex_;
+  mutable std::atomic<std::uint64_t> chunk_loads_{0};
 };
 
 // True when the file starts with MCAP's magic.

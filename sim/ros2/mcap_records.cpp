@@ -1,6 +1,7 @@
 #include "sim/ros2/mcap_records.hpp"
 
 #include "sim/ros2/compression.hpp"
+#include "sim/ros2/crc32.hpp"
 
 #include <algorithm>
 #include <cstring>

@@ -2,6 +2,7 @@
 
 #include "sim/ros2/byte_cursor.hpp"
 #include "sim/ros2/compression.hpp"
+#include "sim/ros2/crc32.hpp"
 
 #include <algorithm>
 #include <cerrno>

@@ -157,13 +157,13 @@ std::vector<std::uint64_t> Rosbag2Reader::logTimes(const std::string& topic) con
 }
 
 void Rosbag2Reader::forEachMessage(const std::vector<std::string>& topics, const std::function<void(const BagMessage&)>& visit,
-                                   bool whole_chunks) const {
+                                   ReadPlan plan) const {
   for (const auto& file : files_) {
     file->forEachMessage(topics, [&](const BagMessage& m) {
       BagMessage out = m;
       out.topic = topic(m.topic->name);  // the bag's topic, its count over every file
       visit(out);
-    }, whole_chunks);
+    }, plan);
   }
 }
 

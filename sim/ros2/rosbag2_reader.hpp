@@ -5,6 +5,8 @@
 // Every problem throws std::runtime_error naming the file and what is wrong.
 #pragma once
 
+#include "sim/ros2/read_plan.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -37,11 +39,10 @@ class Rosbag2Storage {
   virtual ~Rosbag2Storage() = default;
   virtual const std::vector<BagTopic>& topics() const = 0;
   virtual const std::vector<std::string>& warnings() const = 0;
-  // The messages of the topics named (all when empty), in log-time order. `whole_chunks` false:
-  // a pass over a few small topics, which MCAP may decompress a chunk for only as far as its
-  // last message of them (McapReader::forEachMessage).
+  // The messages of the topics named (all when empty), in log-time order. `plan`: how far the
+  // read will go, which tells MCAP how to decompress its chunks (read_plan.hpp).
   virtual void forEachMessage(const std::vector<std::string>& topics, const std::function<void(const BagMessage&)>& visit,
-                              bool whole_chunks = true) const = 0;
+                              ReadPlan plan = ReadPlan::kAll) const = 0;
   // The log times of a topic's messages, in order, without reading the messages where the
   // storage has an index of them (MCAP's message indexes, SQLite's timestamp column).
   virtual std::vector<std::uint64_t> logTimes(const std::string& topic) const;
@@ -68,7 +69,7 @@ class Rosbag2Reader {
 
   // The messages of the topics named (all when empty), file after file, each in log-time order.
   void forEachMessage(const std::vector<std::string>& topics, const std::function<void(const BagMessage&)>& visit,
-                      bool whole_chunks = true) const;
+                      ReadPlan plan = ReadPlan::kAll) const;
   // A topic's log times, file after file (see Rosbag2Storage::logTimes).
   std::vector<std::uint64_t> logTimes(const std::string& topic) const;
 

@@ -51,7 +51,7 @@ class McapStorage final : public Rosbag2Storage {
   }
 
   void forEachMessage(const std::vector<std::string>& names, const std::function<void(const BagMessage&)>& visit,
-                      bool whole_chunks) const override {
+                      ReadPlan plan) const override {
     std::set<std::uint16_t> wanted;
     for (const auto& [id, index] : channel_topic_)
       for (const auto& n : names)
@@ -67,7 +67,7 @@ class McapStorage final : public Rosbag2Storage {
       b.size = m.size;
       b.where = reader_.path() + ": " + b.topic->name + " message " + std::to_string(seen[index]++);
       visit(b);
-    }, whole_chunks);
+    }, plan);
   }
 
  private:

@@ -107,7 +107,7 @@ class SqliteStorage final : public Rosbag2Storage {
   }
 
   void forEachMessage(const std::vector<std::string>& names, const std::function<void(const BagMessage&)>& visit,
-                      bool /*whole_chunks: no chunks*/) const override {
+                      ReadPlan /*plan: no chunks*/) const override {
     std::string where_ids;
     for (const auto& n : names) {
       const auto it = ids_.find(n);

@@ -1,7 +1,7 @@
 // ros2_dump BAG: every message of a ROS 2 bag (rosbag2 folder, .mcap, .db3) as bimloc's own
 // reader and CDR decoding see it, one JSON document on stdout: the side of the npm oracle
 // (check_mcap.mjs) that is ours. Byte arrays are given as their CRC-32 and length.
-#include "sim/ros2/byte_cursor.hpp"
+#include "sim/ros2/crc32.hpp"
 #include "sim/ros2/messages.hpp"
 #include "sim/ros2/rosbag2_reader.hpp"
 
