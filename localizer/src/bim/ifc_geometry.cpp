@@ -323,8 +323,9 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
       // The converter skips some bodies (e.g. profiles over IfcIndexedPolyCurve): read the
       // extrusion ourselves. Spaces always: their profile is the exact room footprint.
       p.extrusion = profiles.bodyExtrusion(product, p.geometry_problem);
-    } else if (!is_space) {
-      p.sole_body = profiles.soleBodyExtrusion(product);
+    } else if (!is_space && profiles.bodyIsOneExtrusion(product)) {
+      std::string unread;  // p has its mesh: nothing to say
+      p.sole_body = profiles.bodyExtrusion(product, unread);
     }
     if (is_space) p.long_name = label(dynamic_pointer_cast<IfcSpace>(product)->m_LongName);
     readStairAttributes(product, raw.length_unit_m, p);
@@ -365,7 +366,7 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
     o.ifc_class = opening->className();
     o.voided_entity_id = rel->m_RelatingBuildingElement->m_entity_id;
     o.extrusion = profiles.bodyExtrusion(opening, o.geometry_problem);
-    o.sole = o.extrusion && profiles.soleBodyExtrusion(opening).has_value();
+    o.sole = o.extrusion && profiles.bodyIsOneExtrusion(opening);
     raw.openings.push_back(std::move(o));
   }
 

@@ -54,10 +54,10 @@ class ProfileReader {
     return {o.x, o.y, o.z};
   }
 
-  // The product's 'Body' representation when it is exactly one extruded solid, directly (no
-  // boolean clipping, no mapped item, no other item): then the extrusion is the whole body.
-  std::optional<Extrusion> soleBodyExtrusion(const shared_ptr<IfcProduct>& product) const {
-    if (!product->m_Representation) return std::nullopt;
+  // Whether the product's 'Body' representation is exactly one extruded solid, directly (no
+  // boolean clipping, no mapped item, no other item): then bodyExtrusion is the whole body.
+  bool bodyIsOneExtrusion(const shared_ptr<IfcProduct>& product) const {
+    if (!product->m_Representation) return false;
     std::size_t items = 0;
     bool solid = false;
     for (const auto& rep : product->m_Representation->m_Representations) {
@@ -67,9 +67,7 @@ class ProfileReader {
         solid = static_cast<bool>(dynamic_pointer_cast<IfcExtrudedAreaSolid>(item));
       }
     }
-    if (items != 1 || !solid) return std::nullopt;
-    std::string problem;
-    return bodyExtrusion(product, problem);
+    return items == 1 && solid;
   }
 
   // The first extruded solid of the product's 'Body' representation, in world coordinates.
