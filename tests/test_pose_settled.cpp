@@ -150,3 +150,46 @@ TEST(PoseSettled, FurnitureThatFakesTwoWallsAlikeIsBeyondIt) {
   const Eigen::Vector3d north = kPath.back() + Eigen::Vector3d(0, 0.3, 0);
   EXPECT_GE(marginAt(north, w, s).margin, bar());
 }
+
+TEST(PoseSettled, APaneWhereThePlanHasItsWindowIsItsFillingNotClutter) {
+  // AC20-FZK-Haus, room 5, in small: the south wall's window pane, 0.1 m behind the face within
+  // the wall's 0.2 m, is the only plane that places the robot in y besides the north wall.
+  // Scored as clutter at the truth, it was as unexplained there as 0.3 m south (where it is
+  // 0.4 m behind the face), and the north wall alone (5.67) left the pose unsettled. As the
+  // window's filling the truth explains it, and the pose settles.
+  const bim::Storey s = room(true);
+  const auto pane_at = [](const Eigen::Vector3d& p, double behind_m, double x_mid) {
+    return seen(p, {0, 1}, behind_m, {x_mid, -behind_m}, 3.0, 0.6, 2.4);
+  };
+  const Window w = windowAt(kPath, [&](const Eigen::Vector3d& p) {
+    return std::vector<Observation>{westWall(p), eastWall(p), northWall(p), pane_at(p, 0.1, 3.0)};
+  });
+  const auto local = marginAt(kPath.back(), w, s);
+  EXPECT_GE(local.margin, bar()) << local.rival.transpose();
+
+  // The match itself, against the plan's geometry: face 0 is the south wall's room side.
+  const pf::detail::RoomIndex faces(s, false);
+  const auto model = pf::detail::refinementModel(pf::ParticleFilterConfig{});
+  const double margin_m = pf::detail::PoseRefinementConfig{}.opening_margin_m;
+  const Eigen::Vector3d truth = kPath.back();
+  const auto matchOf = [&](const Observation& o) {
+    const std::vector<Observation> one{o};
+    std::vector<pf::detail::ObservationMatch> m;
+    pf::detail::matchScanAt(Eigen::Vector3d::Zero(), {truth, kBaseZ, &one}, faces, model, margin_m, &m);
+    return m.at(0);
+  };
+  const double inv_d2 = 1.0 / (model.sigma_d_m * model.sigma_d_m);
+  // In the window, within the wall's depth: the filling, no d error.
+  const auto in_window = matchOf(pane_at(truth, 0.1, 3.0));
+  EXPECT_EQ(in_window.face, 0);
+  EXPECT_NEAR(in_window.m2, 0.0, 1e-4);
+  // In the window, 0.01 m deeper than the wall: off by that 0.01 m.
+  EXPECT_NEAR(matchOf(pane_at(truth, 0.21, 3.0)).m2, 0.01 * 0.01 * inv_d2, 1e-3);
+  // Beside the window (x 5.1-6.0 is solid, a plane 0.45 m long there): the face itself, 0.1 m off.
+  Observation solid = seen(truth, {0, 1}, 0.1, {5.55, -0.1}, 0.45, 0.6, 2.4);
+  const auto beside = matchOf(solid);
+  EXPECT_EQ(beside.face, 0);
+  EXPECT_NEAR(beside.m2, 0.1 * 0.1 * inv_d2, 1e-3);
+  // In front of the face in the window: the face's own d error, as before.
+  EXPECT_NEAR(matchOf(pane_at(truth, -0.1, 3.0)).m2, 0.1 * 0.1 * inv_d2, 1e-3);
+}

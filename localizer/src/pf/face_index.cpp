@@ -42,7 +42,7 @@ FaceIndex::FaceIndex(std::vector<Landmark> faces, double cell_m) : faces_(std::m
   starts_.push_back(static_cast<std::uint32_t>(members_.size()));
 }
 
-MatchReach::MatchReach(double sigma_d_m, double sigma_angle_rad, double gate_mahalanobis2, double along_margin_m)
+MatchReach::MatchReach(double sigma_d_m, double sigma_angle_rad, double gate_mahalanobis2, double along_margin_m, double behind_m)
     : margin_m(along_margin_m) {
   const double k = std::sqrt(gate_mahalanobis2);
   // Within the gate, |d_az| + |d_el| <= sqrt(2 gate) sigma (Cauchy-Schwarz), and the angle
@@ -51,11 +51,12 @@ MatchReach::MatchReach(double sigma_d_m, double sigma_angle_rad, double gate_mah
   infinite = angle >= M_PI;
   // The centroid of a least-squares plane's points lies on it; the trimmed refit may move the
   // plane a little off the centroid of the points it kept: 0.1 m of slack (in at()).
-  across_m = k * sigma_d_m, chord = 2.0 * std::sin(0.5 * angle);
+  across_m = k * sigma_d_m + std::max(0.0, behind_m), chord = 2.0 * std::sin(0.5 * angle);
 }
 
-double matchRadius(double range_m, double sigma_d_m, double sigma_angle_rad, double gate_mahalanobis2, double margin_m) {
-  return MatchReach(sigma_d_m, sigma_angle_rad, gate_mahalanobis2, margin_m).at(range_m);
+double matchRadius(double range_m, double sigma_d_m, double sigma_angle_rad, double gate_mahalanobis2, double margin_m,
+                   double behind_m) {
+  return MatchReach(sigma_d_m, sigma_angle_rad, gate_mahalanobis2, margin_m, behind_m).at(range_m);
 }
 
 }  // namespace bimloc::pf::detail

@@ -106,11 +106,13 @@ class FaceIndex {
 // of the centroid (the planes agree in d at the particle and in angle within the gate, and the
 // centroid is `range` from the particle), and the centroid lies along the face to within the
 // segment margin. Infinite when the angle gate is so wide that any face could match.
-double matchRadius(double range_m, double sigma_d_m, double sigma_angle_rad, double gate_mahalanobis2, double margin_m);
+// behind_m: how far behind a face a plane may stand and still match it (an opening's filling).
+double matchRadius(double range_m, double sigma_d_m, double sigma_angle_rad, double gate_mahalanobis2, double margin_m,
+                   double behind_m = 0.0);
 // The same radius with what does not depend on the range worked out once (a matcher asks for
 // it per observation and pose): at(range_m) is matchRadius's value, to the bit.
 struct MatchReach {
-  MatchReach(double sigma_d_m, double sigma_angle_rad, double gate_mahalanobis2, double margin_m);
+  MatchReach(double sigma_d_m, double sigma_angle_rad, double gate_mahalanobis2, double margin_m, double behind_m = 0.0);
   double at(double range_m) const { return infinite ? std::numeric_limits<double>::infinity() : std::hypot(across_m + chord * range_m + 0.1, margin_m); }
   double across_m = 0, chord = 0, margin_m = 0;
   bool infinite = false;

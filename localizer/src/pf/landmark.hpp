@@ -38,6 +38,9 @@ struct Landmark {
   // The face's holes (windows, doors, recesses; along from start, map z): used only where the
   // association is local (the converged pose's refinement, as the S-Graph), see measurement.hpp.
   const std::vector<bim::FaceOpening>* openings = nullptr;  // the storey's, which outlives it
+  // How deep behind the face what fills its openings can stand: the wall's thickness. A window's
+  // pane and frame, a shut door's leaf, stand within the wall's body (0: not known).
+  double depth_m = 0;
   int id = -1;  // which face of the storey: 2 * wall index + face index
 };
 

@@ -68,7 +68,10 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   const double margin_m = c.segment_margin_m;
   const double max_angle_rad = std::max(c.sigma_azimuth_deg, c.sigma_elevation_deg) * M_PI / 180.0;
   const FaceIndex* fine = rooms.fineIndex();
-  const MatchReach reach_of(c.sigma_d_m, max_angle_rad, gate, margin_m);
+  // The local search also matches a plane behind a face, in its openings (below): as far as
+  // the deepest wall with openings.
+  const double behind_m = opening_margin_m >= 0.0 ? rooms.fillingDepth() : 0.0;
+  const MatchReach reach_of(c.sigma_d_m, max_angle_rad, gate, margin_m, behind_m);
   const auto faceAt = [&](const Landmark& l) { return static_cast<std::uint32_t>(&l - index->faces().data()); };
   // A point of the yaw-free base frame, in the map at the particle's pose.
   const auto inMap = [&](const Eigen::Vector2d& b) { return Eigen::Vector2d(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y()); };
@@ -99,6 +102,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const bool cell_ordered = indexed && fine;
     double best = gate;
     int best_face = -1;
+    bool best_filling = false;
     const Landmark* best_landmark = nullptr;
     const auto consider = [&](const Landmark& l) {
       if (l.axis != axis) return;  // the paper's semantic classes: x walls with x walls
@@ -109,31 +113,45 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       // d per 10 m from the origin, and the same view would score worse far from it.
       const double d_landmark = l.d + l.normal.x() * p.x + l.normal.y() * p.y + l.normal.z() * z_base;
       const double e_az = wrapAngle(azimuth - l.azimuth) * inv_az, e_el = (elevation - l.elevation) * inv_el;
-      const double e_d = (o.d_offset - d_landmark) * inv_d;
+      const double behind = o.d_offset - d_landmark;  // > 0: the plane stands behind the face
+      const double e_d = behind * inv_d;
       const double m2 = e_az * e_az + e_el * e_el + e_d * e_d;
-      // Of faces that fit exactly alike (collinear pieces of one wall), the one the search
-      // reaches first: in the list, or in the 1 m cells' order (see RoomIndex::fineIndex).
-      if (m2 > best) return;
-      if (m2 == best && (best_face < 0 || !cell_ordered ||
-                         !fine->visitsBefore(centroid, radius, faceAt(l), faceAt(*best_landmark))))
-        return;
+      const bool check_openings = opening_margin_m >= 0.0 && l.openings && !l.openings->empty();
+      // In the face's openings, a plane is what fills them (a pane, a frame, a shut door's
+      // leaf), which stands anywhere within the wall's body: its d is off by how far it lies
+      // outside the face-to-depth span (why: below). Anywhere, not only within the gate of the
+      // face: a filling that counted only near the face would pull the pose towards it.
+      const double e_fill = behind > 0.0 ? std::max(0.0, behind - l.depth_m) * inv_d : e_d;
+      const double m2_fill = e_az * e_az + e_el * e_el + e_fill * e_fill;
+      if ((check_openings ? m2_fill : m2) > best) return;
       // The observed wall's points must lie along the face, not beside its end.
       const double u = (centroid - l.start).dot(l.direction);
       if (u < -margin_m || u > l.length_m + margin_m) return;
-      const bool check_openings = opening_margin_m >= 0.0 && l.openings && !l.openings->empty();
+      double m2_here = m2;
+      bool filling = false;
       if (check_line || check_openings) {
         const double m = (span_middle - l.start).dot(l.direction);  // where the plane stands along the face
         // And all of its points must lie along its wall line (wall_lines.hpp): a plane that runs
         // on past the end of the line is another wall, whatever face its centroid falls on.
         if (check_line && (m - span_half < l.line_lo_m - margin_m || m + span_half > l.line_hi_m + margin_m)) return;
-        // Not in the face's openings, by where the plane stands, not its centroid -+ half its
-        // extent: the centroid sits near the sensor, and a pane filling its window "overflowed"
-        // it by 0.1 m (the Duplex).
+        // Not the face where it stands in the face's openings (by where the plane stands, not
+        // its centroid -+ half its extent: the centroid sits near the sensor, and a pane filling
+        // its window "overflowed" it by 0.1 m, the Duplex), but what fills them. A pane seen
+        // where the plan has its window is what the plan predicts: scored as
+        // unexplained, it counted against the true pose and for a pose 0.3 m aside that puts the
+        // pane on the solid wall (AC20-FZK-Haus, room 5: the settled pose waited 7 s for it).
         if (check_openings &&
             bim::insideOpening(*l.openings, m - span_half, m + span_half, z_base + o.z_low, z_base + o.z_high, opening_margin_m))
-          return;
+          m2_here = m2_fill, filling = true;
       }
-      best = m2;
+      // Of faces that fit exactly alike (collinear pieces of one wall), the one the search
+      // reaches first: in the list, or in the 1 m cells' order (see RoomIndex::fineIndex).
+      if (m2_here > best) return;
+      if (m2_here == best && (best_face < 0 || !cell_ordered ||
+                              !fine->visitsBefore(centroid, radius, faceAt(l), faceAt(*best_landmark))))
+        return;
+      best = m2_here;
+      best_filling = filling;
       best_face = l.id;
       best_landmark = &l;
     };
@@ -165,7 +183,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
         index->forEachNear(0.5 * (sensor + span_middle), 0.5 * (span_middle - sensor).norm() + span_half, hides);
       else
         for (const auto& l : landmarks) hides(l);
-      if (hidden) best = 2.0 * gate, best_face = -1;
+      if (hidden) best = 2.0 * gate, best_face = -1, best_filling = false;
     }
     // An observation that matches nothing is clutter (the site does not look like the plan
     // yet): it costs what a match at the gate would, so it cannot destroy a good particle.
@@ -173,7 +191,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     // In the local search, the pieces of one surface are weighed together, below.
     if (opening_margin_m >= 0.0) pieces.push_back({o.azimuth_base, o.d_offset, best, o.support});
     else result.log_likelihood += -0.5 * best;
-    if (per_observation) per_observation->push_back({best_face, static_cast<float>(best)});
+    if (per_observation) per_observation->push_back({best_face, static_cast<float>(best), best_filling});
     if (result.log_likelihood < floor) {
       result.below_floor = true;
       return result;
@@ -237,7 +255,8 @@ FaceShortlist shortlistFaces(const Eigen::Vector3d& centre, double xy_radius_m, 
     const double azimuth = o.azimuth_base + centre.z();
     // matchObservations' candidates: the faces within the match radius of the centroid, of
     // the wall's heights, whose angle alone does not put them beyond the gate at every yaw.
-    const double radius = s.radius_m[k] = matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, c.segment_margin_m);
+    const double radius = s.radius_m[k] = matchRadius(o.range_m, c.sigma_d_m, max_angle_rad, gate, c.segment_margin_m,
+                                                      opening_margin_m >= 0.0 ? every_face.fillingDepth() : 0.0);
     if (radius < kIndexedRadiusM)
       index->forEachNear(inMap(o.centroid_base), radius + moves(o.centroid_base), [&](const Landmark& l) {
         const double e_az = leastAngle(azimuth, l) / sigma_az;

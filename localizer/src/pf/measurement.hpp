@@ -53,6 +53,7 @@ struct MatchResult {
 struct ObservationMatch {
   int face = -1;
   float m2 = 0;
+  bool filling = false;  // matched as what fills the face's openings (a pane, a shut door), not the face
 };
 
 // The faces one scan's observations can match, or be hidden behind, at any pose of a region

@@ -53,6 +53,11 @@ class FaceMargin {
   // id of a storey, so no face of P shares a key with one of Q (on one storey or two; the count
   // of a storey's faces is no bound, buried faces have none and their ids are skipped).
   static constexpr int kRivalKeys = 1 << 24;
+  // What fills a face's openings (a pane, a frame, a shut door: the local search's matches) is
+  // a surface of its own, not the face: keyed from kFillingKeys on (at P or at Q). Under the
+  // face's key, panes both poses explain alike diluted the face's mean (SampleHouse4's living
+  // room: the pose settled 5 s later).
+  static constexpr int kFillingKeys = 1 << 25;
   // One scan's room prior: whether P's and Q's poses were in no room.
   void addScan(bool p_out_of_rooms, bool q_out_of_rooms) {
     out_of_rooms_ += (q_out_of_rooms ? 1.0 : 0.0) - (p_out_of_rooms ? 1.0 : 0.0);

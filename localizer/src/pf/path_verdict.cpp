@@ -15,7 +15,8 @@ void FaceMargin::add(const ObservationMatch& at_p, const ObservationMatch& at_q)
   if (delta == 0.0) return;
   // By P's face where P matched one (the signed differences of one face average out when
   // both places explain it alike), else by the face Q matched.
-  const int key = at_p.face >= 0 ? at_p.face : (at_q.face >= 0 ? kRivalKeys + at_q.face : -1);
+  const auto keyOf = [](const ObservationMatch& m) { return m.filling ? kFillingKeys + m.face : m.face; };
+  const int key = at_p.face >= 0 ? keyOf(at_p) : (at_q.face >= 0 ? kRivalKeys + keyOf(at_q) : -1);
   if (key >= 0) deltas_.emplace_back(key, delta);
 }
 

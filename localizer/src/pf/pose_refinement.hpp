@@ -34,7 +34,8 @@ struct PoseRefinementConfig {
   // A face does not match a plane in its openings grown by this margin (a window's pane
   // 0.1-0.35 m behind the face, a door leaf): the S-Graph's rule (sgraph.opening_margin_m), for
   // a search as local as its association. The Duplex's living-room windows: panes 0.35 m behind
-  // the south wall's face pulled a converged pose 0.49 m north (Level 1, A103 seed 2).
+  // the south wall's face pulled a converged pose 0.49 m north (Level 1, A103 seed 2). The
+  // plane is the opening's filling instead, anywhere within the wall's body (measurement.cpp).
   double opening_margin_m = 0.15;
 };
 
@@ -49,7 +50,8 @@ struct RefinementScan {
 // search scores it (with a `shortlist` of this scan's faces, through it where it holds the pose:
 // the same result; with a finite `floor`, stopped below it as matchObservations is), as the local
 // search scores it: every face a candidate, out of rooms not penalised (a doorway is no worse
-// a place), a plane in a face's openings grown by `opening_margin_m` not the face, one seen
+// a place), a plane in a face's openings grown by `opening_margin_m` not the face but what fills
+// them (within the wall's body: no d error), one seen
 // through a solid face a contradiction (measurement.hpp). With `per_observation`, each match.
 MatchResult matchScanAt(const Eigen::Vector3d& T_map_odom, const RefinementScan& scan, const RoomIndex& every_face,
                         const ParticleFilterConfig& model, double opening_margin_m,

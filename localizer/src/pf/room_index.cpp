@@ -41,6 +41,7 @@ Landmark landmarkOf(const bim::Storey& storey, std::size_t w, int f, const std::
   Landmark l = makeLandmark(storey.walls[w].faces[f], static_cast<int>(2 * w) + f, storey.walls[w].height_m);
   const LineSpan& line = lines[2 * w + static_cast<std::size_t>(f)];
   l.line_lo_m = line.lo_m, l.line_hi_m = line.hi_m;
+  l.depth_m = std::max(0.0, storey.walls[w].thickness_m);
   return l;
 }
 
@@ -77,6 +78,8 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
   for (std::size_t w = 0; w < storey.walls.size(); ++w)
     for (int f = 0; f < 2; ++f)
       if (!buried[2 * w + static_cast<std::size_t>(f)]) every_face.push_back(landmarkOf(storey, w, f, lines));
+  for (const auto& l : every_face)
+    if (l.openings && !l.openings->empty()) filling_depth_m_ = std::max(filling_depth_m_, l.depth_m);
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   // 2 m cells: a match radius is 3-7 m, and with 1 m cells walking the cells cost more than
   // matching the faces in them.

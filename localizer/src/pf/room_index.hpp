@@ -56,6 +56,9 @@ class RoomIndex {
   // Through this index both stay what they were. Null exactly when faceIndex() is.
   const FaceIndex* fineIndex() const { return fine_faces_.get(); }
   bool seesEveryFace() const { return !use_rooms_; }
+  // How far behind a face with openings what fills them can stand: the deepest such wall's
+  // thickness (measurement.cpp: a local search matches a plane in an opening as its filling).
+  double fillingDepth() const { return filling_depth_m_; }
   std::size_t roomCount() const { return rooms_.size(); }
   const bim::Room& room(int index) const { return *rooms_[static_cast<std::size_t>(index)]; }
 
@@ -65,6 +68,7 @@ class RoomIndex {
   std::vector<std::vector<Landmark>> landmarks_;
   std::vector<std::array<std::vector<Landmark>, 2>> by_axis_;  // landmarks_ split by axis (x, y), in order
   std::shared_ptr<const FaceIndex> all_faces_;  // shared: copies of the index share it
+  double filling_depth_m_ = 0;
   std::shared_ptr<const FaceIndex> fine_faces_;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   double cell_m_ = 0.5;
