@@ -32,7 +32,6 @@ namespace bimloc::sim::ros2 {
 struct LoadedChunk {
   std::vector<std::uint8_t> buffer;   // the decompressed records (unused for a chunk read in place)
   std::vector<McapMessage> messages;  // into `buffer` or the file, sorted by log time
-  bool cache = false;                 // `buffer` holds the chunk's whole records, for the chunk cache
 };
 
 class ChunkPrefetcher {

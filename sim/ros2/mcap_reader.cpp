@@ -187,15 +187,10 @@ std::size_t McapReader::chunkMessages(std::uint64_t at, const std::set<std::uint
   const ChunkHeader h = parseChunk(c);
   if (!h.compression.empty()) decompressions_.fetch_add(1, std::memory_order_relaxed);
   const mcap::ChunkRecords records = inflate(h, path_, z, chunk.buffer, prefix);
-  return recordMessages(records.data, records.size, at, wanted, chunk);
-}
-
-std::size_t McapReader::recordMessages(const std::uint8_t* records, std::size_t size, std::uint64_t at,
-                                       const std::set<std::uint16_t>& wanted, LoadedChunk& chunk) const {
   const std::string where = path_ + ": chunk at byte " + std::to_string(at) + ", record offset";
   std::vector<McapMessage>& out = chunk.messages;
   out.clear();
-  const auto cut = walkRecords(records, size, 0, where, [&](std::uint8_t op, ByteCursor& m, std::uint64_t) {
+  const auto cut = walkRecords(records.data, records.size, 0, where, [&](std::uint8_t op, ByteCursor& m, std::uint64_t) {
     if (op != mcap::kMessage) return true;
     McapMessage msg;
     const std::uint16_t channel = m.u16("Message channel_id");
@@ -303,36 +298,10 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
   if (kept && (plan != ReadPlan::kAll || kept->index >= chunks.size() || kept->offset != chunks[kept->index] || kept->wanted != wanted))
     kept.reset();
   const bool prefixes = plan == ReadPlan::kSmallTopics && indexed_ && !wanted.empty();
-  // A small topics' pass fills the chunk cache anew for the whole read that follows it, which
-  // empties it (what it did not take, it would never be asked for: dropped at its end).
-  std::vector<bool> fill(chunks.size(), false);
-  if (prefixes) cache_.clear(), fill = cache_.choose(indexes, wanted);
-  struct DropCache {
-    ChunkCache* cache;
-    ~DropCache() {
-      if (cache) cache->clear();
-    }
-  } drop{plan == ReadPlan::kAll ? &cache_ : nullptr};
   ChunkPrefetcher prefetcher(chunks.size(), plan == ReadPlan::kFirst ? 0 : prefetch_chunks_, [&](std::size_t i, Decompressor& z, LoadedChunk& chunk) {
     if (kept && i == kept->index) {  // (the one load that touches `kept->chunk`; the reading thread never does)
       chunk = std::move(kept->chunk);
-      chunk.cache = false;  // this read is the one it was kept for
       return;
-    }
-    if (plan != ReadPlan::kSmallTopics)
-      if (std::optional<std::vector<std::uint8_t>> records = cache_.take(chunks[i])) {
-        chunk.buffer = std::move(*records);
-        chunk.cache = plan == ReadPlan::kFirst;  // handed back for the whole read unless this read stops in it
-        recordMessages(chunk.buffer.data(), chunk.buffer.size(), chunks[i], wanted, chunk);
-        return;
-      }
-    if (fill[i]) {
-      try {
-        chunkMessages(chunks[i], wanted, z, chunk);  // whole, its CRC checked
-        chunk.cache = true;
-        return;
-      } catch (const std::runtime_error&) {  // damaged: left to the prefix read below, and to the whole read
-      }
     }
     if (prefixes) {
       std::size_t count = 0;
@@ -346,11 +315,6 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
     }
     chunkMessages(chunks[i], wanted, z, chunk);
   }, prefetch_workers_);
-  // A chunk the reader is done with: kept for the next read (chunk_cache.hpp), or its buffer reused.
-  const auto release = [&](LoadedChunk& chunk, std::size_t index) {
-    if (chunk.cache) cache_.put(chunks[index], std::move(chunk.buffer));
-    else prefetcher.recycle(std::move(chunk.buffer));
-  };
   // A kFirst read that stops (its visit throws) in a chunk, the only one it holds, keeps it.
   std::size_t taken = 0;
   const auto keep = [&](LoadedChunk& chunk, std::size_t index) {
@@ -379,7 +343,7 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
         if (first < 0 || live[l].time() < live[first].time()) first = l;
       if (taken < chunks.size() && (first < 0 || starts[taken] <= live[first].time())) {
         Live chunk{prefetcher.next(), taken++};
-        if (chunk.chunk.messages.empty()) release(chunk.chunk, chunk.index);
+        if (chunk.chunk.messages.empty()) prefetcher.recycle(std::move(chunk.chunk.buffer));
         else live.push_back(std::move(chunk));  // (a moved vector keeps its bytes where they are)
         continue;
       }
@@ -392,7 +356,7 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
         throw;
       }
       if (chunk.next == chunk.chunk.messages.size()) {
-        release(chunk.chunk, chunk.index);
+        prefetcher.recycle(std::move(chunk.chunk.buffer));
         live.erase(live.begin() + first);
       }
     }
@@ -409,7 +373,7 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
         keep(chunk, index);
         throw;
       }
-      release(chunk, index);
+      prefetcher.recycle(std::move(chunk.buffer));
     } else if (op == mcap::kMessage) {
       McapMessage msg;
       const std::uint16_t channel = c.u16("Message channel_id");

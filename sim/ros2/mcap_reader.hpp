@@ -5,7 +5,6 @@
 // against the file before it is used.
 #pragma once
 
-#include "sim/ros2/chunk_cache.hpp"
 #include "sim/ros2/compression.hpp"
 #include "sim/ros2/mapped_file.hpp"
 #include "sim/ros2/mcap_format.hpp"
@@ -58,9 +57,7 @@ class McapReader {
   // - kSmallTopics: the same, but a chunk is decompressed only as far as its last message of
   //   these channels (its message indexes say where; the chunk's CRC is then left to a pass
   //   that reads it whole); a chunk whose indexes do not match what its prefix holds, or whose
-  //   prefix is damaged, is read whole. The first chunks that hold messages of other channels
-  //   too are read whole instead, up to the chunk cache's budget (setChunkCache), and kept
-  //   for the next kAll read, which takes them instead of decompressing them again;
+  //   prefix is damaged, is read whole;
   // - kFirst: each chunk decompressed on the calling thread when the read reaches it (nothing
   //   ahead: the visit is about to stop, by throwing). The chunk it stops in (whole,
   //   CRC-checked; the only one it then holds) is kept, and the next kAll read of the same
@@ -72,9 +69,6 @@ class McapReader {
   // `workers` threads decompress them (several chunks at once when more than 1).
   void setPrefetch(std::size_t chunks, std::size_t workers = 1) { prefetch_chunks_ = chunks, prefetch_workers_ = workers; }
   std::size_t prefetchChunks() const { return prefetch_chunks_; }
-  // The budget of decompressed bytes a kSmallTopics read keeps for the next kAll read
-  // (chunk_cache.hpp; 0: none). The messages are the same either way.
-  void setChunkCache(std::uint64_t bytes) { cache_.setBudget(bytes); }
   // How many chunks the reads so far have loaded (decompressed, or read in place, and indexed).
   std::uint64_t chunkLoads() const { return chunk_loads_.load(std::memory_order_relaxed); }
   // How many times the reads so far have decompressed a compressed chunk, whole or a prefix.
@@ -93,9 +87,6 @@ class McapReader {
   // Returns how many messages it kept.
   std::size_t chunkMessages(std::uint64_t at, const std::set<std::uint16_t>& wanted, Decompressor& z, LoadedChunk& chunk,
                             std::uint64_t prefix = UINT64_MAX) const;
-  // The messages of `wanted` channels in the records of the chunk at `at` (decompressed already).
-  std::size_t recordMessages(const std::uint8_t* records, std::size_t size, std::uint64_t at,
-                             const std::set<std::uint16_t>& wanted, LoadedChunk& chunk) const;
   // Where the chunk's records after its last message of `wanted` start (UINT64_MAX: it is the
   // last, or the indexes cannot tell), and how many messages of `wanted` it has.
   std::uint64_t wantedPrefix(const mcap::ChunkIndex& ci, const std::set<std::uint16_t>& wanted, std::size_t& count) const;
@@ -117,7 +108,6 @@ class McapReader {
   mutable std::unique_ptr<KeptChunk> kept_;
   mutable std::mutex kept_mutex_;
   mutable std::atomic<std::uint64_t> chunk_loads_{0}, decompressions_{0};
-  mutable ChunkCache cache_{defaultChunkCacheBytes()};
 };
 
 // True when the file starts with MCAP's magic.

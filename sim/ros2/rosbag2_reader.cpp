@@ -102,9 +102,6 @@ Rosbag2Reader::Rosbag2Reader(const std::string& path) : path_(path) {
     if (identifier.empty()) throw std::runtime_error(f + ": neither MCAP nor SQLite3 (not a ROS 2 bag)");
     if (storage_.empty()) storage_ = identifier;
     files_.push_back(openStorage(f, identifier));
-    // One budget for the bag, not one a file (a recording split in many files): the first
-    // file's, whose chunks the whole read that follows a small topics' pass reaches first.
-    if (files_.size() > 1) files_.back()->setChunkCache(0);
     for (const auto& w : files_.back()->warnings()) warnings_.push_back(w);
   }
   std::map<std::string, std::size_t> by_name;

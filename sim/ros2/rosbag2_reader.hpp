@@ -46,9 +46,6 @@ class Rosbag2Storage {
   // The log times of a topic's messages, in order, without reading the messages where the
   // storage has an index of them (MCAP's message indexes, SQLite's timestamp column).
   virtual std::vector<std::uint64_t> logTimes(const std::string& topic) const;
-  // The budget of decompressed chunks a small topics' pass may keep for the next whole read
-  // (MCAP: chunk_cache.hpp; nothing to keep in SQLite3).
-  virtual void setChunkCache(std::uint64_t /*bytes*/) {}
 };
 
 std::unique_ptr<Rosbag2Storage> openSqlite3Storage(const std::string& path);

@@ -40,7 +40,6 @@ class McapStorage final : public Rosbag2Storage {
 
   const std::vector<BagTopic>& topics() const override { return topics_; }
   const std::vector<std::string>& warnings() const override { return reader_.warnings(); }
-  void setChunkCache(std::uint64_t bytes) override { reader_.setChunkCache(bytes); }
 
   std::vector<std::uint64_t> logTimes(const std::string& topic) const override {
     std::set<std::uint16_t> ids;
