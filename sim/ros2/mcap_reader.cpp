@@ -185,6 +185,7 @@ std::size_t McapReader::chunkMessages(std::uint64_t at, const std::set<std::uint
   ByteCursor c(d + at + mcap::kRecordHeaderBytes, static_cast<std::size_t>(length), path_, at + mcap::kRecordHeaderBytes);
   chunk_loads_.fetch_add(1, std::memory_order_relaxed);
   const ChunkHeader h = parseChunk(c);
+  if (!h.compression.empty()) decompressions_.fetch_add(1, std::memory_order_relaxed);
   const mcap::ChunkRecords records = inflate(h, path_, z, chunk.buffer, prefix);
   const std::string where = path_ + ": chunk at byte " + std::to_string(at) + ", record offset";
   std::vector<McapMessage>& out = chunk.messages;

@@ -71,6 +71,8 @@ class McapReader {
   std::size_t prefetchChunks() const { return prefetch_chunks_; }
   // How many chunks the reads so far have loaded (decompressed, or read in place, and indexed).
   std::uint64_t chunkLoads() const { return chunk_loads_.load(std::memory_order_relaxed); }
+  // How many times the reads so far have decompressed a compressed chunk, whole or a prefix.
+  std::uint64_t chunkDecompressions() const { return decompressions_.load(std::memory_order_relaxed); }
   // The log times of these channels' messages, sorted, from the message indexes (no chunk is
   // decompressed); nothing when the file is not indexed (then read the messages).
   std::optional<std::vector<std::uint64_t>> indexedLogTimes(const std::set<std::uint16_t>& channel_ids) const;
@@ -105,7 +107,7 @@ class McapReader {
   struct KeptChunk;  // the chunk a kFirst read stopped in, and the channels it holds the messages of
   mutable std::unique_ptr<KeptChunk> kept_;
   mutable std::mutex kept_mutex_;
-  mutable std::atomic<std::uint64_t> chunk_loads_{0};
+  mutable std::atomic<std::uint64_t> chunk_loads_{0}, decompressions_{0};
 };
 
 // True when the file starts with MCAP's magic.
