@@ -68,6 +68,18 @@ TEST(BadInput, BinaryGarbage) {
   expectCleanFailure(writeFile(dir, "garbage.ifc", bytes), "binary");
 }
 
+TEST(BadInput, ASchemaBeyondIfc4IsNamedNotReadAsIfc4) {
+  // IFC 4.3's files declare IFC4X3_ADD2 (earlier drafts IFC4X3_RC2, IFC4X1): read as IFC4, IFC++
+  // read not one entity and said "Unsupported IFC version: " (a public road model did).
+  const auto dir = tempDir("bad");
+  const std::string body = std::string(kProject) + kStorey + kFooter;
+  for (const std::string schema : {"IFC4X3_ADD2", "IFC4X3_RC2", "IFC4X1"}) {
+    std::string header = kHeader;
+    header.replace(header.find("'IFC4'"), 6, "'" + schema + "'");
+    expectCleanFailure(writeFile(dir, schema + ".ifc", header + body), "unsupported schema '" + schema + "'");
+  }
+}
+
 TEST(BadInput, IfcWithoutStoreys) {
   const auto dir = tempDir("bad");
   expectCleanFailure(writeFile(dir, "nostorey.ifc", std::string(kHeader) + kProject + kFooter), "no IfcBuildingStorey");

@@ -45,6 +45,10 @@ std::string fileSchema(const std::string& path, const std::string& text) {
   std::string schema = text.substr(open + 1, close - open - 1);
   std::transform(schema.begin(), schema.end(), schema.begin(), ::toupper);
   if (schema.rfind("IFC2X3", 0) == 0) return "IFC2X3";
+  // IFC4X1, IFC4X2, IFC4X3 (IFC 4.3, ISO 16739-1:2024) are schemas of their own: the IFC++ that
+  // Debian ships knows none of them and read not one entity ("Unsupported IFC version: ").
+  if (schema.rfind("IFC4X", 0) == 0)
+    fail(path, "unsupported schema '" + schema + "' (bimloc reads IFC2X3 and IFC4; IFC 4.x beyond IFC4: export the plan as IFC4)");
   if (schema.rfind("IFC4", 0) == 0) return "IFC4";
   fail(path, "unsupported schema '" + schema + "' (bimloc reads IFC2X3 and IFC4)");
 }
