@@ -121,9 +121,12 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       // leaf), which stands anywhere within the wall's body: its d is off by how far it lies
       // outside the face-to-depth span (why: below). Anywhere, not only within the gate of the
       // face: a filling that counted only near the face would pull the pose towards it.
-      const double e_fill = behind > 0.0 ? std::max(0.0, behind - l.depth_m) * inv_d : e_d;
-      const double m2_fill = e_az * e_az + e_el * e_el + e_fill * e_fill;
-      if ((check_openings ? m2_fill : m2) > best) return;
+      double m2_fill = m2;
+      if (check_openings && behind > 0.0) {
+        const double e_fill = std::max(0.0, behind - l.depth_m) * inv_d;
+        m2_fill = e_az * e_az + e_el * e_el + e_fill * e_fill;
+      }
+      if (m2_fill > best) return;  // m2_fill <= m2: the least this face can score
       // The observed wall's points must lie along the face, not beside its end.
       const double u = (centroid - l.start).dot(l.direction);
       if (u < -margin_m || u > l.length_m + margin_m) return;
@@ -137,9 +140,9 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
         // Not the face where it stands in the face's openings (by where the plane stands, not
         // its centroid -+ half its extent: the centroid sits near the sensor, and a pane filling
         // its window "overflowed" it by 0.1 m, the Duplex), but what fills them. A pane seen
-        // where the plan has its window is what the plan predicts: scored as
-        // unexplained, it counted against the true pose and for a pose 0.3 m aside that puts the
-        // pane on the solid wall (AC20-FZK-Haus, room 5: the settled pose waited 7 s for it).
+        // where the plan has its window is what the plan predicts: scored as unexplained, it
+        // counted against the true pose and for a pose 0.3 m aside that puts the pane on the
+        // solid wall (AC20-FZK-Haus, room 5: the settled pose waited 7 s for it).
         if (check_openings &&
             bim::insideOpening(*l.openings, m - span_half, m + span_half, z_base + o.z_low, z_base + o.z_high, opening_margin_m))
           m2_here = m2_fill, filling = true;

@@ -68,8 +68,8 @@ class RoomIndex {
   std::vector<std::vector<Landmark>> landmarks_;
   std::vector<std::array<std::vector<Landmark>, 2>> by_axis_;  // landmarks_ split by axis (x, y), in order
   std::shared_ptr<const FaceIndex> all_faces_;  // shared: copies of the index share it
-  double filling_depth_m_ = 0;
   std::shared_ptr<const FaceIndex> fine_faces_;
+  double filling_depth_m_ = 0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   double cell_m_ = 0.5;
   int nx_ = 0, ny_ = 0;
