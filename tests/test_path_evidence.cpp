@@ -197,8 +197,11 @@ TEST(SharedPlans, AClosetWhereNoScanFixesAPoseLocalizesOnlyOnceTheRobotIsOut) {
   for (const auto& r : results) {
     EXPECT_FALSE(r.false_convergence) << r.name;
     EXPECT_TRUE(r.converged) << r.name;
+    // Out of the closet when it converges (walking out of it took until 3.5-5 s): the
+    // truth's room then is another one.
     if (r.convergence_time_s) {
-      EXPECT_GT(*r.convergence_time_s, 5.0) << r.name;
+      EXPECT_NE(r.true_room, "R16") << r.name << " at " << *r.convergence_time_s << " s";
+      EXPECT_GT(*r.convergence_time_s, 3.0) << r.name;
     }
   }
   EXPECT_EQ(results.size(), 1u);

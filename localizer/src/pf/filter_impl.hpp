@@ -111,7 +111,9 @@ struct ParticleFilter::Impl {
   void resetFromTheScan(const std::vector<detail::Hypothesis>& hyps, double best_raw, bool annealing,
                         const detail::PathVerdict& path, bool decisive, UpdateReport& report);
   void followThePath(const detail::PathVerdict& path, UpdateReport& report);
-  void checkConvergence(const std::vector<detail::Observation>& observations, double z, detail::PathVerdict& path,
+  // Returns whether it changed the particles' weights (a convergence the cloud had not gathered
+  // at yet: the places the path evidence refuted are dropped).
+  bool checkConvergence(const std::vector<detail::Observation>& observations, double z, detail::PathVerdict& path,
                         bool decisive, const std::vector<double>& w, const Eigen::Vector3d& mean, UpdateReport& report);
   // The best particle's pose refined within its place, or nothing while that pose is not
   // settled (config.settle_pose).

@@ -170,13 +170,13 @@ UpdateReport ParticleFilter::update(const std::vector<planes::ObservedPlane>& wa
   m.resetFromTheScan(hyps, best_raw, annealing, path, decisive, report);
   m.weighed_once = true;
   if (decisive && !m.T_map_odom) m.followThePath(path, report);
-  const std::vector<double> w = m.normalisedWeights();
+  std::vector<double> w = m.normalisedWeights();
   m.best = m.heaviest();
   double sum2 = 0;
   for (double v : w) sum2 += v * v;
   report.ess = 1.0 / sum2;
   // Convergence (paper, "Initial Transformation Estimation"), then resampling.
-  m.checkConvergence(observations, z, path, decisive, w, m.mean(w), report);
+  if (m.checkConvergence(observations, z, path, decisive, w, m.mean(w), report)) w = m.normalisedWeights();
   m.resampleAfter(w, report);
   return report;
 }
