@@ -9,11 +9,14 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <stdexcept>
 #include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace bimloc::sim {
 namespace {
@@ -41,23 +44,37 @@ struct Record {
   }
 };
 
+// Read with pread, exactly the bytes wanted: a buffered stream refills 8 KiB at every seek, and
+// the walk seeks at every record (126 MB of reads for a 127 MB bag of 20 s).
 class BagFile {
  public:
-  explicit BagFile(const std::string& path) : path_(path), in_(path, std::ios::binary) {
-    in_.seekg(0, std::ios::end);
-    size_ = in_ ? static_cast<std::uint64_t>(in_.tellg()) : 0;
+  explicit BagFile(const std::string& path) : path_(path), fd_(::open(path.c_str(), O_RDONLY | O_CLOEXEC)) {
+    struct stat st {};
+    size_ = fd_ >= 0 && ::fstat(fd_, &st) == 0 ? static_cast<std::uint64_t>(st.st_size) : 0;
   }
+  ~BagFile() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  BagFile(const BagFile&) = delete;
+  BagFile& operator=(const BagFile&) = delete;
   std::uint64_t size() const { return size_; }
-  const std::string& path() const { return path_; }
 
   // The record at `at` whose bytes must end by `limit`; nullopt where it does not parse.
   std::optional<Record> record(std::uint64_t at, std::uint64_t limit) {
     Record r;
     r.at = at;
+    if (limit < 8 || at > limit - 8) return std::nullopt;
+    // Most records' header and data length fit in the first 512 bytes: one read.
+    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(512, limit - at)), '\0');
+    if (!bytes(at, head.data(), head.size())) return std::nullopt;
     std::uint32_t header_len = 0;
-    if (!u32(at, limit, header_len) || header_len > limit - at - 4) return std::nullopt;
-    std::string header(header_len, '\0');
-    if (!bytes(at + 4, header.data(), header_len)) return std::nullopt;
+    std::memcpy(&header_len, head.data(), 4);
+    if (header_len > limit - at - 8) return std::nullopt;
+    if (head.size() < std::size_t{header_len} + 8) {
+      head.resize(std::size_t{header_len} + 8);
+      if (!bytes(at, head.data(), head.size())) return std::nullopt;
+    }
+    const std::string header = head.substr(4, header_len);
     for (std::size_t p = 0; p < header.size();) {
       std::uint32_t len = 0;
       if (header.size() - p < 4) return std::nullopt;
@@ -70,17 +87,18 @@ class BagFile {
       if (eq == std::string::npos) return std::nullopt;
       r.fields[field.substr(0, eq)] = field.substr(eq + 1);
     }
+    std::memcpy(&r.data_len, head.data() + 4 + header_len, 4);
     r.data_at = at + 4 + header_len + 4;
-    if (!u32(at + 4 + header_len, limit, r.data_len) || r.data_len > limit - r.data_at) return std::nullopt;
+    if (r.data_len > limit - r.data_at) return std::nullopt;
     return r;
   }
-  bool u32(std::uint64_t at, std::uint64_t limit, std::uint32_t& v) {
-    return limit >= 4 && at <= limit - 4 && bytes(at, reinterpret_cast<char*>(&v), 4);
-  }
   bool bytes(std::uint64_t at, char* out, std::size_t n) {
-    in_.clear();
-    in_.seekg(static_cast<std::streamoff>(at));
-    return static_cast<bool>(in_.read(out, static_cast<std::streamsize>(n)));
+    while (n > 0) {
+      const ssize_t got = ::pread(fd_, out, n, static_cast<off_t>(at));
+      if (got <= 0) return false;
+      out += got, at += static_cast<std::uint64_t>(got), n -= static_cast<std::size_t>(got);
+    }
+    return true;
   }
   [[noreturn]] void fail(std::uint64_t at, const std::string& what) const {
     throw std::runtime_error(path_ + ": at byte " + std::to_string(at) + ": " + what);
@@ -88,7 +106,7 @@ class BagFile {
 
  private:
   std::string path_;
-  std::ifstream in_;
+  int fd_ = -1;
   std::uint64_t size_ = 0;
 };
 
@@ -132,11 +150,10 @@ void checkChunk(BagFile& file, std::uint64_t chunk_pos, std::size_t connections,
       file.fail(at, "the index of " + name + ": its count says " + std::to_string(count.value_or(0)) + " entries, its " +
                         std::to_string(index->data_len) + " bytes hold " + std::to_string(index->data_len / 12.0));
     const auto topic = topics.find(static_cast<std::uint32_t>(index->number("conn").value_or(~0u)));
+    std::vector<std::uint32_t> entries(static_cast<std::size_t>(*count) * 3);  // (sec, nsec, offset) each
+    if (!file.bytes(index->data_at, reinterpret_cast<char*>(entries.data()), index->data_len)) return;
     for (std::uint64_t e = 0; e < *count; ++e) {
-      std::uint32_t sec = 0, nsec = 0, offset = 0;
-      file.u32(index->data_at + 12 * e, file.size(), sec);
-      file.u32(index->data_at + 12 * e + 4, file.size(), nsec);
-      file.u32(index->data_at + 12 * e + 8, file.size(), offset);
+      const std::uint32_t sec = entries[3 * e], nsec = entries[3 * e + 1], offset = entries[3 * e + 2];
       if (topic != topics.end() && (!any || offset > end.last_offset)) {
         any = true;
         end.last_offset = offset, end.topic = topic->second;
