@@ -7,10 +7,10 @@
 // whole input layer of `localize` (BagInput, every cloud decoded); whatever the damage: no
 // crash, no hang, and either refused with a message naming the bag or read with a warning. A
 // few cases also go through the binary (exit 2, the bag named, nothing written).
+#include "bag_fixtures.hpp"
 #include "fuzz_mutator.hpp"
 #include "test_support.hpp"
 
-#include "sim/dataset/bag_reader.hpp"
 
 #include <gtest/gtest.h>
 
@@ -41,28 +41,8 @@ const std::string& simulated() {
   return dir;
 }
 
-struct Outcome {
-  bool refused = false;
-  std::string error;
-  std::vector<std::string> warnings;
-  std::size_t turns = 0;
-};
-
-Outcome readBag(const std::string& path) {
-  Outcome o;
-  try {
-    sim::BagInput bag(path, sim::BagInputOptions{});
-    bag.forEachTurn([&](const sim::BagTurn& t) {
-      t.points();
-      ++o.turns;
-    });
-    o.warnings = bag.warnings();  // after the read: some are found only as the messages are read
-  } catch (const std::runtime_error& e) {
-    o.refused = true;
-    o.error = e.what();
-  }
-  return o;
-}
+using Outcome = test::BagReadOutcome;
+Outcome readBag(const std::string& path) { return test::readWholeBag(path); }
 
 // A record of the bag (format 2.0): where it starts, where a field's value lies, its data.
 struct Record {
