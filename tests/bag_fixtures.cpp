@@ -2,6 +2,8 @@
 
 #include "test_support.hpp"
 
+#include "sim/dataset/bag_reader.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -56,6 +58,22 @@ nlohmann::json localizeJson(const std::string& input, const std::string& options
     ADD_FAILURE() << "not JSON: " << r.out << r.err;
     return {};
   }
+}
+
+BagReadOutcome readWholeBag(const std::string& path) {
+  BagReadOutcome o;
+  try {
+    sim::BagInput bag(path, sim::BagInputOptions{});
+    bag.forEachTurn([&](const sim::BagTurn& t) {
+      t.points();
+      ++o.turns;
+    });
+    o.warnings = bag.warnings();
+  } catch (const std::runtime_error& e) {
+    o.refused = true;
+    o.error = e.what();
+  }
+  return o;
 }
 
 std::string runPython(const std::string& script, const std::string& args) {

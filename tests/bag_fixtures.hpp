@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <vector>
 
 namespace bimloc::test {
 
@@ -19,6 +20,16 @@ std::string rewrittenBag(const std::string& dir, const std::string& mode);
 // The run's entry of `bimloc localize INPUT --plan office --json OPTIONS`, without what depends
 // on the input's path or the machine (name, wall_seconds, the path in warnings).
 nlohmann::json localizeJson(const std::string& input, const std::string& options = "");
+// What the input layer of `localize` makes of a bag (BagInput: topics, odometry, tf, every cloud
+// decoded): refused with the error, or read with the turns and the warnings, asked after the
+// read (some are found only as the messages are read).
+struct BagReadOutcome {
+  bool refused = false;
+  std::string error;
+  std::vector<std::string> warnings;
+  std::size_t turns = 0;
+};
+BagReadOutcome readWholeBag(const std::string& path);
 // Standard output of /usr/bin/python3 tests/SCRIPT ARGS (ARGS shell-quoted by the caller).
 std::string runPython(const std::string& script, const std::string& args);
 

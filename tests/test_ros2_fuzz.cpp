@@ -4,10 +4,10 @@
 // odometry, tf, every cloud decoded). Whatever the damage: no crash, no hang; either refused
 // with a message naming the bag, or read with a warning; damage that leaves nothing usable is
 // never accepted in silence. A few cases also go through the binary (exit code, stderr).
+#include "bag_fixtures.hpp"
 #include "fuzz_mutator.hpp"
 #include "test_support.hpp"
 
-#include "sim/dataset/bag_reader.hpp"
 #include "sim/ros2/mcap_writer.hpp"
 #include "sim/ros2/messages.hpp"
 #include "sim/ros2/rosbag2_reader.hpp"
@@ -48,29 +48,8 @@ const std::string& simulated() {
   return dir;
 }
 
-struct Outcome {
-  bool refused = false;
-  std::string error;
-  std::vector<std::string> warnings;
-  std::size_t turns = 0;
-};
-
-// The input layer of `localize` on `path`, every cloud decoded.
-Outcome readBag(const std::string& path) {
-  Outcome o;
-  try {
-    sim::BagInput bag(path, sim::BagInputOptions{});
-    o.warnings = bag.warnings();
-    bag.forEachTurn([&](const sim::BagTurn& t) {
-      t.points();
-      ++o.turns;
-    });
-  } catch (const std::runtime_error& e) {
-    o.refused = true;
-    o.error = e.what();
-  }
-  return o;
-}
+using Outcome = test::BagReadOutcome;
+Outcome readBag(const std::string& path) { return test::readWholeBag(path); }
 
 struct Tally {
   int cases = 0, refused = 0, warned = 0, accepted = 0;

@@ -2,7 +2,12 @@
 // The cost of reading one run's recording as a ROS 1 bag and as ROS 2 bags: the input layer of
 // `localize` (BagInput: topics, odometry, tf, every cloud decoded and de-skewed), best of N,
 // each against the ROS 1 bag in the same run, by wall time and by CPU time. The formats:
-//   ros1          the ROS 1 bag of `simulate`
+//   ros1          the ROS 1 bag of `simulate` (uncompressed): every ratio's reference
+//   ros1-lz4, ros1-bz2  the same bag with chunks compressed by rosbag's own writer, as
+//                 `rosbag record --lz4 / --bz2` writes them: the references of the compressed
+//                 ROS 2 forms (MCAP lz4 against ROS 1 lz4; zstd, which ROS 1 has not, against both)
+//   ros1-lz4-mixed  lz4, the topics interleaved in the order received, as `rosbag record --lz4`
+//                 writes a robot's topics: the reference of mcap-rosbag2, rosbag2's own layout
 //   mcap          MCAP, zstd chunks of 4 MiB (as `simulate --format mcap` writes it), read with
 //                 its chunks decompressed ahead on a worker thread (chunk_prefetcher.hpp)
 //   mcap-1thread  the same file read on one thread (BIMLOC_MCAP_PREFETCH=0)
@@ -113,7 +118,7 @@ void run(const BagBenchArgs& args) {
                 [&](LidarScan&& scan) { scans.push_back(std::move(scan)); });
   const auto tmp = std::filesystem::temp_directory_path() / ("bimloc-bench-bags-" + std::to_string(::getpid()));
   struct Format {
-    std::string name, bag_format, mcap_compression, input;
+    std::string name, bag_format, compression, input;  // compression: the MCAP's, or the ROS 1 bag's
     std::size_t chunk_bytes = 4u << 20;
     bool received_order = false;
     std::optional<std::size_t> prefetch;  // chunks read ahead; unset: the default
@@ -122,15 +127,19 @@ void run(const BagBenchArgs& args) {
   constexpr std::size_t kChunk = 4u << 20, kRosbag2Chunk = 768u << 10;  // ours; rosbag2's default
   const std::optional<std::size_t> kDefault;
   const std::vector<Format> formats = {{"ros1", "ros1", "", "dataset.bag", kChunk, false, kDefault, -1},
+                                       {"ros1-lz4", "ros1", "lz4", "dataset.bag", kChunk, false, kDefault, -1},
+                                       {"ros1-bz2", "ros1", "bz2", "dataset.bag", kChunk, false, kDefault, -1},
+                                       {"ros1-lz4-mixed", "ros1", "lz4", "dataset.bag", kChunk, true, kDefault, -1},
                                        {"mcap", "mcap", "zstd", "rosbag2", kChunk, false, kDefault, -1},
-                                       {"mcap-1thread", "mcap", "zstd", "rosbag2", kChunk, false, 0, 1},
+                                       {"mcap-1thread", "mcap", "zstd", "rosbag2", kChunk, false, 0, 4},
                                        {"mcap-rosbag2", "mcap", "zstd", "rosbag2", kRosbag2Chunk, true, kDefault, -1},
                                        {"mcap-lz4", "mcap", "lz4", "rosbag2", kChunk, false, kDefault, -1},
                                        {"mcap-none", "mcap", "", "rosbag2", kChunk, false, kDefault, -1},
                                        {"sqlite3", "sqlite3", "", "rosbag2", kChunk, false, kDefault, -1}};
   nlohmann::json rows = nlohmann::json::array();
   bimloc::cli::Table table({"format", "bag [MB]", "chunks", "read [s]", "x ROS 1 (wall)", "CPU [s]", "x ROS 1 (CPU)",
-                             "reading thread CPU [s]", "x ROS 1 (thread)", "points"});
+                             "reading thread CPU [s]", "x ROS 1 (thread)", "x ROS 1 alike (CPU)", "x ROS 1 alike (thread)",
+                             "points"});
   struct Measured {
     std::string input;
     double wall_s = 1e300, cpu_s = 1e300, thread_cpu_s = 1e300;
@@ -147,7 +156,7 @@ void run(const BagBenchArgs& args) {
       DatasetInfo info;
       info.T_base_lidar = scenario.sensor.T_base_lidar;
       info.bag_format = formats[k].bag_format;
-      info.mcap_compression = formats[k].mcap_compression;
+      (formats[k].bag_format == "ros1" ? info.ros1_compression : info.mcap_compression) = formats[k].compression;
       info.mcap_chunk_bytes = formats[k].chunk_bytes;
       DatasetWriter writer(dir, info);
       writeStreams(sim, scans, formats[k].received_order, writer);
@@ -173,17 +182,38 @@ void run(const BagBenchArgs& args) {
       const double thread_ratio = m.thread_cpu_s / measured[0].thread_cpu_s;
       const double mb = static_cast<double>(bytesOf(m.input)) / 1e6;
       const Format& f = formats[k];
-      const std::string chunks = f.bag_format != "mcap" ? "" : (f.mcap_compression.empty() ? "none" : f.mcap_compression) + " " +
-                                 std::to_string(f.chunk_bytes >> 10) + " KiB" + (f.received_order ? ", mixed" : "");
+      // rosbag closes a chunk at 768 KiB (its default threshold, which BagWriter keeps).
+      const std::size_t chunk_bytes = f.bag_format == "ros1" ? kRosbag2Chunk : f.bag_format == "mcap" ? f.chunk_bytes : 0;
+      const std::string chunks = chunk_bytes == 0 ? "" : (f.compression.empty() ? "none" : f.compression) + " " +
+                                 std::to_string(chunk_bytes >> 10) + " KiB" + (f.received_order ? ", mixed" : "");
       const std::size_t prefetch = f.bag_format != "mcap" ? 0 : f.prefetch ? *f.prefetch : bimloc::sim::ros2::defaultPrefetchChunks();
-      rows.push_back({{"format", f.name}, {"compression", f.mcap_compression}, {"chunk_bytes", f.bag_format == "mcap" ? f.chunk_bytes : 0},
+      // A compressed ROS 2 form against the ROS 1 bags compressed alike: lz4 against ROS 1's
+      // lz4; zstd, which rosbag has not, against both compressions a ROS 1 user can record with.
+      nlohmann::json alike = nlohmann::json::array();
+      std::string alike_cpu, alike_thread;
+      for (std::size_t r = 0; r < formats.size(); ++r) {
+        // A mixed ROS 1 bag is the reference of the mixed MCAP form only.
+        const bool reference = formats[r].bag_format == "ros1" && !formats[r].compression.empty() &&
+                               (!formats[r].received_order || f.received_order);
+        if (!reference || f.bag_format != "mcap" || f.compression.empty()) continue;
+        if (f.compression != "zstd" && f.compression != formats[r].compression) continue;
+        const double cpu = m.cpu_s / measured[r].cpu_s, thread = m.thread_cpu_s / measured[r].thread_cpu_s;
+        alike.push_back({{"against", formats[r].name}, {"ratio", cpu}, {"thread_ratio", thread},
+                         {"wall_ratio", m.wall_s / measured[r].wall_s}});
+        const std::string sep = alike_cpu.empty() ? "" : ", ";
+        const std::string against = formats[r].name.substr(5);  // "lz4", "bz2", "lz4-mixed"
+        alike_cpu += sep + against + " " + bimloc::cli::fixed(cpu, 2);
+        alike_thread += sep + against + " " + bimloc::cli::fixed(thread, 2);
+      }
+      rows.push_back({{"format", f.name}, {"bag_format", f.bag_format}, {"compression", f.compression}, {"chunk_bytes", chunk_bytes},
                       {"topics_interleaved", f.received_order}, {"prefetch_chunks", prefetch}, {"bag_bytes", bytesOf(m.input)},
                       {"read_seconds", m.wall_s}, {"wall_ratio_to_ros1", wall_ratio}, {"read_cpu_seconds", m.cpu_s},
                       {"ratio_to_ros1", cpu_ratio}, {"reading_thread_cpu_seconds", m.thread_cpu_s},
-                      {"thread_ratio_to_ros1", thread_ratio}, {"points", m.points}, {"turns", scans.size()}});
+                      {"thread_ratio_to_ros1", thread_ratio}, {"against_ros1_compressed_alike", alike}, {"points", m.points},
+                      {"turns", scans.size()}});
       using bimloc::cli::fixed;
       table.add({f.name, fixed(mb, 1), chunks, fixed(m.wall_s, 3), fixed(wall_ratio, 2), fixed(m.cpu_s, 3), fixed(cpu_ratio, 2),
-                 fixed(m.thread_cpu_s, 3), fixed(thread_ratio, 2), std::to_string(m.points)});
+                 fixed(m.thread_cpu_s, 3), fixed(thread_ratio, 2), alike_cpu, alike_thread, std::to_string(m.points)});
     }
   } catch (...) {
     std::filesystem::remove_all(tmp);
@@ -208,7 +238,10 @@ void addBenchBagsCommand(CLI::App& bench) {
               "the MCAP chunks decompressed on worker threads), each with its ratio to the ROS 1 bag's in the same run. MCAP: zstd "
               "chunks of 4 MiB as simulate writes them (mcap; mcap-1thread: the same file read with BIMLOC_MCAP_PREFETCH=0, "
               "no chunk decompressed ahead on a worker thread), as ros2 bag record writes them by default (mcap-rosbag2: zstd, "
-              "768 KiB, the topics interleaved), lz4 (mcap-lz4) and uncompressed (mcap-none); and SQLite3.");
+              "768 KiB, the topics interleaved), lz4 (mcap-lz4) and uncompressed (mcap-none); and SQLite3. ROS 1 also with "
+              "lz4 and bz2 chunks (ros1-lz4, ros1-bz2: rosbag record --lz4 / --bz2; ros1-lz4-mixed: the topics interleaved "
+              "as recorded): each compressed MCAP form is also compared with the ROS 1 bags compressed alike (lz4 with lz4; "
+              "zstd, which ROS 1 has not, with both; the mixed MCAP also with the mixed ROS 1 bag).");
   cmd->add_option("scenario", args->scenario, "scenario file")->capture_default_str();
   cmd->add_option("--repeat", args->repeat, "reads of each bag; the best is kept")->capture_default_str()->check(CLI::Range(1, 100));
   cmd->add_flag("--json", args->json, "print one JSON object");

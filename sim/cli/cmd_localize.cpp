@@ -82,6 +82,7 @@ struct Recording {
   // Keeps what `turns` reads from alive.
   std::shared_ptr<RecordedDataset> dataset;
   std::shared_ptr<BagInput> bag;
+  std::size_t bag_warnings_said = 0;  // at open; more may come as the messages are read
   bool deskewed = false;  // the turns are de-skewed (a per-point time field, no --no-deskew)
 };
 
@@ -134,7 +135,9 @@ Recording openBag(const std::string& path, const BagInputOptions& options) {
   rec.checks.ground_truth = bag.groundTruthDrops();
   rec.input_bag = path;
   rec.deskewed = bag.timed() && options.deskew;
-  for (const auto& w : bag.warnings()) std::cerr << "warning: " << w << "\n";
+  const auto warnings = bag.warnings();
+  for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
+  rec.bag_warnings_said = warnings.size();
   rec.notes = {"odometry: " + bag.odometrySource(), "mount: " + bag.mountSource(),
                deskewNote(bag, options)};
   rec.turns = [b = rec.bag](const std::function<void(const RecordedTurn&)>& visit) {
@@ -212,7 +215,12 @@ void run(const LocalizeArgs& args) {
   r.recording->odometry = rec.checks.odometry;
   r.recording->odometry_jumps = rec.checks.odometry_jumps;
   r.recording->ground_truth = rec.checks.ground_truth;
-  const std::vector<std::string> dropped = r.recording->warnings();
+  std::vector<std::string> dropped = r.recording->warnings();
+  // What the bag's reader found only as it read the messages (a compressed ROS 1 chunk's size field).
+  if (rec.bag) {
+    const auto found = rec.bag->warnings();
+    dropped.insert(dropped.end(), found.begin() + static_cast<std::ptrdiff_t>(std::min(rec.bag_warnings_said, found.size())), found.end());
+  }
   r.warnings.insert(r.warnings.begin(), dropped.begin(), dropped.end());
   for (const auto& w : dropped) std::cerr << "bimloc localize: warning: " << args.input << ": " << printable(w) << "\n";
   const auto& last = recording.last;

@@ -1,12 +1,15 @@
-// bimloc simulate SCENARIO --out DIR [--threads N] [--format ros1|mcap|sqlite3] [--packets]
+// bimloc simulate SCENARIO --out DIR [--threads N] [--format ros1|mcap|sqlite3] [--compression C] [--packets]
 #include "sim/cli/commands.hpp"
 #include "sim/cli/progress.hpp"
 #include "sim/dataset/dataset_metadata.hpp"
 #include "sim/dataset/dataset_writer.hpp"
 #include "sim/simulation/simulator.hpp"
 
+#include <algorithm>
 #include <iostream>
+#include <map>
 #include <thread>
+#include <vector>
 
 namespace {
 
@@ -19,7 +22,31 @@ struct SimulateArgs {
   bool quiet = false;
   bool packets = false;
   std::string format = "ros1";
+  std::string compression;  // empty: the format's default
 };
+
+// The chunk compressions each format's own recorder offers, the default first: `rosbag record`
+// (none, --lz4, --bz2) and rosbag2's MCAP storage (zstd, lz4, none); our SQLite3 bag stores
+// messages as they are (rosbag2's file / message compression is refused by `localize`).
+const std::map<std::string, std::vector<std::string>>& compressionsOf() {
+  static const std::map<std::string, std::vector<std::string>> of = {
+      {"ros1", {"none", "lz4", "bz2"}}, {"mcap", {"zstd", "lz4", "none"}}, {"sqlite3", {"none"}}};
+  return of;
+}
+
+// A compression the format does not have: said, and exit 2 (a bad option, before anything runs).
+std::string chosenCompression(const SimulateArgs& args) {
+  const auto& offered = compressionsOf().at(args.format);
+  if (args.compression.empty()) return offered.front();
+  if (std::find(offered.begin(), offered.end(), args.compression) == offered.end()) {
+    std::string list;
+    for (const auto& c : offered) list += (list.empty() ? "" : ", ") + c;
+    std::cerr << "bimloc simulate: error: --compression " << args.compression << ": a " << args.format
+              << " bag has no such compression (it has: " << list << ")\n";
+    throw bimloc::cli::ExitCode{bimloc::cli::kExitUnusableInput};
+  }
+  return args.compression;
+}
 
 nlohmann::json metadata(const Simulator& sim, const std::string& scenario_path) {
   const Scenario& s = sim.scenario();
@@ -40,6 +67,7 @@ nlohmann::json metadata(const Simulator& sim, const std::string& scenario_path) 
 }
 
 void run(const SimulateArgs& args) {
+  const std::string compression = chosenCompression(args);
   const Scenario scenario = loadScenario(args.scenario);
   const World world = World::load(scenario.world);
   checkScenarioAgainstWorld(scenario, world);
@@ -49,6 +77,9 @@ void run(const SimulateArgs& args) {
   info.metadata = metadata(sim, args.scenario);
   info.T_base_lidar = scenario.sensor.T_base_lidar;
   info.bag_format = args.format;
+  const std::string stored = compression == "none" ? "" : compression;
+  if (args.format == "ros1") info.ros1_compression = stored;
+  if (args.format == "mcap") info.mcap_compression = stored;
   if (args.packets) info.packets_rpm = scenario.sensor.rpm;
   DatasetWriter writer(args.out, info);
   for (const auto& o : sim.odometry()) writer.addOdometry(o);
@@ -84,8 +115,11 @@ void addSimulateCommand(CLI::App& app) {
                 "(one a turn) and velodyne.pcap, the sensor's UDP stream (port 2368), for a robot's own driver");
   cmd->add_flag("--quiet", args->quiet, "print nothing on success");
   cmd->add_option("--format", args->format,
-                  "the bag: ros1 (dataset.bag), mcap (rosbag2/rosbag2_0.mcap, zstd chunks) or sqlite3 (rosbag2/rosbag2_0.db3)")
+                  "the bag: ros1 (dataset.bag), mcap (rosbag2/rosbag2_0.mcap) or sqlite3 (rosbag2/rosbag2_0.db3)")
       ->check(CLI::IsMember({"ros1", "mcap", "sqlite3"}))
       ->capture_default_str();
+  cmd->add_option("--compression", args->compression,
+                  "the bag's chunk compression, as the format's recorder offers it: ros1 none (the default), lz4 or bz2\n"
+                  "(rosbag record --lz4 / --bz2); mcap zstd (the default), lz4 or none; sqlite3 none. Any other exits 2");
   cmd->callback([args] { run(*args); });
 }

@@ -72,6 +72,8 @@ bool isRosBag(const std::string& path) {
 
 BagInput::~BagInput() = default;
 
+std::vector<std::string> BagInput::warnings() const { return impl_->bag->warnings(); }
+
 std::string BagInput::topicList() const {
   std::ostringstream out;
   for (const auto& [topic, info] : impl_->bag->topics())
@@ -92,7 +94,6 @@ BagInput::BagInput(const std::string& path, const BagInputOptions& options)
       fail("neither a ROS 1 bag (no '#ROSBAG V2.0' at its start) nor a ROS 2 bag (a folder with metadata.yaml, an .mcap or .db3 file)");
     }
     BagMessages& bag = *impl_->bag;
-    warnings_ = bag.warnings();
     const auto& topics = bag.topics();
     // Raw packets of another lidar (a Hesai's pandar_msgs, say): said, so that the user records
     // the driver's clouds instead.

@@ -72,8 +72,10 @@ class BagInput {
   const PoseSampleDrops& groundTruthDrops() const { return truth_drops_; }
   // "topic (type, N messages)" for each topic of the bag, one a line.
   std::string topicList() const;
-  // Things read anyway, said once: a ROS 2 recording cut short, a folder without metadata.yaml.
-  const std::vector<std::string>& warnings() const { return warnings_; }
+  // Things read anyway, said once: a ROS 2 recording cut short, a folder without metadata.yaml,
+  // a compressed ROS 1 chunk whose size field is wrong. Some are found only as the messages are
+  // read: ask again after forEachTurn.
+  std::vector<std::string> warnings() const;
 
   // Calls `visit` for each turn in order, its points decoded and checked (a turn with no usable
   // point is still visited: the caller skips it). Throws as the constructor for a damaged
@@ -92,7 +94,6 @@ class BagInput {
   bool timed_ = false, packets_ = false;
   std::string time_field_;
   std::vector<StampedPose> odometry_, ground_truth_;
-  std::vector<std::string> warnings_;
   PoseSampleDrops odometry_drops_, truth_drops_;
 };
 

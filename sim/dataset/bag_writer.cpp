@@ -75,10 +75,17 @@ struct BagWriter::Impl {
 BagWriter::BagWriter(const std::string& path, const DatasetInfo& info) : impl_(std::make_unique<Impl>()) {
   impl_->path = path;
   impl_->info = info;
+  // Uncompressed by default (rosbag's): the fastest to write and to read, and no tool needs a
+  // bz2 / lz4 decoder for it. lz4 and bz2 as `rosbag record --lz4 / --bz2` write them.
+  rosbag::CompressionType compression = rosbag::compression::Uncompressed;
+  if (info.ros1_compression == "lz4") compression = rosbag::compression::LZ4;
+  else if (info.ros1_compression == "bz2") compression = rosbag::compression::BZ2;
+  else if (!info.ros1_compression.empty() && info.ros1_compression != "none")
+    throw std::invalid_argument(path + ": a ROS 1 bag's chunks are compressed with lz4 or bz2, or not at all, not '" +
+                                info.ros1_compression + "'");
   try {
-    // Uncompressed (rosbag's default): the fastest to write and to read, and no tool needs a
-    // bz2 / lz4 decoder for it.
     impl_->bag.open(path, rosbag::bagmode::Write);
+    impl_->bag.setCompression(compression);
   } catch (const std::exception& e) {
     throw std::runtime_error(path + ": cannot create the bag: " + e.what());
   }

@@ -45,6 +45,9 @@ struct DatasetInfo {
   std::string bag_format = "ros1";
   // An MCAP bag's chunk compression: "zstd" (rosbag2's default), "lz4" or "" (none).
   std::string mcap_compression = "zstd";
+  // A ROS 1 bag's chunk compression, as `rosbag record` offers it: "" (none, rosbag's
+  // default), "lz4" (--lz4) or "bz2" (--bz2); rosbag's own writer compresses.
+  std::string ros1_compression;
   // Where an MCAP chunk is closed (its records' bytes): 4 MiB, or rosbag2's 768 KiB (a chunk
   // then holds about one cloud; a message larger than this makes a chunk of its own).
   std::size_t mcap_chunk_bytes = 4u << 20;

@@ -1,5 +1,6 @@
 // BagMessages of a ROS 1 bag, through Debian's rosbag_storage and the ROS 1 message headers.
 #include "sim/dataset/bag_messages.hpp"
+#include "sim/dataset/ros1_bag_check.hpp"
 #include "sim/dataset/velodyne_scan_msg.hpp"
 
 #include <geometry_msgs/PoseStamped.h>
@@ -10,6 +11,8 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <fstream>
+#include <map>
+#include <set>
 #include <stdexcept>
 
 namespace bimloc::sim {
@@ -32,6 +35,8 @@ class Ros1BagMessages final : public BagMessages {
  public:
   explicit Ros1BagMessages(const std::string& path) {
     path_ = path;
+    // What rosbag would read past its buffers on, refused first.
+    for (Ros1ChunkEnd& end : checkRos1BagRecords(path)) ends_[{end.topic, end.stamp_ns}] = std::move(end);
     guarded([&] {
       bag_.open(path, rosbag::bagmode::Read);
       rosbag::View all(bag_);
@@ -41,6 +46,13 @@ class Ros1BagMessages final : public BagMessages {
   }
 
   std::string format() const override { return "ROS 1 bag"; }
+
+  std::vector<std::string> warnings() const override {
+    if (oversized_.empty()) return {};
+    return {std::to_string(oversized_.size()) + " compressed chunk(s) (the first at byte " + std::to_string(*oversized_.begin()) +
+            ") declare more uncompressed bytes than their records hold: a wrong size field, read anyway (rosbag decompresses "
+            "bz2 into a buffer of the declared size)"};
+  }
 
   std::string typeName(BagMessageKind kind) const override {
     switch (kind) {
@@ -58,6 +70,7 @@ class Ros1BagMessages final : public BagMessages {
       for (const rosbag::MessageInstance& m : rosbag::View(bag_, rosbag::TopicQuery(topic))) {
         const auto tf = m.instantiate<tf2_msgs::TFMessage>();
         if (!tf) continue;
+        checkEnd(m);
         for (const auto& t : tf->transforms) {
           const auto& r = t.transform.rotation;
           const auto& p = t.transform.translation;
@@ -71,6 +84,7 @@ class Ros1BagMessages final : public BagMessages {
     guarded([&] {
       const bool stamped = hasTopic(topic, BagMessageKind::kPoseStamped);
       for (const rosbag::MessageInstance& m : rosbag::View(bag_, rosbag::TopicQuery(topic))) {
+        checkEnd(m);
         if (stamped) {
           if (const auto p = m.instantiate<geometry_msgs::PoseStamped>()) visit({p->header.stamp.toSec(), bagPose(p->pose)});
         } else if (const auto odom = m.instantiate<nav_msgs::Odometry>()) {
@@ -93,6 +107,7 @@ class Ros1BagMessages final : public BagMessages {
     guarded([&] {
       std::size_t index = 0;
       for (const rosbag::MessageInstance& m : rosbag::View(bag_, rosbag::TopicQuery(topic))) {
+        checkEnd(m);
         if (packets) {
           const auto scan = m.instantiate<velodyne_msgs::VelodyneScan>();
           if (!scan)
@@ -134,7 +149,19 @@ class Ros1BagMessages final : public BagMessages {
     }
   }
 
+  // A message that ends a compressed chunk: its record (4 + the 38 bytes of its header, op,
+  // conn and time, as rosbag writes it + 4 + its data) must end at the chunk's size field.
+  void checkEnd(const rosbag::MessageInstance& m) const {
+    if (ends_.empty()) return;
+    const auto it = ends_.find({m.getTopic(), m.getTime().toNSec()});
+    if (it == ends_.end()) return;
+    constexpr std::uint64_t kRecordBytes = 4 + 38 + 4;
+    if (std::uint64_t{it->second.last_offset} + kRecordBytes + m.size() < it->second.size) oversized_.insert(it->second.chunk_pos);
+  }
+
   mutable rosbag::Bag bag_;
+  std::map<std::pair<std::string, std::uint64_t>, Ros1ChunkEnd> ends_;
+  mutable std::set<std::uint64_t> oversized_;  // the chunks found so, by position
 };
 
 }  // namespace
