@@ -18,18 +18,27 @@ const std::string& officePlan() {
   return plan;
 }
 
-const std::string& simulatedCorridor(const std::string& tag, const std::string& simulate_options) {
+const std::string& simulatedVariants(const std::string& tag, const std::string& scenario_yaml,
+                                     const std::vector<std::pair<std::string, std::string>>& variants) {
   static std::map<std::string, std::string> made;
   auto& dir = made[tag];
   if (dir.empty()) {
     dir = tempDir(tag);
-    std::ofstream(dir + "/s.yaml") << "name: " << tag << "\nworld: " << officePlan()
-                                   << "\nstart: {room: C100, yaw_deg: 0}\nmotion: {type: tour, rooms: [R101]}\n"
-                                      "duration_s: 8\nodometry: {preset: legged}\nseed: 3\n";
-    const auto r = runBimloc("simulate '" + dir + "/s.yaml' --out '" + dir + "/data' --quiet " + simulate_options);
-    if (r.exit_code != 0) ADD_FAILURE() << r.err;
+    std::ofstream(dir + "/s.yaml") << scenario_yaml;
+    for (const auto& [name, options] : variants) {
+      const auto r = runBimloc("simulate '" + dir + "/s.yaml' --out '" + dir + "/" + name + "' --quiet " + options);
+      if (r.exit_code != 0) ADD_FAILURE() << name << ": " << r.err;
+    }
   }
   return dir;
+}
+
+const std::string& simulatedCorridor(const std::string& tag, const std::string& simulate_options) {
+  return simulatedVariants(tag,
+                           "name: " + tag + "\nworld: " + officePlan() +
+                               "\nstart: {room: C100, yaw_deg: 0}\nmotion: {type: tour, rooms: [R101]}\n"
+                               "duration_s: 8\nodometry: {preset: legged}\nseed: 3\n",
+                           {{"data", simulate_options}});
 }
 
 std::string rewrittenBag(const std::string& dir, const std::string& mode) {

@@ -6,12 +6,18 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace bimloc::test {
 
 // worlds/site_office.ifc.
 const std::string& officePlan();
+// A folder holding s.yaml (the scenario text `scenario_yaml`) and, per variant (NAME, OPTIONS),
+// DIR/NAME: the output of `bimloc simulate s.yaml --quiet OPTIONS`. Made once per tag in this
+// process (a failed simulate is a test failure naming the variant).
+const std::string& simulatedVariants(const std::string& tag, const std::string& scenario_yaml,
+                                     const std::vector<std::pair<std::string, std::string>>& variants);
 // A folder holding s.yaml and data/ (the dataset of `bimloc simulate ... SIMULATE_OPTIONS`),
 // made once per tag in this process.
 const std::string& simulatedCorridor(const std::string& tag, const std::string& simulate_options = "");

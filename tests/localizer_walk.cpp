@@ -12,13 +12,13 @@ namespace bimloc::test {
 
 namespace {
 
-std::unique_ptr<OfficeWalk> walkIn(const sim::World& world, const std::string& file, const std::string& room, const std::string& tour,
+std::unique_ptr<SimulatedWalk> walkIn(const sim::World& world, const std::string& file, const std::string& room, const std::string& tour,
                                    double duration_s, const std::string& tag) {
   const std::string path = tempDir(tag) + "/walk.yaml";
   std::ofstream(path) << "world: " << BIMLOC_WORLDS_DIR << "/" << file << "\n"
                       << "start: {random_in_room: " << room << "}\nmotion: {type: tour, rooms: [" << tour << "]}\n"
                       << "odometry: {preset: legged}\nduration_s: " << duration_s << "\nseed: 1\n";
-  auto w = std::make_unique<OfficeWalk>();
+  auto w = std::make_unique<SimulatedWalk>();
   w->world = &world;
   w->scenario = sim::loadScenario(path);
   w->sim = std::make_unique<sim::Simulator>(w->scenario, world);
@@ -28,16 +28,16 @@ std::unique_ptr<OfficeWalk> walkIn(const sim::World& world, const std::string& f
 
 }  // namespace
 
-std::unique_ptr<OfficeWalk> officeWalk(double duration_s, const std::string& tag) {
+std::unique_ptr<SimulatedWalk> officeWalk(double duration_s, const std::string& tag) {
   return walkIn(officeWorld(), "site_office.ifc", "S100", "C100, R108, C100, R101, C100, R105", duration_s, tag);
 }
 
-std::unique_ptr<OfficeWalk> apartmentWalk(const std::string& room, const std::string& tour, double duration_s, const std::string& tag) {
+std::unique_ptr<SimulatedWalk> apartmentWalk(const std::string& room, const std::string& tour, double duration_s, const std::string& tag) {
   static const sim::World world = sim::World::fromPlan(std::string(BIMLOC_WORLDS_DIR) + "/apartment.ifc");
   return walkIn(world, "apartment.ifc", room, tour, duration_s, tag);
 }
 
-std::vector<WalkStep> walkThrough(const OfficeWalk& w, LocalizerConfig config, const std::function<bool(double)>& blind) {
+std::vector<WalkStep> walkThrough(const SimulatedWalk& w, LocalizerConfig config, const std::function<bool(double)>& blind) {
   config.storey = "0";
   Localizer localizer(w.world->building(), w.scenario.sensor.T_base_lidar, config);
   std::vector<WalkStep> steps;

@@ -22,7 +22,7 @@ namespace {
 
 using namespace bimloc;
 
-using Walk = test::OfficeWalk;
+using Walk = test::SimulatedWalk;
 using Step = test::WalkStep;
 
 // S100 to the corridor and on to R108: the filter converges within 20 s (test_run).

@@ -140,9 +140,9 @@ namespace {
 
 using Step = test::WalkStep;
 
-std::unique_ptr<test::OfficeWalk> walk(double duration_s) { return test::officeWalk(duration_s, "ndt"); }
+std::unique_ptr<test::SimulatedWalk> walk(double duration_s) { return test::officeWalk(duration_s, "ndt"); }
 
-std::vector<Step> runNdt(const test::OfficeWalk& w) {
+std::vector<Step> runNdt(const test::SimulatedWalk& w) {
   LocalizerConfig config;
   config.method = LocalizerMethod::Ndt;
   return test::walkThrough(w, config);

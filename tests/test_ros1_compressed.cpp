@@ -14,7 +14,6 @@
 
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 
 namespace fs = std::filesystem;
 using namespace bimloc;
@@ -26,18 +25,13 @@ const std::vector<std::string> kCompressions = {"none", "lz4", "bz2"};
 // The corridor run of the bag tests, cut to 1.2 s (it converges at its first turn): 12 turns, a
 // bz2 bag of 7 MB that writes and reads in under a second of CPU.
 const std::string& recorded() {
-  static const std::string dir = [] {
-    const std::string d = test::tempDir("ros1-compressed");
-    std::ofstream(d + "/s.yaml") << "name: ros1-compressed\nworld: " << test::officePlan()
-                                 << "\nstart: {room: C100, yaw_deg: 0}\nmotion: {type: tour, rooms: [R101]}\n"
-                                    "duration_s: 1.2\nodometry: {preset: legged}\nseed: 3\n";
-    for (const auto& c : kCompressions) {
-      const auto r = test::runBimloc("simulate '" + d + "/s.yaml' --out '" + d + "/" + c + "' --compression " + c + " --quiet");
-      if (r.exit_code != 0) ADD_FAILURE() << c << ": " << r.err;
-    }
-    return d;
-  }();
-  return dir;
+  std::vector<std::pair<std::string, std::string>> variants;
+  for (const auto& c : kCompressions) variants.emplace_back(c, "--compression " + c);
+  return test::simulatedVariants("ros1-compressed",
+                                 "name: ros1-compressed\nworld: " + test::officePlan() +
+                                     "\nstart: {room: C100, yaw_deg: 0}\nmotion: {type: tour, rooms: [R101]}\n"
+                                     "duration_s: 1.2\nodometry: {preset: legged}\nseed: 3\n",
+                                 variants);
 }
 
 std::string bag(const std::string& compression) { return recorded() + "/" + compression + "/dataset.bag"; }

@@ -27,18 +27,11 @@ using namespace bimloc;
 namespace {
 
 const std::string& simulated() {
-  static const std::string dir = [] {
-    const std::string d = test::tempDir("ros1-compressed-fuzz");
-    std::ofstream(d + "/s.yaml") << "name: fuzz\nworld: " << BIMLOC_WORLDS_DIR
-                                 << "/site_office.ifc\nstart: {room: R101, yaw_deg: 90}\nmotion: {type: tour, rooms: [C100]}\n"
-                                    "duration_s: 0.6\nodometry: {preset: legged}\nseed: 5\n";
-    for (const std::string c : {"lz4", "bz2"}) {
-      const auto r = test::runBimloc("simulate '" + d + "/s.yaml' --out '" + d + "/" + c + "' --compression " + c + " --quiet");
-      if (r.exit_code != 0) ADD_FAILURE() << r.err;
-    }
-    return d;
-  }();
-  return dir;
+  return test::simulatedVariants("ros1-compressed-fuzz",
+                                 "name: fuzz\nworld: " + test::officePlan() +
+                                     "\nstart: {room: R101, yaw_deg: 90}\nmotion: {type: tour, rooms: [C100]}\n"
+                                     "duration_s: 0.6\nodometry: {preset: legged}\nseed: 5\n",
+                                 {{"lz4", "--compression lz4"}, {"bz2", "--compression bz2"}});
 }
 
 using Outcome = test::BagReadOutcome;

@@ -3,6 +3,7 @@
 // rosbag2 SQLite3 bag; `localize` gives the same trajectory.tum on all of them. The truths: the
 // ROS 1 path (rosbag, Debian's), python3's sqlite3 module for the .db3, yaml-cpp for the
 // metadata; the npm oracle (tests/npm) checks the MCAP bytes against Foxglove's reader.
+#include "bag_fixtures.hpp"
 #include "test_support.hpp"
 
 #include "sim/ros2/messages.hpp"
@@ -30,18 +31,11 @@ std::string slurp(const std::string& path) { return test::readFile(path); }
 
 // The scenario of test_bag_input (the corridor, converging within 2 s), in three formats.
 const std::string& simulated() {
-  static const std::string dir = [] {
-    const std::string d = test::tempDir("ros2-bags");
-    std::ofstream(d + "/s.yaml") << "name: ros2 bags\nworld: " << kPlan
-                                 << "\nstart: {room: C100, yaw_deg: 0}\nmotion: {type: tour, rooms: [R101]}\n"
-                                    "duration_s: 8\nodometry: {preset: legged}\nseed: 3\n";
-    for (const std::string format : {"ros1", "mcap", "sqlite3"}) {
-      const auto r = runBimloc("simulate '" + d + "/s.yaml' --out '" + d + "/" + format + "' --format " + format + " --quiet");
-      if (r.exit_code != 0) ADD_FAILURE() << format << ": " << r.err;
-    }
-    return d;
-  }();
-  return dir;
+  return test::simulatedVariants("ros2-bags",
+                                 "name: ros2 bags\nworld: " + kPlan +
+                                     "\nstart: {room: C100, yaw_deg: 0}\nmotion: {type: tour, rooms: [R101]}\n"
+                                     "duration_s: 8\nodometry: {preset: legged}\nseed: 3\n",
+                                 {{"ros1", "--format ros1"}, {"mcap", "--format mcap"}, {"sqlite3", "--format sqlite3"}});
 }
 
 std::string python(const std::string& code, const std::string& arg) {

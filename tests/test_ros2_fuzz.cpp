@@ -34,18 +34,11 @@ std::string slurp(const std::string& path) { return test::readFile(path); }
 void spit(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
 const std::string& simulated() {
-  static const std::string dir = [] {
-    const std::string d = test::tempDir("ros2-fuzz");
-    std::ofstream(d + "/s.yaml") << "name: fuzz\nworld: " << BIMLOC_WORLDS_DIR
-                                 << "/site_office.ifc\nstart: {room: R101, yaw_deg: 90}\nmotion: {type: tour, rooms: [C100]}\n"
-                                    "duration_s: 1.5\nodometry: {preset: legged}\nseed: 5\n";
-    for (const std::string format : {"mcap", "sqlite3"}) {
-      const auto r = test::runBimloc("simulate '" + d + "/s.yaml' --out '" + d + "/" + format + "' --format " + format + " --quiet");
-      if (r.exit_code != 0) ADD_FAILURE() << r.err;
-    }
-    return d;
-  }();
-  return dir;
+  return test::simulatedVariants("ros2-fuzz",
+                                 "name: fuzz\nworld: " + test::officePlan() +
+                                     "\nstart: {room: R101, yaw_deg: 90}\nmotion: {type: tour, rooms: [C100]}\n"
+                                     "duration_s: 1.5\nodometry: {preset: legged}\nseed: 5\n",
+                                 {{"mcap", "--format mcap"}, {"sqlite3", "--format sqlite3"}});
 }
 
 using Outcome = test::BagReadOutcome;

@@ -147,6 +147,7 @@ bool ParticleFilter::Impl::checkConvergence(const std::vector<detail::Observatio
   // A scan whose search could not vouch for the rivals checked the verdict against nothing: it
   // neither counts towards convergence nor breaks the run of agreeing ones.
   if (searched) agreeing_updates = agrees ? agreeing_updates + 1 : 0;
+  bool dropped = false;  // declared now, the cloud not gathered: the refuted particles dropped
   if (agreeing_updates >= config.converged_updates) {
     // Paper Eq.: map <- odom = best particle (+) inverse of the odometry pose. After that it
     // follows the filter's weighted mean (tracking, until an S-Graph takes over): smoother
@@ -161,17 +162,14 @@ bool ParticleFilter::Impl::checkConvergence(const std::vector<detail::Observatio
       const detail::Pose2 pose = fine.value_or(detail::Pose2(top.x, top.y, top.yaw));
       at.x = pose.x(), at.y = pose.y(), at.yaw = pose.z();
     }
-    const bool declared_now = !T_map_odom;
+    dropped = !T_map_odom && !clustered;
     T_map_odom = poseOf(at) * odom.inverse();
-    if (declared_now && !clustered) {
+    if (dropped)
       for (auto& p : particles)
         if (!atPathBest({p.x, p.y, p.yaw}, path)) p.log_weight = -std::numeric_limits<double>::infinity();
-      report.converged = true;
-      return true;
-    }
   }
   report.converged = T_map_odom.has_value();
-  return false;
+  return dropped;
 }
 
 std::optional<detail::Pose2> ParticleFilter::Impl::settledPose(const Particle& top, UpdateReport& report) const {
