@@ -38,8 +38,6 @@ Simulator::Simulator(const Scenario& scenario, const World& world)
       trajectory_(planTrajectory(scenario, world)),
       lidar_(scenario.sensor) {}
 
-std::size_t Simulator::lidarStorey() const { return trajectory_.multiStorey() ? World::kAllStoreys : storey_; }
-
 std::size_t Simulator::turnCount() const {
   return static_cast<std::size_t>(std::floor(scenario_.duration_s / lidar_.turnPeriod_s() + 1e-9));
 }
@@ -52,7 +50,7 @@ LidarScan Simulator::turn(std::size_t turn) const {
 }
 
 LidarScan Simulator::turnAlong(std::size_t turn, const std::function<Eigen::Isometry3d(double)>& T_map_base) const {
-  return lidar_.scan(world_, storey_, T_map_base, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
+  return lidar_.scan(world_, lidarStorey(), T_map_base, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
 }
 
 NoisyOdometry Simulator::odometryModel(double floor_z) const {

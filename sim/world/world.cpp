@@ -58,16 +58,21 @@ void World::Impl::build() {
     bullet.push_back(makeBullet({&building.storeys[s].mesh, &glass[s]->mesh}));
   }
   if (scenes.size() < 2) return;
+  // The whole building as one flat scene of every storey's geometries (the same buffers and
+  // filters, attached again), not as instances of the storeys' scenes: storeys overlap in
+  // height (a facade filed under one storey stands through two, split levels), and a ray then
+  // walked the BVH of every storey whose box it crossed. One BVH over every triangle costs about
+  // what one storey's did (session 22's cost table).
   all_scene = rtcNewScene(device);
   rtcSetSceneFlags(all_scene, RTC_SCENE_FLAG_ROBUST);
-  const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
   for (std::size_t s = 0; s < scenes.size(); ++s) {
-    RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(instance, scenes[s]);
-    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
-    rtcCommitGeometry(instance);
-    rtcAttachGeometryByID(all_scene, instance, static_cast<unsigned>(s));
-    rtcReleaseGeometry(instance);
+    // Attached above in this order, ids from 0: the opaque mesh (if any), the glass (if any).
+    const unsigned count = (building.storeys[s].mesh.empty() ? 0u : 1u) + (glass[s]->mesh.empty() ? 0u : 1u);
+    for (unsigned id = 0; id < count; ++id) {
+      RTCGeometry geometry = rtcGetGeometry(scenes[s], id);
+      all_geometry.push_back({s, id});
+      rtcAttachGeometryByID(all_scene, geometry, static_cast<unsigned>(all_geometry.size() - 1));
+    }
   }
   rtcCommitScene(all_scene);
 }
@@ -78,6 +83,11 @@ RTCScene World::Impl::scene(std::size_t storey) const {
 }
 
 float World::Impl::dropout(std::size_t storey, unsigned geometry, unsigned triangle) const {
+  if (storey == World::kAllStoreys) {
+    if (!all_scene) storey = 0;  // one storey: its scene serves, ids unchanged
+    else if (geometry >= all_geometry.size()) return 0.0f;
+    else storey = all_geometry[geometry].storey, geometry = all_geometry[geometry].id;
+  }
   if (geometry != opaque_geometry[storey]) return glass_dropout;
   if (storey >= triangle_dropout.size() || triangle >= triangle_dropout[storey].size()) return 0.0f;
   return triangle_dropout[storey][triangle];
@@ -232,8 +242,7 @@ RayHit World::castRay(std::size_t storey, const Eigen::Vector3f& origin, const E
   }
   hit.range_m = rh.ray.tfar;
   hit.normal = normalFacing({rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}, dir);
-  const std::size_t hit_storey = storey == kAllStoreys ? (impl_->all_scene ? rh.hit.instID[0] : 0) : storey;
-  hit.dropout = impl_->any_dropout ? impl_->dropout(hit_storey, rh.hit.geomID, rh.hit.primID) : 0.0f;
+  hit.dropout = impl_->any_dropout ? impl_->dropout(storey, rh.hit.geomID, rh.hit.primID) : 0.0f;
   return hit;
 }
 
@@ -261,8 +270,7 @@ void World::castRays16(std::size_t storey, const Eigen::Vector3f origins[16], co
     }
     hits[i].range_m = rh.ray.tfar[i];
     hits[i].normal = normalFacing({rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]}, dirs[i]);
-    const std::size_t hit_storey = storey == kAllStoreys ? (impl_->all_scene ? rh.hit.instID[0][i] : 0) : storey;
-    hits[i].dropout = impl_->any_dropout ? impl_->dropout(hit_storey, rh.hit.geomID[i], rh.hit.primID[i]) : 0.0f;
+    hits[i].dropout = impl_->any_dropout ? impl_->dropout(storey, rh.hit.geomID[i], rh.hit.primID[i]) : 0.0f;
   }
 }
 

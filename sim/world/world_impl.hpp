@@ -60,9 +60,14 @@ struct World::Impl {
   std::vector<unsigned> opaque_geometry;  // per storey: the opaque mesh's Embree geometry id
   RTCDevice device = nullptr;
   std::vector<RTCScene> scenes;
-  // Every storey's scene as an instance (identity transform; instance id = storey index):
-  // World::kAllStoreys. Null for a single storey (scenes[0] serves).
+  // Every storey's geometries in one scene: World::kAllStoreys. Null for a single storey
+  // (scenes[0] serves). all_geometry[id]: the storey and the geometry id there of its id.
   RTCScene all_scene = nullptr;
+  struct StoreyGeometry {
+    std::size_t storey = 0;
+    unsigned id = 0;
+  };
+  std::vector<StoreyGeometry> all_geometry;
   RTCScene scene(std::size_t storey) const;
   std::vector<std::unique_ptr<BulletStorey>> bullet;
 
