@@ -18,8 +18,29 @@ std::size_t defaultPrefetchChunks() {
   return static_cast<std::size_t>(n);
 }
 
-ChunkPrefetcher::ChunkPrefetcher(std::size_t count, std::size_t ahead, Load load, std::size_t workers)
-    : count_(count), ahead_(ahead), load_(std::move(load)) {
+std::vector<std::uint8_t> BufferPool::take() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (spares_.empty()) return {};
+  std::vector<std::uint8_t> b = std::move(spares_.back());
+  spares_.pop_back();
+  return b;
+}
+
+void BufferPool::give(std::vector<std::uint8_t>&& buffer) {
+  if (buffer.capacity() == 0) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (spares_.size() < most_) spares_.push_back(std::move(buffer));  // more would only hold memory
+}
+
+void BufferPool::setMost(std::size_t most) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  most_ = most;
+  if (spares_.size() > most_) spares_.resize(most_);
+}
+
+ChunkPrefetcher::ChunkPrefetcher(std::size_t count, std::size_t ahead, Load load, std::size_t workers, BufferPool* pool)
+    : count_(count), ahead_(ahead), load_(std::move(load)),
+      own_pool_(pool ? nullptr : std::make_unique<BufferPool>(ahead + 2)), pool_(pool ? pool : own_pool_.get()) {
   if (ahead_ == 0 || count_ == 0) workers = 0;
   for (std::size_t w = 0; w < std::max<std::size_t>(workers, 1); ++w) decompressors_.push_back(std::make_unique<Decompressor>());
   for (std::size_t w = 0; w < workers; ++w) {
@@ -55,8 +76,8 @@ void ChunkPrefetcher::work(Decompressor& z) {
       changed_.wait(lock, [&] { return stop_ || canClaim() || next_load_ >= count_ || next_load_ > failed_at_; });
       if (stop_ || !canClaim()) break;  // stopped, or nothing left to load
       i = next_load_++;
-      if (!pool_.empty()) slot.chunk.buffer = std::move(pool_.back()), pool_.pop_back();
     }
+    slot.chunk.buffer = pool_->take();
     try {
       load_(i, z, slot.chunk);
     } catch (...) {  // handed over as it is: the reader throws it when it reaches this chunk
@@ -80,7 +101,7 @@ LoadedChunk ChunkPrefetcher::next() {
   if (workers_.empty()) {
     if (taken_ >= count_) throw std::logic_error("ChunkPrefetcher: no chunk left");
     LoadedChunk chunk;
-    if (!pool_.empty()) chunk.buffer = std::move(pool_.back()), pool_.pop_back();
+    chunk.buffer = pool_->take();
     load_(taken_++, *decompressors_[0], chunk);
     return chunk;
   }
@@ -102,10 +123,6 @@ LoadedChunk ChunkPrefetcher::next() {
   return std::move(slot.chunk);
 }
 
-void ChunkPrefetcher::recycle(std::vector<std::uint8_t>&& buffer) {
-  if (buffer.capacity() == 0) return;
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (pool_.size() < ahead_ + 2) pool_.push_back(std::move(buffer));  // more would only hold memory
-}
+void ChunkPrefetcher::recycle(std::vector<std::uint8_t>&& buffer) { pool_->give(std::move(buffer)); }
 
 }  // namespace bimloc::sim::ros2

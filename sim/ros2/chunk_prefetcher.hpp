@@ -34,6 +34,25 @@ struct LoadedChunk {
   std::vector<McapMessage> messages;  // into `buffer` or the file, sorted by log time
 };
 
+// Buffers a reader is done with, whose capacity serves the next chunks to decompress: shared by
+// the passes of one McapReader (BagInput reads the small topics, the first cloud, then the
+// clouds), so that a pass starts on pages an earlier pass already touched instead of fresh ones
+// (each fresh 4 KiB page is a page fault, and glibc hands a freed buffer of chunk size back to
+// the kernel). Holds at most `most` buffers; safe from any thread.
+class BufferPool {
+ public:
+  explicit BufferPool(std::size_t most) : most_(most) {}
+  // A spare buffer (its capacity kept, its size whatever it was), or an empty one.
+  std::vector<std::uint8_t> take();
+  void give(std::vector<std::uint8_t>&& buffer);
+  void setMost(std::size_t most);
+
+ private:
+  std::mutex mutex_;
+  std::size_t most_;
+  std::vector<std::vector<std::uint8_t>> spares_;
+};
+
 class ChunkPrefetcher {
  public:
   // Loads the i-th chunk into `chunk` (whose buffer may hold an earlier chunk's capacity),
@@ -45,7 +64,9 @@ class ChunkPrefetcher {
   // by `workers` threads (ahead 0 or workers 0: none, each chunk is loaded by next() on the
   // calling thread: the single-threaded read). The workers start at once, on the first `ahead`
   // chunks: a read that stops early should ask for none ahead (McapReader's ReadPlan::kFirst).
-  ChunkPrefetcher(std::size_t count, std::size_t ahead, Load load, std::size_t workers = 1);
+  // `pool`: where the chunks' buffers come from and go back to (a reader's, outliving this
+  // prefetcher); nullptr: a pool of its own.
+  ChunkPrefetcher(std::size_t count, std::size_t ahead, Load load, std::size_t workers = 1, BufferPool* pool = nullptr);
   ~ChunkPrefetcher();
   ChunkPrefetcher(const ChunkPrefetcher&) = delete;
   ChunkPrefetcher& operator=(const ChunkPrefetcher&) = delete;
@@ -71,7 +92,8 @@ class ChunkPrefetcher {
   std::condition_variable changed_;
   std::map<std::size_t, Slot> ready_;  // loaded chunks by index
   std::size_t taken_ = 0, requested_ = 0, next_load_ = 0, failed_at_ = SIZE_MAX, workers_done_ = 0;
-  std::vector<std::vector<std::uint8_t>> pool_;
+  std::unique_ptr<BufferPool> own_pool_;
+  BufferPool* pool_;
   bool stop_ = false;
   std::vector<std::thread> workers_;
 };

@@ -53,7 +53,15 @@ void Decompressor::decompress(const std::string& compression, const std::uint8_t
   // The output is bounded by what the reader needs (`goal`): the whole chunk, or its prefix.
   const std::uint64_t goal = std::min(uncompressed_size, prefix);
   const bool partial = goal < uncompressed_size;
-  out.resize(static_cast<std::size_t>(std::min<std::uint64_t>(goal, std::max<std::size_t>(out.size(), 16u << 20))));
+  const std::size_t first = static_cast<std::size_t>(std::min<std::uint64_t>(goal, std::max<std::size_t>(out.size(), 16u << 20)));
+  if (first > out.capacity()) {
+    // Grown without keeping the earlier chunk's bytes (resize would copy them over, and touch
+    // twice the pages), with room for the next chunks: a writer closes a chunk once it passes
+    // its size, so the chunks of a file differ by about one message (a quarter covers it).
+    out.clear();
+    out.reserve(first + first / 4);
+  }
+  out.resize(first);
   std::size_t in_pos = 0, out_pos = 0;
   auto room = [&] {
     if (out_pos < out.size()) return true;

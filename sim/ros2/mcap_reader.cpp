@@ -36,9 +36,15 @@ McapReader::McapReader(const std::string& path) : path_(path), file_(path), pref
   // Two workers when prefetching: while the reader decodes clouds one keeps up with it; in the
   // small topics' pass, where the reader has little to do, two decompress twice as fast.
   prefetch_workers_ = std::min<std::size_t>(2, prefetch_chunks_);
+  buffers_ = std::make_unique<BufferPool>(prefetch_chunks_ + 2);
   data_end_ = file_.size();
   indexed_ = readSummary();
   if (!indexed_) scanData();
+}
+
+void McapReader::setPrefetch(std::size_t chunks, std::size_t workers) {
+  prefetch_chunks_ = chunks, prefetch_workers_ = workers;
+  buffers_->setMost(chunks + 2);
 }
 
 const mcap::Schema* McapReader::schemaOf(const mcap::Channel& c) const {
@@ -300,6 +306,7 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
   const bool prefixes = plan == ReadPlan::kSmallTopics && indexed_ && !wanted.empty();
   ChunkPrefetcher prefetcher(chunks.size(), plan == ReadPlan::kFirst ? 0 : prefetch_chunks_, [&](std::size_t i, Decompressor& z, LoadedChunk& chunk) {
     if (kept && i == kept->index) {  // (the one load that touches `kept->chunk`; the reading thread never does)
+      buffers_->give(std::move(chunk.buffer));
       chunk = std::move(kept->chunk);
       return;
     }
@@ -314,7 +321,7 @@ void McapReader::forEachMessage(const std::set<std::uint16_t>& wanted, const std
       }  // (and a prefix whose messages do not match the indexes: read whole)
     }
     chunkMessages(chunks[i], wanted, z, chunk);
-  }, prefetch_workers_);
+  }, prefetch_workers_, buffers_.get());
   // A kFirst read that stops (its visit throws) in a chunk, the only one it holds, keeps it.
   std::size_t taken = 0;
   const auto keep = [&](LoadedChunk& chunk, std::size_t index) {

@@ -32,6 +32,7 @@ struct McapMessage {
 };
 
 struct LoadedChunk;
+class BufferPool;
 
 class McapReader {
  public:
@@ -67,7 +68,7 @@ class McapReader {
   // Chunks decompressed ahead on a worker thread by forEachMessage (chunk_prefetcher.hpp; 0:
   // none, every chunk decompressed on the reading thread). The messages are the same either way.
   // `workers` threads decompress them (several chunks at once when more than 1).
-  void setPrefetch(std::size_t chunks, std::size_t workers = 1) { prefetch_chunks_ = chunks, prefetch_workers_ = workers; }
+  void setPrefetch(std::size_t chunks, std::size_t workers = 1);
   std::size_t prefetchChunks() const { return prefetch_chunks_; }
   // How many chunks the reads so far have loaded (decompressed, or read in place, and indexed).
   std::uint64_t chunkLoads() const { return chunk_loads_.load(std::memory_order_relaxed); }
@@ -97,6 +98,9 @@ class McapReader {
   MappedFile file_;
   Decompressor decompressor_;  // the constructor's linear scan's
   std::size_t prefetch_chunks_ = 0, prefetch_workers_ = 1;
+  // The chunks' buffers, handed from pass to pass (chunk_prefetcher.hpp): as many as one pass
+  // holds at once (the chunks ahead, the one being read, one overlapping it).
+  std::unique_ptr<BufferPool> buffers_;
   std::uint64_t data_end_ = 0;  // where the data section ends (the summary or the footer)
   std::map<std::uint16_t, mcap::Schema> schemas_;
   std::map<std::uint16_t, mcap::Channel> channels_;
