@@ -70,12 +70,7 @@ bool PathEvidence::addScan(const Pose2& odom, double z_base, const std::vector<O
   if (has_last_odom_) travelled_m_ += std::hypot(odom.x() - last_odom_.x(), odom.y() - last_odom_.y());
   has_last_odom_ = true;
   last_odom_ = odom;
-  if (!scans_.empty()) {
-    const Pose2& last = scans_.back().odom;
-    const bool moved = std::hypot(odom.x() - last.x(), odom.y() - last.y()) >= config_.evidence_spacing_m ||
-                       std::abs(wrapAngle(odom.z() - last.z())) >= config_.evidence_spacing_deg * M_PI / 180.0;
-    if (!moved) return false;
-  }
+  if (!wouldJoin(odom)) return false;
   scans_.push_back({odom, z_base, observations, travelled_m_, free_space_map_ && profile ? *profile : RangeProfile{}});
   for (auto& c : candidates_) {
     ScanScore s = scoreOn(c.T_map_odom, scans_.back(), true);
@@ -86,6 +81,13 @@ bool PathEvidence::addScan(const Pose2& odom, double z_base, const std::vector<O
   dropOldScans();
   for (auto& c : candidates_) c.log_likelihood = total(c.matched_sum, c.out_of_rooms);
   return true;
+}
+
+bool PathEvidence::wouldJoin(const Pose2& odom) const {
+  if (scans_.empty()) return true;
+  const Pose2& last = scans_.back().odom;
+  return std::hypot(odom.x() - last.x(), odom.y() - last.y()) >= config_.evidence_spacing_m ||
+         std::abs(wrapAngle(odom.z() - last.z())) >= config_.evidence_spacing_deg * M_PI / 180.0;
 }
 
 void PathEvidence::dropOldScans() {

@@ -114,6 +114,8 @@ class PathEvidence {
   // `profile` (may be null or empty): the scan's range profile, for the free-space evidence.
   bool addScan(const Pose2& odom, double z_base, const std::vector<Observation>& observations,
                const RangeProfile* profile = nullptr);
+  // Whether a scan at odometry pose `odom` would join the window now (addScan's test).
+  bool wouldJoin(const Pose2& odom) const;
   // The map pose `map_pose` of the base, at odometry pose `odom`, as a candidate. Near an
   // existing candidate, the better of the two stays.
   void propose(const Pose2& map_pose, const Pose2& odom);
