@@ -49,7 +49,11 @@ PathEvidence::PathEvidence(const bim::Storey& storey, const ParticleFilterConfig
 }
 
 PathEvidence::ScanScore PathEvidence::scoreOn(const Pose2& T_map_odom, const Scan& scan, bool detailed) const {
-  const Pose2 pose = compose(T_map_odom, scan.odom);
+  return scoreOn(T_map_odom, std::cos(T_map_odom.z()), std::sin(T_map_odom.z()), scan, detailed);
+}
+
+PathEvidence::ScanScore PathEvidence::scoreOn(const Pose2& T_map_odom, double c, double s_yaw, const Scan& scan, bool detailed) const {
+  const Pose2 pose = compose(T_map_odom, c, s_yaw, scan.odom);
   Particle p;
   p.x = pose.x(), p.y = pose.y(), p.yaw = pose.z(), p.room = rooms_.roomAt(pose.x(), pose.y());
   ScanScore s;
@@ -112,8 +116,9 @@ std::optional<PathEvidence::Candidate> PathEvidence::scoredAbove(const Pose2& T_
                                                                  bool or_equal) const {
   Candidate c;
   c.T_map_odom = T_map_odom;
+  const double cos_yaw = std::cos(T_map_odom.z()), sin_yaw = std::sin(T_map_odom.z());  // one transform, every scan
   for (const auto& scan : scans_) {
-    ScanScore s = scoreOn(T_map_odom, scan, detailed);
+    ScanScore s = scoreOn(T_map_odom, cos_yaw, sin_yaw, scan, detailed);
     c.matched_sum += s.matched;
     c.out_of_rooms += s.out_of_rooms ? 1 : 0;
     if (detailed) c.per_scan.push_back(std::move(s));
