@@ -57,6 +57,11 @@ MethodRun::MethodRun(const Scenario& s, const World& plan, const Simulator& sim,
   r_.method = toString(config.method);
   if (!r_.storey_auto) config.storey = storeyKey(building, sim.storey());
   config.points_deskewed = s.sensor.deskew && s.sensor.motion_distortion;  // as the loop gives them (run_scenario.cpp)
+  // The guide's goal is read only by a base that walks by it (motion disambiguate: GuidedWalk);
+  // a tour never reads it, and no report, trace or picture shows it, while planning it cost an
+  // eighth of a 100-room floor's search (docs/results/2026-11-28-h28speed9.md). The places are
+  // listed either way (the trace and the end of a run show them): only the goal is not planned.
+  config.guide.enabled = config.guide.enabled && s.motion.disambiguate;
   if (s.barometer.enabled) barometer_.emplace(s.barometer, s.seed);
   try {
     localizer_.emplace(building, s.sensor.T_base_lidar, config);

@@ -49,6 +49,7 @@ std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
           {"injection_fraction", &c.injection_fraction, closed(0, 1)},
           {"injection_margin", &c.injection_margin, closed(0, 1e6)},
           {"max_hypotheses", &c.max_hypotheses, closed(1, 1e6)},
+          {"seeds_on_window_scans", &c.seeds_on_window_scans},
           {"evidence_faces", &c.evidence_faces, closed(0, 100)},
           {"evidence_window_m", &c.evidence_window_m, positive(1000)},
           {"evidence_max_scans", &c.evidence_max_scans, closed(1, 1e5)},

@@ -15,6 +15,9 @@ std::vector<detail::Hypothesis> ParticleFilter::Impl::seedHypotheses(const std::
                                                                      double z, UpdateReport& report) {
   std::vector<detail::Hypothesis> hyps;
   if (!config.use_hypotheses) return hyps;
+  // Between two of the window's scans, the seeds would propose the last one's places again
+  // (ParticleFilterConfig::seeds_on_window_scans); the first weighing always seeds.
+  if (config.seeds_on_window_scans && weighed_once && !evidence.wouldJoin(planarPose(odom))) return hyps;
   hyps = detail::poseHypotheses(observations, z, rooms, config, static_cast<std::size_t>(config.max_hypotheses));
   if (prior.active())  // no pose the prior rules out, not even as a seed
     hyps.erase(std::remove_if(hyps.begin(), hyps.end(), [&](const detail::Hypothesis& h) { return !admitted({h.x, h.y, h.yaw}); }),

@@ -104,7 +104,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     int best_face = -1;
     bool best_filling = false;
     const Landmark* best_landmark = nullptr;
-    const auto consider = [&](const Landmark& l) {
+    const auto consider = [&](const Landmark& l) __attribute__((always_inline)) {
       if (l.axis != axis) return;  // the paper's semantic classes: x walls with x walls
       if (!atFaceHeight(o, l, z_base)) return;  // a wall above (or below) what the scan saw of it
       // Paper Eq. (plane error): the squared Mahalanobis distance of the minimal planes, with

@@ -49,7 +49,11 @@ PathEvidence::PathEvidence(const bim::Storey& storey, const ParticleFilterConfig
 }
 
 PathEvidence::ScanScore PathEvidence::scoreOn(const Pose2& T_map_odom, const Scan& scan, bool detailed) const {
-  const Pose2 pose = compose(T_map_odom, scan.odom);
+  return scoreOn(T_map_odom, std::cos(T_map_odom.z()), std::sin(T_map_odom.z()), scan, detailed);
+}
+
+PathEvidence::ScanScore PathEvidence::scoreOn(const Pose2& T_map_odom, double c, double s_yaw, const Scan& scan, bool detailed) const {
+  const Pose2 pose = compose(T_map_odom, c, s_yaw, scan.odom);
   Particle p;
   p.x = pose.x(), p.y = pose.y(), p.yaw = pose.z(), p.room = rooms_.roomAt(pose.x(), pose.y());
   ScanScore s;
@@ -70,12 +74,7 @@ bool PathEvidence::addScan(const Pose2& odom, double z_base, const std::vector<O
   if (has_last_odom_) travelled_m_ += std::hypot(odom.x() - last_odom_.x(), odom.y() - last_odom_.y());
   has_last_odom_ = true;
   last_odom_ = odom;
-  if (!scans_.empty()) {
-    const Pose2& last = scans_.back().odom;
-    const bool moved = std::hypot(odom.x() - last.x(), odom.y() - last.y()) >= config_.evidence_spacing_m ||
-                       std::abs(wrapAngle(odom.z() - last.z())) >= config_.evidence_spacing_deg * M_PI / 180.0;
-    if (!moved) return false;
-  }
+  if (!wouldJoin(odom)) return false;
   scans_.push_back({odom, z_base, observations, travelled_m_, free_space_map_ && profile ? *profile : RangeProfile{}});
   for (auto& c : candidates_) {
     ScanScore s = scoreOn(c.T_map_odom, scans_.back(), true);
@@ -86,6 +85,13 @@ bool PathEvidence::addScan(const Pose2& odom, double z_base, const std::vector<O
   dropOldScans();
   for (auto& c : candidates_) c.log_likelihood = total(c.matched_sum, c.out_of_rooms);
   return true;
+}
+
+bool PathEvidence::wouldJoin(const Pose2& odom) const {
+  if (scans_.empty()) return true;
+  const Pose2& last = scans_.back().odom;
+  return std::hypot(odom.x() - last.x(), odom.y() - last.y()) >= config_.evidence_spacing_m ||
+         std::abs(wrapAngle(odom.z() - last.z())) >= config_.evidence_spacing_deg * M_PI / 180.0;
 }
 
 void PathEvidence::dropOldScans() {
@@ -110,8 +116,9 @@ std::optional<PathEvidence::Candidate> PathEvidence::scoredAbove(const Pose2& T_
                                                                  bool or_equal) const {
   Candidate c;
   c.T_map_odom = T_map_odom;
+  const double cos_yaw = std::cos(T_map_odom.z()), sin_yaw = std::sin(T_map_odom.z());  // one transform, every scan
   for (const auto& scan : scans_) {
-    ScanScore s = scoreOn(T_map_odom, scan, detailed);
+    ScanScore s = scoreOn(T_map_odom, cos_yaw, sin_yaw, scan, detailed);
     c.matched_sum += s.matched;
     c.out_of_rooms += s.out_of_rooms ? 1 : 0;
     if (detailed) c.per_scan.push_back(std::move(s));

@@ -114,6 +114,8 @@ class PathEvidence {
   // `profile` (may be null or empty): the scan's range profile, for the free-space evidence.
   bool addScan(const Pose2& odom, double z_base, const std::vector<Observation>& observations,
                const RangeProfile* profile = nullptr);
+  // Whether a scan at odometry pose `odom` would join the window now (addScan's test).
+  bool wouldJoin(const Pose2& odom) const;
   // The map pose `map_pose` of the base, at odometry pose `odom`, as a candidate. Near an
   // existing candidate, the better of the two stays.
   void propose(const Pose2& map_pose, const Pose2& odom);
@@ -183,6 +185,8 @@ class PathEvidence {
     std::deque<ScanScore> per_scan;  // aligned with scans_
   };
   ScanScore scoreOn(const Pose2& T_map_odom, const Scan& scan, bool detailed) const;
+  // The same with the cosine and sine of T_map_odom's heading given (the same numbers).
+  ScanScore scoreOn(const Pose2& T_map_odom, double cos_yaw, double sin_yaw, const Scan& scan, bool detailed) const;
   Candidate scored(const Pose2& T_map_odom, bool detailed = true) const;
   // The same, or nothing as soon as the scans scored so far prove the total below `floor`
   // (with `or_equal`: at or below it). Each scan adds a term <= 0 and the room prior only

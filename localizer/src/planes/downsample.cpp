@@ -25,8 +25,10 @@ Cloud voxelDownsample(const Cloud& points, double voxel_size_m) {
   if (points.empty() || !(voxel_size_m > 0)) return points;
   applyPclVerbosity();
   pcl::PointCloud<pcl::PointXYZ>::Ptr input(new pcl::PointCloud<pcl::PointXYZ>);
-  input->reserve(points.size());
-  for (const auto& p : points) input->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  // Sized once and filled (PointCloud::push_back updates width and height at every point): the
+  // same points, width and height.
+  input->resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) (*input)[i] = pcl::PointXYZ(points[i].x(), points[i].y(), points[i].z());
   // VoxelGrid sorts the points by voxel index: the output order depends only on the input.
   pcl::VoxelGrid<pcl::PointXYZ> grid;
   grid.setInputCloud(input);

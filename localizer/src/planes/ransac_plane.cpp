@@ -115,8 +115,8 @@ struct RansacCloud::Points {
 };
 
 RansacCloud::RansacCloud(const Cloud& cloud) : cloud_(&cloud), points_(std::make_unique<Points>()) {
-  points_->cloud->reserve(cloud.size());
-  for (const auto& p : cloud) points_->cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  points_->cloud->resize(cloud.size());  // filled in place: as push_back, without its bookkeeping per point
+  for (std::size_t i = 0; i < cloud.size(); ++i) (*points_->cloud)[i] = pcl::PointXYZ(cloud[i].x(), cloud[i].y(), cloud[i].z());
 }
 RansacCloud::~RansacCloud() = default;
 

@@ -42,11 +42,14 @@ T wrapAngle(const T& a) {
   return atan2(sin(a), cos(a));
 }
 
-// a (+) b: b expressed in a's frame, brought into a's parent frame.
-inline PlanarPose compose(const PlanarPose& a, const PlanarPose& b) {
-  const double c = std::cos(a.z()), s = std::sin(a.z());
+// a (+) b with c, s = cos, sin of a's heading given: one pose a composed with many (the same
+// numbers as compose, without the cosine and sine each time).
+inline PlanarPose compose(const PlanarPose& a, double c, double s, const PlanarPose& b) {
   return {a.x() + c * b.x() - s * b.y(), a.y() + s * b.x() + c * b.y(), wrapAngle(a.z() + b.z())};
 }
+
+// a (+) b: b expressed in a's frame, brought into a's parent frame.
+inline PlanarPose compose(const PlanarPose& a, const PlanarPose& b) { return compose(a, std::cos(a.z()), std::sin(a.z()), b); }
 
 // a^-1, so that compose(a, inverse(a)) is the identity.
 inline PlanarPose inverse(const PlanarPose& a) {

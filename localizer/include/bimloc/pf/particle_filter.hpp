@@ -64,6 +64,17 @@ struct ParticleFilterConfig {
   double injection_fraction = 0.1;
   double injection_margin = 2.0;
   int max_hypotheses = 1000;
+  // The seeds (the global search over every room) only on the scans that join the path
+  // evidence's window (evidence_spacing_m / _deg), and at the first weighing: the places they
+  // propose are transforms map <- odom, which the odometry leaves fixed, and the evidence judges
+  // them on its window's scans only. A scan between two of those sees the walls the last one saw
+  // from under evidence_spacing_m away: its places are the window scan's, proposed again. The
+  // search is what grows with the building (issue 28, Speed); the convergence test's own search
+  // over every face (PathEvidence::proposeEveryFit) runs whatever this says. False (the
+  // default): every weighing. Off by default: on 8 new generated floors it localized one start
+  // more and none falsely, but one start decided 9.9 s later and the median moved from 9.35 to
+  // 9.5 s (docs/results/2026-11-28-h28speed9.md).
+  bool seeds_on_window_scans = false;
   // Path evidence (beyond the paper): no convergence until the recent path fits the estimate
   // better than any other place of the storey, and when it does, particles go there. A single
   // scan cannot tell look-alike rooms apart; the path through the building can. The margin is
