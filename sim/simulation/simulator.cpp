@@ -49,6 +49,11 @@ LidarScan Simulator::turn(std::size_t turn) const {
   return lidar_.scan(world_, lidarStorey(), pose, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
 }
 
+LidarScan Simulator::turnOnItsStoreyAlone(std::size_t turn) const {
+  const auto pose = [this](double t) { return trajectory_.T_map_base(t); };
+  return lidar_.scan(world_, storey_, pose, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
+}
+
 LidarScan Simulator::turnAlong(std::size_t turn, const std::function<Eigen::Isometry3d(double)>& T_map_base) const {
   return lidar_.scan(world_, lidarStorey(), T_map_base, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
 }

@@ -42,6 +42,9 @@ class Simulator {
   std::size_t turnCount() const;
   double turnStamp(std::size_t turn) const;
   LidarScan turn(std::size_t turn) const;  // thread-safe
+  // The same turn, the same noise, cast into the start storey's elements alone: what one
+  // storey's plan can explain (a test of the filter's faces), not what a robot sees.
+  LidarScan turnOnItsStoreyAlone(std::size_t turn) const;
   // The same turn with the base moving along `T_map_base` instead of the planned trajectory
   // (a base steered while it runs: motion.disambiguate); the same noise as turn().
   LidarScan turnAlong(std::size_t turn, const std::function<Eigen::Isometry3d(double)>& T_map_base) const;
