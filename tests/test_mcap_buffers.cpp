@@ -35,8 +35,8 @@ TEST(McapBuffers, OneBufferThroughGrowingAndShrinkingChunksGivesEachChunksBytes)
     ros2::Decompressor z;
     std::vector<std::uint8_t> buffer;
     for (std::size_t k = 0; k < sizes.size(); ++k) {
-      // (An empty LZ4 frame is refused, "ERROR_frameSize_wrong", on main too: left, docs/results/2026-11-28-h29zstd.md.)
-      if (compression == "lz4" && sizes[k] == 0) continue;
+      // The empty chunk follows a prefix read: with liblz4's context reused after a frame left
+      // mid-way, this empty LZ4 frame was refused ("ERROR_frameSize_wrong").
       const std::vector<std::uint8_t> raw = chunkBytes(sizes[k], rng);
       const std::vector<std::uint8_t> packed = ros2::compress(compression, raw);
       const std::string what = "'" + compression + "' chunk " + std::to_string(k) + " of " + std::to_string(raw.size()) + " bytes";

@@ -95,14 +95,28 @@ void Decompressor::decompress(const std::string& compression, const std::uint8_t
       contexts_->lz4.reset(raw);
     }
     LZ4F_dctx* ctx = contexts_->lz4.get();
-    LZ4F_resetDecompressionContext(ctx);  // a damaged chunk before left it mid-frame
+    LZ4F_resetDecompressionContext(ctx);
+    // A frame left mid-way (a prefix read, a damaged chunk) leaves state that the reset above
+    // does not clear in liblz4 1.9.4: the frame's remaining content size, which the next frame,
+    // if its header declares no size (an empty chunk), inherits and is refused with
+    // ERROR_frameSize_wrong. So such a context is dropped and the next chunk makes a new one.
+    struct DropUnlessDone {
+      std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)>& context;
+      bool done = false;
+      ~DropUnlessDone() {
+        if (!done) context.reset();
+      }
+    } guard{contexts_->lz4};
     while (true) {
       const bool more_room = room();
       std::size_t in_n = size - in_pos, out_n = more_room ? out.size() - out_pos : 0;
       const std::size_t hint = LZ4F_decompress(ctx, out.data() + out_pos, &out_n, data + in_pos, &in_n, nullptr);
       if (LZ4F_isError(hint)) throw fail(std::string("does not decompress: ") + LZ4F_getErrorName(hint));
       in_pos += in_n, out_pos += out_n;
-      if (hint == 0) break;  // the frame is complete
+      if (hint == 0) {  // the frame is complete
+        guard.done = true;
+        break;
+      }
       if (partial && out_pos >= goal) break;  // as much as the reader needs
       if (in_n == 0 && out_n == 0) {
         if (!more_room) throw fail("decompresses to more than the " + std::to_string(uncompressed_size) + " bytes it declares");
