@@ -27,6 +27,11 @@ constexpr std::uint64_t kLargestChunkBytes = std::uint64_t{1} << 30;
 struct Decompressor::Contexts {
   std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> zstd{nullptr, ZSTD_freeDCtx};
   std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> lz4{nullptr, LZ4F_freeDecompressionContext};
+  // The LZ4 context was left in mid-frame (a prefix read, a damaged chunk): liblz4 1.9.4's
+  // LZ4F_resetDecompressionContext does not clear the frame's remaining content size, which the
+  // next frame, if its header declares no size (an empty chunk), inherits and is refused with
+  // ERROR_frameSize_wrong. Such a context is replaced by a new one, not reset.
+  bool lz4_mid_frame = false;
 };
 
 Decompressor::Decompressor() : contexts_(std::make_unique<Contexts>()) {}
@@ -89,24 +94,13 @@ void Decompressor::decompress(const std::string& compression, const std::uint8_t
       if (!progressed) throw fail("the zstd data ends early (" + std::to_string(in_pos) + " of " + std::to_string(size) + " bytes read)");
     }
   } else {
-    if (!contexts_->lz4) {
+    if (!contexts_->lz4 || contexts_->lz4_mid_frame) {
       LZ4F_dctx* raw = nullptr;
       if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) throw fail("no LZ4 context");
       contexts_->lz4.reset(raw);
     }
     LZ4F_dctx* ctx = contexts_->lz4.get();
-    LZ4F_resetDecompressionContext(ctx);
-    // A frame left mid-way (a prefix read, a damaged chunk) leaves state that the reset above
-    // does not clear in liblz4 1.9.4: the frame's remaining content size, which the next frame,
-    // if its header declares no size (an empty chunk), inherits and is refused with
-    // ERROR_frameSize_wrong. So such a context is dropped and the next chunk makes a new one.
-    struct DropUnlessDone {
-      std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)>& context;
-      bool done = false;
-      ~DropUnlessDone() {
-        if (!done) context.reset();
-      }
-    } guard{contexts_->lz4};
+    contexts_->lz4_mid_frame = true;
     while (true) {
       const bool more_room = room();
       std::size_t in_n = size - in_pos, out_n = more_room ? out.size() - out_pos : 0;
@@ -114,7 +108,7 @@ void Decompressor::decompress(const std::string& compression, const std::uint8_t
       if (LZ4F_isError(hint)) throw fail(std::string("does not decompress: ") + LZ4F_getErrorName(hint));
       in_pos += in_n, out_pos += out_n;
       if (hint == 0) {  // the frame is complete
-        guard.done = true;
+        contexts_->lz4_mid_frame = false;
         break;
       }
       if (partial && out_pos >= goal) break;  // as much as the reader needs

@@ -45,17 +45,20 @@ std::size_t Simulator::turnCount() const {
 double Simulator::turnStamp(std::size_t turn) const { return static_cast<double>(turn) * lidar_.turnPeriod_s(); }
 
 LidarScan Simulator::turn(std::size_t turn) const {
-  const auto pose = [this](double t) { return trajectory_.T_map_base(t); };
-  return lidar_.scan(world_, lidarStorey(), pose, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
+  return cast(turn, lidarStorey(), [this](double t) { return trajectory_.T_map_base(t); });
 }
 
 LidarScan Simulator::turnOnItsStoreyAlone(std::size_t turn) const {
-  const auto pose = [this](double t) { return trajectory_.T_map_base(t); };
-  return lidar_.scan(world_, storey_, pose, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
+  return cast(turn, storey_, [this](double t) { return trajectory_.T_map_base(t); });
 }
 
 LidarScan Simulator::turnAlong(std::size_t turn, const std::function<Eigen::Isometry3d(double)>& T_map_base) const {
-  return lidar_.scan(world_, lidarStorey(), T_map_base, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
+  return cast(turn, lidarStorey(), T_map_base);
+}
+
+LidarScan Simulator::cast(std::size_t turn, std::size_t storey, const std::function<Eigen::Isometry3d(double)>& T_map_base) const {
+  // Every form of a turn draws the same noise: the lidar's stream, seeded by the turn.
+  return lidar_.scan(world_, storey, T_map_base, turnStamp(turn), streamSeed(scenario_.seed, kLidarStream), turn);
 }
 
 NoisyOdometry Simulator::odometryModel(double floor_z) const {

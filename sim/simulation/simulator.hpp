@@ -63,6 +63,9 @@ class Simulator {
   Eigen::Isometry3d T_map_odom_true() const;
 
  private:
+  // Turn `turn` cast into `storey`'s scene (or World::kAllStoreys) with the base along T_map_base.
+  LidarScan cast(std::size_t turn, std::size_t storey, const std::function<Eigen::Isometry3d(double)>& T_map_base) const;
+
   const Scenario& scenario_;
   std::unique_ptr<const World> site_;  // the site's world, when it differs from the plan
   const World& world_;
