@@ -248,3 +248,30 @@ TEST(Oracle, PathBoundIsNeverBelowTheScoreOfAnyStartInItsBox) {
         ASSERT_LE(field.codeDistance(field.minCodeOver(x0, y0, x1, y1)), least) << "box " << boxes;
       }
 }
+
+// A split level: the oracle's map of a storey holds every wall standing in its band, whichever
+// storey the plan files it under (withEveryWall), and none of the storeys above or below.
+TEST(Oracle, AStoreysMapHoldsTheWallsOfOtherStoreysThatStandInItsBand) {
+  const auto lifted = [](bim::Wall w, double z0, double height_m) {
+    for (Eigen::Vector3d* p : {&w.start, &w.end, &w.faces[0].start, &w.faces[0].end, &w.faces[1].start, &w.faces[1].end})
+      p->z() = z0;
+    w.height_m = height_m;
+    return w;
+  };
+  bim::Building b;
+  b.storeys.resize(3);
+  b.storeys[0].elevation_m = 0.0, b.storeys[1].elevation_m = 0.9, b.storeys[2].elevation_m = 3.0;
+  b.storeys[0].walls = {lifted(test::boxWall("L0", {0, 0}, {4, 0}, 0.2), 0.0, 2.6)};
+  b.storeys[1].walls = {lifted(test::boxWall("H", {0, 5}, {4, 5}, 0.2), 0.9, 2.0)};   // 0.9-2.9 m
+  b.storeys[2].walls = {lifted(test::boxWall("L1", {0, 9}, {4, 9}, 0.2), 3.0, 2.6)};  // 3.0-5.6 m
+  const OracleConfig c;
+  const auto facesIn = [&](std::size_t s) {
+    const bim::Storey map = withEveryWall(b, s);
+    EXPECT_EQ(map.walls.front().id, b.storeys[s].walls.front().id);  // its own first
+    const double floor = b.storeys[s].elevation_m;
+    return wallSegmentsInBand(map, floor + c.band_low_m, floor + c.band_high_m).size();
+  };
+  EXPECT_EQ(facesIn(0), 4u);  // level 0's two faces and the half level's (0.9-2.9 m cross 0.3-1.8 m)
+  EXPECT_EQ(facesIn(1), 4u);  // the half level's and level 0's (0-2.6 m cross 1.2-2.7 m)
+  EXPECT_EQ(facesIn(2), 2u);  // level 1's alone: nothing below reaches 3.3 m
+}

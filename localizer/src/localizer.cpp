@@ -2,6 +2,8 @@
 
 #include <bimloc/geometry/planar_pose.hpp>
 
+#include <bimloc/bim/standing_walls.hpp>
+
 #include "peers/peer.hpp"
 #include "pf/filter_access.hpp"
 #include "storeys/altitude_mean.hpp"
@@ -49,6 +51,14 @@ Eigen::Matrix3d particleCovariance(const pf::ParticleFilter& filter) {
   return cov;
 }
 
+// The plan each storey's stages localize in: with the walls of other storeys that stand in its
+// band when `standing` (split levels), else as filed.
+bim::Building sensedPlan(const bim::Building& plan, bool standing, bim::StandingWallsReport& report) {
+  if (standing) return bim::withStandingWalls(plan, {}, &report);
+  report.added.assign(plan.storeys.size(), 0);
+  return bim::withStandingWalls(plan, {0.0, 0.0, 1e300});  // no wall overlaps a band by 1e300 m
+}
+
 }  // namespace
 
 const char* toString(LocalizerMethod method) {
@@ -84,6 +94,10 @@ const char* toString(LocalizationState state) {
 }
 
 struct Localizer::Impl {
+  // The plan as the robot senses it: each storey with the walls of other storeys that stand in
+  // its band (bim/standing_walls.hpp); every stage reads `building`, which is this.
+  bim::StandingWallsReport standing;
+  bim::Building sensed;
   const bim::Building& building;
   Eigen::Isometry3d T_base_lidar;
   LocalizerConfig config;
@@ -140,7 +154,8 @@ struct Localizer::Impl {
   bool places_due = false;          // ... on this step: the kept places are replaced
 
   Impl(const bim::Building& b, const Eigen::Isometry3d& mount, const LocalizerConfig& c)
-      : building(b), T_base_lidar(mount), config(seeded(c)), follower(b, c.storeys) {}
+      : sensed(sensedPlan(b, c.storeys.standing_walls, standing)), building(sensed), T_base_lidar(mount), config(seeded(c)),
+        follower(sensed, c.storeys) {}
 
   bool usesTracker() const { return config.method == LocalizerMethod::SGraph; }
   bool lost() const { return tracker && tracker->state() == sgraph::TrackingState::Lost; }
@@ -188,7 +203,11 @@ Localizer::Localizer(const bim::Building& building, const Eigen::Isometry3d& T_b
     m.filter_active = false;
     return;
   }
-  m.bank = std::make_unique<pf::StoreyBank>(building, m.storeys, m.T_base_lidar, m.config.pf);
+  for (std::size_t s = 0; s < m.standing.added.size(); ++s)
+    if (m.standing.added[s] > 0)
+      m.warnings.push_back("storey '" + building.storeys[s].name + "': " + std::to_string(m.standing.added[s]) +
+                           " walls filed under other storeys stand in its wall band: added to its map");
+  m.bank = std::make_unique<pf::StoreyBank>(m.building, m.storeys, m.T_base_lidar, m.config.pf);
 }
 
 Localizer::~Localizer() = default;

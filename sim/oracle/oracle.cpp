@@ -92,6 +92,15 @@ double decisionThreshold(double free_area_m2, const OracleConfig& c, double* pla
   return std::log(m / c.alpha);
 }
 
+bim::Storey withEveryWall(const bim::Building& building, std::size_t storey) {
+  bim::Storey out;
+  const bim::Storey& own = building.storeys.at(storey);
+  out.id = own.id, out.name = own.name, out.elevation_m = own.elevation_m, out.rooms = own.rooms, out.walls = own.walls;
+  for (std::size_t s = 0; s < building.storeys.size(); ++s)
+    if (s != storey) out.walls.insert(out.walls.end(), building.storeys[s].walls.begin(), building.storeys[s].walls.end());
+  return out;
+}
+
 OracleVerdict decideWhen(const bim::Storey& storey, double floor_z, const std::vector<Keyframe>& keyframes,
                          const Eigen::Vector3d& truth_start, const OracleConfig& config) {
   const auto start = std::chrono::steady_clock::now();

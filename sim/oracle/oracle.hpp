@@ -58,6 +58,12 @@ struct OracleVerdict {
 // The threshold ln(M / alpha) for M rival places on free_area_m2 (docs/oracle.md).
 double decisionThreshold(double free_area_m2, const OracleConfig& config, double* places = nullptr);
 
+// The storey as the oracle's map: its own rooms and walls, then every other storey's walls, of
+// which the band (wallSegmentsInBand) keeps those that stand where a robot on this storey
+// senses walls. A plan files each wall under one storey; a split level's stand beside another's
+// floor (Jesse.1), and the lidar sees them whichever storey the file names.
+bim::Storey withEveryWall(const bim::Building& building, std::size_t storey);
+
 // The verdict for a run on `storey` whose base started at truth_start (x, y, yaw) and kept
 // `keyframes`; floor_z: the floor's world z under the start (the band is above it).
 OracleVerdict decideWhen(const bim::Storey& storey, double floor_z, const std::vector<Keyframe>& keyframes,

@@ -136,7 +136,8 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   const double t_end = sim.lidar().turnPeriod_s() * (static_cast<double>(sim.turnCount()) - 0.5);
   const Eigen::Isometry3d truth_end = truthAt(std::max(0.0, t_end));
   std::optional<oracle::OracleVerdict> verdict;
-  if (keyframes) verdict = oracle::decideWhen(storey, floor_z, keyframes->keyframes(), truth_start);
+  if (keyframes)
+    verdict = oracle::decideWhen(oracle::withEveryWall(world.building(), sim.storey()), floor_z, keyframes->keyframes(), truth_start);
   std::vector<ScenarioResult> results;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     ScenarioResult r = runs[k].finish(t_end, truth_end, hookOf(k));

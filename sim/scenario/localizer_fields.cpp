@@ -86,6 +86,7 @@ std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
 
 std::vector<Field> storeyFields(storeys::StoreyFollowConfig& c) {
   return {{"follow", &c.follow},
+          {"standing_walls", &c.standing_walls},
           {"floor_tolerance_m", &c.floor_tolerance_m, positive(100)},
           {"settled_window_s", &c.settled_window_s, positive(600)},
           {"settled_rise_m", &c.settled_rise_m, positive(10)},

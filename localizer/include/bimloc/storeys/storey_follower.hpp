@@ -22,6 +22,9 @@ namespace bimloc::storeys {
 
 struct StoreyFollowConfig {
   bool follow = true;  // false: the localizer stays on the storey it converged on (as before issue 31)
+  // Each storey's map also holds the walls filed under other storeys that stand in its wall band
+  // (bim/standing_walls.hpp: split levels); false: the walls the file files under it, alone.
+  bool standing_walls = true;
   // The base's z within this of a storey's floor + base height: it stands on that storey.
   // Storeys are 2.5-4 m apart; a flight's last steps (and odometry's height drift over a
   // flight, a few centimetres) are well inside it, the half-way landing (1.3-1.5 m) is not.
