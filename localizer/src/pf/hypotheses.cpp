@@ -147,51 +147,21 @@ void scorePoses(std::vector<Particle>& poses, const std::vector<Observation>& ob
 // are passed over here: those tests once per observation and face, not per pair of pairs
 // (the seeds go over every room of the storey at every weighing). The poses are the same, in
 // the same order.
-// The turn test depends on the two faces' azimuths alone, and a room's faces have few distinct
-// ones (four, in a rectangular room): it is made once per pair of those azimuths (bit-equal
-// values give bit-equal tests) for each pair of observations, not once per pair of faces.
-struct AzimuthGroups {
-  std::vector<double> azimuths;    // the distinct values (by their bits), in order of first use
-  std::vector<std::size_t> group;  // per face: its value's index
-  std::vector<char> turn_fits;     // per pair of values (a, b): the turn test's verdict for this pair of observations
-  void of(const std::vector<Landmark>& marks) {
-    azimuths.clear(), group.resize(marks.size());
-    for (std::size_t a = 0; a < marks.size(); ++a) {
-      std::size_t g = 0;
-      while (g < azimuths.size() && std::memcmp(&azimuths[g], &marks[a].azimuth, sizeof(double)) != 0) ++g;
-      if (g == azimuths.size()) azimuths.push_back(marks[a].azimuth);
-      group[a] = g;
-    }
-  }
-  // fromLandmarks' test: the faces' turn is the observations' `turn`, within the tolerance.
-  void forTurn(double turn) {
-    const std::size_t n = azimuths.size();
-    turn_fits.resize(n * n);
-    for (std::size_t ga = 0; ga < n; ++ga)
-      for (std::size_t gb = 0; gb < n; ++gb)
-        turn_fits[ga * n + gb] = std::abs(wrapAngle(azimuths[gb] - azimuths[ga] - turn)) > kAngleTolerance ? 0 : 1;
-  }
-};
-
 void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
-                   const RoomIndex& rooms, double along_m, std::vector<Particle>& poses, std::vector<char>& at_height,
-                   AzimuthGroups& groups) {
+                   const RoomIndex& rooms, double along_m, std::vector<Particle>& poses, std::vector<char>& at_height) {
   const std::size_t m = marks.size();
   at_height.resize(obs.size() * m);
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t a = 0; a < m; ++a) at_height[i * m + a] = atFaceHeight(obs[i], marks[a], z) ? 1 : 0;
-  groups.of(marks);
-  const std::size_t n_groups = groups.azimuths.size();
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (!pairable(obs, i, j)) continue;
       const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
-      groups.forTurn(turn);
       for (std::size_t a = 0; a < m; ++a) {
         if (!at_height[i * m + a]) continue;
-        const char* fits = groups.turn_fits.data() + groups.group[a] * n_groups;
         for (std::size_t b = 0; b < m; ++b) {
-          if (a == b || !at_height[j * m + b] || !fits[groups.group[b]]) continue;
+          if (a == b || !at_height[j * m + b] || std::abs(wrapAngle(marks[b].azimuth - marks[a].azimuth - turn)) > kAngleTolerance)
+            continue;
           if (const auto p = solvePair(obs, i, j, marks[a], marks[b], z, room, rooms, along_m)) poses.push_back(*p);
         }
       }
@@ -249,16 +219,15 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observati
   const int room = config.use_rooms ? 0 : outside_rooms ? kAnywhere : -1;
   const double along_m = config.segment_margin_m;
   std::vector<char> at_height;
-  AzimuthGroups groups;
   if (config.use_rooms) {
     for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r)
-      fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, along_m, poses, at_height, groups);
+      fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, along_m, poses, at_height);
   } else {
     // The ablation: every room holds every face; one pass over them is enough.
     if (const FaceIndex* index = rooms.fineIndex())
       fromIndex(observations, z_base, *index, rooms, config, room, along_m, poses);
     else
-      fromLandmarks(observations, z_base, rooms.landmarks(0), room, rooms, along_m, poses, at_height, groups);
+      fromLandmarks(observations, z_base, rooms.landmarks(0), room, rooms, along_m, poses, at_height);
   }
   scorePoses(poses, observations, z_base, rooms, config, room != kAnywhere, bound, all);
   // Those below the floor are out before they are sorted: the ones the caller wants, best
