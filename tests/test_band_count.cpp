@@ -1,12 +1,17 @@
 // Issue 28, Speed (h28speed8): RANSAC's inlier count (planes/band_count.hpp), vectorized and
 // stopped once it cannot beat the best count, against the point-by-point count and against
 // points placed at known distances from their plane; and the raw returns near a plane
-// (indicesInBand) against Eigen's own n.dot(p) + d, point by point; and a wall's runs found
-// through buckets (runsAlong) against the sorted positions (runsAlongBySorting).
+// (indicesInBand) against Eigen's own n.dot(p) + d, point by point; a wall's runs found
+// through buckets (runsAlong) against the sorted positions (runsAlongBySorting); and RANSAC's
+// inliers (pclPlaneInliers, h28speed10) against PCL's own plane model.
 #include "planes/band_count.hpp"
 #include "planes/plane_steps.hpp"
 
 #include <gtest/gtest.h>
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/sample_consensus/sac_model_plane.h>
 
 #include <Eigen/Geometry>
 
@@ -133,5 +138,49 @@ TEST(BandCount, RunsFoundInBucketsAreTheSortedPositionsRuns) {
     for (int i = 0; i < static_cast<int>(cloud.size()); ++i)
       if (trial % 2 == 0 || unit(rng) < 0.7) indices.push_back(i);
     ASSERT_EQ(runsAlong(cloud, indices, dir, gap), runsAlongBySorting(cloud, indices, dir, gap)) << "trial " << trial;
+  }
+}
+
+TEST(BandCount, RansacsInliersAreThoseOfPclsOwnPlaneModel) {
+  // RANSAC's last step was PCL's SampleConsensusModelPlane::selectWithinDistance; the packed
+  // selection (pclPlaneInliers) must keep exactly its points, in its order, with its distances:
+  // random clouds, a subset of them as the pool, points on the band's edge (the rounding
+  // decides them), planes of every direction and offset, and PCL called on the same data.
+  std::mt19937 rng(1013);
+  std::uniform_real_distribution<float> xyz(-25.0f, 25.0f), unit(-1.0f, 1.0f);
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::size_t n = std::size_t(3 + trial * 13 % 2500);
+    pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+    Eigen::Vector3f normal(unit(rng), unit(rng), unit(rng));
+    normal.normalize();
+    const float d = xyz(rng);
+    const double threshold = trial % 2 ? 0.04 : 0.1 + 0.2 * std::abs(unit(rng));
+    for (std::size_t i = 0; i < n; ++i) {
+      Eigen::Vector3f p(xyz(rng), xyz(rng), xyz(rng));
+      if (i % 2 == 0) p -= (normal.dot(p) + d - float(threshold) * unit(rng) * 1.01f) * normal;  // in and on the edges
+      cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+    }
+    pcl::Indices pool;
+    for (int i = 0; i < static_cast<int>(n); ++i)
+      if (trial % 3 == 0 || unit(rng) < 0.6f) pool.push_back(i);
+    if (pool.size() < 3) continue;
+    Eigen::VectorXf model(4);
+    model << normal.x(), normal.y(), normal.z(), d;
+    pcl::SampleConsensusModelPlane<pcl::PointXYZ> pcl_model(cloud, pool, false);
+    pcl::Indices expected;
+    pcl_model.selectWithinDistance(model, threshold, expected);
+    std::vector<float> x, y, z;
+    for (const int i : pool) x.push_back((*cloud)[i].x), y.push_back((*cloud)[i].y), z.push_back((*cloud)[i].z);
+    std::vector<int> got;
+    std::vector<double> distances;
+    pclPlaneInliers(x.data(), y.data(), z.data(), pool.data(), pool.size(), model[0], model[1], model[2], model[3], threshold, got,
+                    distances);
+    ASSERT_EQ(got, expected) << "trial " << trial;
+    ASSERT_EQ(distances.size(), got.size());
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      const auto& p = (*cloud)[got[k]];
+      EXPECT_LT(distances[k], threshold);
+      EXPECT_NEAR(distances[k], std::abs(normal.dot(p.getVector3fMap()) + d), 1e-4);
+    }
   }
 }

@@ -6,7 +6,7 @@
 
 namespace bimloc::pf::detail {
 
-FaceIndex::FaceIndex(std::vector<Landmark> faces, double cell_m) : faces_(std::move(faces)), cell_m_(cell_m) {
+FaceIndex::FaceIndex(std::vector<Landmark> faces, double cell_m) : faces_(std::move(faces)), cell_m_(cell_m), per_cell_(cell_m) {
   if (faces_.empty()) return;
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   for (const auto& f : faces_) {

@@ -5,6 +5,7 @@
 // ones may be, so a match made through it is the match brute force would make.
 #pragma once
 
+#include "cell_scale.hpp"
 #include "landmark.hpp"
 
 #include <algorithm>
@@ -85,11 +86,12 @@ class FaceIndex {
     }
   }
 
-  int cellX(double x) const { return static_cast<int>(std::floor((x - origin_.x()) / cell_m_)); }
-  int cellY(double y) const { return static_cast<int>(std::floor((y - origin_.y()) / cell_m_)); }
+  int cellX(double x) const { return static_cast<int>(std::floor(per_cell_(x - origin_.x()))); }
+  int cellY(double y) const { return static_cast<int>(std::floor(per_cell_(y - origin_.y()))); }
 
   std::vector<Landmark> faces_;
   double cell_m_ = 1.0;
+  CellScale per_cell_{1.0};  // x / cell_m_, the same bits
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   int nx_ = 0, ny_ = 0;
   // The faces of each cell (whose segment passes near it), cell after cell in row-major order:

@@ -70,7 +70,7 @@ bool shareAWall(const bim::Room& a, const bim::Room& b) {
 }  // namespace
 
 RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours, double cell_m, bool index_faces)
-    : use_rooms_(use_rooms), cell_m_(cell_m) {
+    : use_rooms_(use_rooms), cell_m_(cell_m), per_cell_(cell_m) {
   // Faces inside another wall's body are no landmarks (buried_faces.hpp); ids stay 2 w + f.
   const std::vector<bool> buried = bim::buriedFaces(storey);
   const std::vector<LineSpan> lines = wallLines(storey, buried);
@@ -163,8 +163,8 @@ int RoomIndex::roomAt(double x, double y) const {
 }
 
 int RoomIndex::containing(double x, double y) const {
-  const int ix = static_cast<int>(std::floor((x - origin_.x()) / cell_m_));
-  const int iy = static_cast<int>(std::floor((y - origin_.y()) / cell_m_));
+  const int ix = static_cast<int>(std::floor(per_cell_(x - origin_.x())));
+  const int iy = static_cast<int>(std::floor(per_cell_(y - origin_.y())));
   if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_) return -1;
   if (const int sure = sure_[static_cast<std::size_t>(iy * nx_ + ix)]; sure != kUnsure) return sure;
   for (const int r : cells_[static_cast<std::size_t>(iy * nx_ + ix)])

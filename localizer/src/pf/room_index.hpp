@@ -3,6 +3,7 @@
 // faces as landmarks in the minimal form of the paper's plane error.
 #pragma once
 
+#include "cell_scale.hpp"
 #include "face_index.hpp"
 
 #include <bimloc/bim/building.hpp>
@@ -72,6 +73,7 @@ class RoomIndex {
   double filling_depth_m_ = 0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   double cell_m_ = 0.5;
+  CellScale per_cell_{0.5};  // x / cell_m_, the same bits
   int nx_ = 0, ny_ = 0;
   std::vector<std::vector<int>> cells_;  // candidate rooms per cell
   // Per cell, what containing() answers for every point of it, where that does not depend on the

@@ -150,4 +150,12 @@ std::size_t countInBandPlain(const float* x, const float* y, const float* z, std
   return count + countTail(x, y, z, packed, n, a, b, c, d, t);
 }
 
+void pclPlaneInliers(const float* x, const float* y, const float* z, const int* ids, std::size_t n, float a, float b, float c,
+                     float d, double t, std::vector<int>& ids_out, std::vector<double>& distances) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const float distance = std::abs((a * x[i] + c * z[i]) + (b * y[i] + d));  // d * 1.0f is d
+    if (static_cast<double>(distance) < t) ids_out.push_back(ids[i]), distances.push_back(static_cast<double>(distance));
+  }
+}
+
 }  // namespace bimloc::planes::detail

@@ -84,16 +84,21 @@ PlaneFit fitPlane(const Cloud& cloud, const Indices& support) {
   // One pass of first and second moments, in double about the first point (no cancellation:
   // the spread of a support is metres, its offset from the sensor tens of metres at most).
   const Eigen::Vector3d origin = cloud[support.front()].cast<double>();
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  // The first moments in three scalars, not an Eigen 3-vector: its sum compiled to two scalar
+  // stores read back by one 16-byte add, a failed store-to-load forwarding at every point (perf
+  // annotate: nearly all of this loop's time). The same additions, in the same order.
+  double sx = 0, sy = 0, sz = 0;
   // The second moments' six distinct entries (q_i q_j and q_j q_i are the same product): the
   // same sums as q q^T's nine, at two thirds of the work.
   double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
   for (const int i : support) {
-    const Eigen::Vector3d q = cloud[i].cast<double>() - origin;
-    sum += q;
-    xx += q.x() * q.x(), xy += q.x() * q.y(), xz += q.x() * q.z();
-    yy += q.y() * q.y(), yz += q.y() * q.z(), zz += q.z() * q.z();
+    const Eigen::Vector3f& p = cloud[i];
+    const double qx = double(p.x()) - origin.x(), qy = double(p.y()) - origin.y(), qz = double(p.z()) - origin.z();
+    sx += qx, sy += qy, sz += qz;
+    xx += qx * qx, xy += qx * qy, xz += qx * qz;
+    yy += qy * qy, yz += qy * qz, zz += qz * qz;
   }
+  const Eigen::Vector3d sum(sx, sy, sz);
   Eigen::Matrix3d sum2;
   sum2 << xx, xy, xz, xy, yy, yz, xz, yz, zz;
   const double n = double(support.size());

@@ -89,6 +89,15 @@ class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
     return count;
   }
 
+  // The chosen plane's inliers, as PCL selects them (band_count.hpp: the same float residual,
+  // the same test), from the packed pool rather than through the indices.
+  void selectWithinDistance(const Eigen::VectorXf& model, const double threshold, pcl::Indices& inliers) override {
+    if (!isModelValid(model)) return;  // PCL's own: an error, and the inliers left as they were
+    inliers.clear(), error_sqr_dists_.clear();
+    pclPlaneInliers(x_.data(), y_.data(), z_.data(), indices_->data(), x_.size(), model[0], model[1], model[2], model[3], threshold,
+                    inliers, error_sqr_dists_);
+  }
+
  protected:
   // PCL's test, without its message on stderr for every collinear sample (a quiet library: a
   // degenerate sample is an ordinary event of RANSAC, and the draw simply goes on).

@@ -6,6 +6,7 @@
 // whatever the sensor's noise.
 #include "band_count.hpp"
 #include "plane_steps.hpp"
+#include "select.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -30,14 +31,16 @@ Indices withinBand(const Cloud& cloud, const Indices& indices, const PlaneFit& f
 RefinedPlane refinePlane(const Cloud& cloud, const Indices& indices, double max_band_m) {
   RefinedPlane r{fitPlane(cloud, indices), indices, max_band_m};
   if (indices.size() < 3) return r;
-  std::vector<double> residuals(indices.size()), sorted;
+  std::vector<double> residuals(indices.size());
+  std::vector<std::uint64_t> scratch;
   for (int k = 0; k < kRefineIterations; ++k) {
     for (std::size_t i = 0; i < indices.size(); ++i)
       residuals[i] = std::abs(r.fit.normal.dot(cloud[indices[i]].cast<double>()) + r.fit.d);
-    sorted = residuals;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const double band = std::clamp(kCoreSigmas * kMadToSigma * sorted[sorted.size() / 2], kMinCoreBand_m, max_band_m);
+    // The median (the upper one of an even count), as nth_element finds it (select.hpp).
+    const double median = kthSmallest(residuals, residuals.size() / 2, scratch);
+    const double band = std::clamp(kCoreSigmas * kMadToSigma * median, kMinCoreBand_m, max_band_m);
     Indices core;
+    core.reserve(indices.size());
     for (std::size_t i = 0; i < indices.size(); ++i)
       if (residuals[i] <= band) core.push_back(indices[i]);
     if (core.size() < 3 || core == r.core) break;
