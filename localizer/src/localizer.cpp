@@ -99,6 +99,15 @@ struct Localizer::Impl {
   bim::StandingWallsReport standing;
   bim::Building sensed;
   const bim::Building& building;
+  // The plan as filed: a search over several storeys weighs each by the walls the plan files
+  // under it. A wall standing in two storeys' bands is evidence for both alike, and on split
+  // levels (Jesse.1) the standing walls make two storeys' maps nearly one: the walls as filed
+  // are what the plan says tells its storeys apart (docs/multi_storey.md). One storey's search
+  // (given, decided, arrived on) and its tracking use `building`.
+  const bim::Building& filed;
+  const bim::Building& mapFor(const std::vector<std::size_t>& candidates) const {
+    return candidates.size() > 1 ? filed : building;
+  }
   Eigen::Isometry3d T_base_lidar;
   LocalizerConfig config;
   std::vector<std::size_t> storeys;  // the candidates of the first search
@@ -154,7 +163,7 @@ struct Localizer::Impl {
   bool places_due = false;          // ... on this step: the kept places are replaced
 
   Impl(const bim::Building& b, const Eigen::Isometry3d& mount, const LocalizerConfig& c)
-      : sensed(sensedPlan(b, c.storeys.standing_walls, standing)), building(sensed), T_base_lidar(mount), config(seeded(c)),
+      : sensed(sensedPlan(b, c.storeys.standing_walls, standing)), building(sensed), filed(b), T_base_lidar(mount), config(seeded(c)),
         follower(sensed, c.storeys) {}
 
   bool usesTracker() const { return config.method == LocalizerMethod::SGraph; }
@@ -207,7 +216,7 @@ Localizer::Localizer(const bim::Building& building, const Eigen::Isometry3d& T_b
     if (m.standing.added[s] > 0)
       m.warnings.push_back("storey '" + building.storeys[s].name + "': " + std::to_string(m.standing.added[s]) +
                            " walls filed under other storeys stand in its wall band: added to its map");
-  m.bank = std::make_unique<pf::StoreyBank>(m.building, m.storeys, m.T_base_lidar, m.config.pf);
+  m.bank = std::make_unique<pf::StoreyBank>(m.mapFor(m.storeys), m.storeys, m.T_base_lidar, m.config.pf);
 }
 
 Localizer::~Localizer() = default;
@@ -379,7 +388,7 @@ void Localizer::Impl::firstStep(const Eigen::Isometry3d& T_odom_base, Localizati
     r.warnings.push_back("altitude " + std::to_string(altitude->altitude_m) + " m fits no storey's floor: not used to choose the storey");
   } else if (kept.size() < storeys.size()) {
     storeys = kept;
-    bank = std::make_unique<pf::StoreyBank>(building, storeys, T_base_lidar, config.pf);
+    bank = std::make_unique<pf::StoreyBank>(mapFor(storeys), storeys, T_base_lidar, config.pf);
   }
 }
 
@@ -438,7 +447,7 @@ void Localizer::Impl::followSearch(double stamp_s, const Eigen::Isometry3d& odom
   pf::ParticleFilterConfig c = config.pf;
   c.prior_rooms = storeys::landingRooms(building, next, rise > 0, kLandingReachM);
   c.prior_pose.reset();
-  bank = std::make_unique<pf::StoreyBank>(building, next, T_base_lidar, c);
+  bank = std::make_unique<pf::StoreyBank>(mapFor(next), next, T_base_lidar, c);
   Eigen::Isometry3d now = odom;
   now.translation().z() -= rise;
   bank->predict(now);
