@@ -69,6 +69,13 @@ bim::Wall boxWall(const std::string& id, const Eigen::Vector2d& a, const Eigen::
   return w;
 }
 
+bim::Wall liftedWall(bim::Wall w, double z0_m, double height_m) {
+  for (Eigen::Vector3d* p : {&w.start, &w.end, &w.faces[0].start, &w.faces[0].end, &w.faces[1].start, &w.faces[1].end})
+    p->z() = z0_m;
+  w.height_m = height_m;
+  return w;
+}
+
 bim::Room boxRoom(const std::string& name, double x0, double y0, double x1, double y1, const std::vector<bim::RoomWall>& walls) {
   bim::Room r;
   r.id = r.name = name;

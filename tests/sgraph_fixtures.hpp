@@ -15,6 +15,8 @@ namespace bimloc::test {
 // A straight box wall with axis a -> b, its faces as the extraction makes them: faces[0] left
 // of a -> b, faces[1] right, normals out of the wall, n·p + d = 0.
 bim::Wall boxWall(const std::string& id, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double thickness_m);
+// The same wall standing from z0_m up height_m (a storey's walls above another's floor).
+bim::Wall liftedWall(bim::Wall wall, double z0_m, double height_m);
 
 // A rectangular room [x0, x1] x [y0, y1] bounded by the given faces.
 bim::Room boxRoom(const std::string& name, double x0, double y0, double x1, double y1, const std::vector<bim::RoomWall>& walls);

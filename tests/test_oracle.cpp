@@ -252,12 +252,7 @@ TEST(Oracle, PathBoundIsNeverBelowTheScoreOfAnyStartInItsBox) {
 // A split level: the oracle's map of a storey holds every wall standing in its band, whichever
 // storey the plan files it under (withEveryWall), and none of the storeys above or below.
 TEST(Oracle, AStoreysMapHoldsTheWallsOfOtherStoreysThatStandInItsBand) {
-  const auto lifted = [](bim::Wall w, double z0, double height_m) {
-    for (Eigen::Vector3d* p : {&w.start, &w.end, &w.faces[0].start, &w.faces[0].end, &w.faces[1].start, &w.faces[1].end})
-      p->z() = z0;
-    w.height_m = height_m;
-    return w;
-  };
+  const auto lifted = test::liftedWall;
   bim::Building b;
   b.storeys.resize(3);
   b.storeys[0].elevation_m = 0.0, b.storeys[1].elevation_m = 0.9, b.storeys[2].elevation_m = 3.0;

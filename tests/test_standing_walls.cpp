@@ -1,6 +1,7 @@
 // The walls each storey's map holds (bim/standing_walls.hpp): a split level's walls, filed under
 // one storey, stand beside the floor of another. Built in code, the answers known by geometry.
 #include "bim/extraction.hpp"
+#include "sgraph_fixtures.hpp"
 
 #include <bimloc/bim/standing_walls.hpp>
 #include <bimloc/localizer.hpp>
@@ -13,21 +14,9 @@ using namespace bimloc::bim;
 
 namespace {
 
-// A straight wall start -> end, t thick, from z0 up h, as the extraction makes it from a box body.
-Wall wall(const std::string& id, Eigen::Vector2d s, Eigen::Vector2d e, double z0, double h, double t = 0.2) {
-  detail::Extrusion ex;
-  const Eigen::Vector2d u = (e - s).normalized(), left(-u.y(), u.x());
-  ex.footprint = {s - 0.5 * t * left, e - 0.5 * t * left, e + 0.5 * t * left, s + 0.5 * t * left};
-  for (const auto& p : ex.footprint) ex.corners.emplace_back(p.x(), p.y(), z0), ex.corners.emplace_back(p.x(), p.y(), z0 + h);
-  ex.z_min = z0, ex.z_max = z0 + h;
-  detail::RawProduct p;
-  p.global_id = id;
-  p.ifc_class = "IfcWall";
-  p.extrusion = ex;
-  std::string problem;
-  auto w = detail::wallFromGeometry(p, problem);
-  EXPECT_TRUE(w) << problem;
-  return *w;
+// A straight wall start -> end, 0.2 m thick, standing from z0 up h.
+Wall wall(const std::string& id, Eigen::Vector2d s, Eigen::Vector2d e, double z0, double h) {
+  return bimloc::test::liftedWall(bimloc::test::boxWall(id, s, e, 0.2), z0, h);
 }
 
 Room room(const std::string& name, double x0, double y0, double x1, double y1, double z0, double h) {
