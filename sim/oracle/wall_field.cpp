@@ -4,8 +4,6 @@
 #include <cmath>
 
 namespace bimloc::sim::oracle {
-namespace {
-
 float segmentDistance(const Eigen::Vector2d& p, const Segment2& s) {
   const Eigen::Vector2d ab = s.b - s.a;
   const double len2 = ab.squaredNorm();
@@ -13,12 +11,12 @@ float segmentDistance(const Eigen::Vector2d& p, const Segment2& s) {
   return static_cast<float>((s.a + t * ab - p).norm());
 }
 
-}  // namespace
-
-std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low, double z_high) {
+std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low, double z_high, std::vector<int>* wall_of) {
   std::vector<Segment2> out;
-  for (const auto& wall : storey.walls)
-    for (const auto& face : wall.faces) {
+  if (wall_of) wall_of->clear();
+  for (std::size_t w = 0; w < storey.walls.size(); ++w)
+    for (const auto& face : storey.walls[w].faces) {
+      const auto& wall = storey.walls[w];
       const double z0 = face.start.z(), z1 = z0 + wall.height_m, length = face.length_m();
       if (z1 <= z_low || z0 >= z_high || length <= 0) continue;
       // Doorways: openings spanning the whole band leave no surface in it.
@@ -33,6 +31,7 @@ std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low
         from = std::max(from, hi);
       }
       if (from < length) out.push_back({a + from * u, a + length * u});
+      if (wall_of) wall_of->resize(out.size(), static_cast<int>(w));
     }
   return out;
 }

@@ -23,9 +23,14 @@ struct Segment2 {
   Eigen::Vector2d a = Eigen::Vector2d::Zero(), b = Eigen::Vector2d::Zero();
 };
 
+// The distance from p to the segment.
+float segmentDistance(const Eigen::Vector2d& p, const Segment2& s);
+
 // Every wall face of `storey` that reaches into [z_low, z_high] (world z), as a segment at its
-// base; a face's openings that span the whole band (doorways) cut it.
-std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low, double z_high);
+// base; a face's openings that span the whole band (doorways) cut it. With `wall_of`, also each
+// segment's wall (its index in storey.walls): what one site deviation stands for (docs/oracle.md).
+std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low, double z_high,
+                                         std::vector<int>* wall_of = nullptr);
 
 class DistanceField {
  public:
