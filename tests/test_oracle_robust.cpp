@@ -42,6 +42,29 @@ bool onPartition(const Eigen::Vector2d& hit, const std::pair<Eigen::Vector2d, Ei
   return along > -0.25 && along < (p.second - p.first).norm() + 0.25 && across < 0.15;
 }
 
+// One scan from `truth` on storey s and what the robust score needs of it: the path, the walls,
+// their field, the model and the discount (groups along the truth's own pose).
+PathCloud scanPath(const bim::Storey& s, const OracleConfig& c, const Eigen::Vector3d& truth, unsigned seed) {
+  std::mt19937 rng(seed);
+  PathCloud path;
+  for (const auto& p : bandPoints(scanFrom(s, truth, 30.0, rng), Eigen::Isometry3d::Identity(), -0.2, 1.3, c)) path.add(p.x(), p.y());
+  path.finish();
+  return path;
+}
+
+struct OneScan {
+  OneScan(const bim::Storey& s, const OracleConfig& c, const Eigen::Vector3d& truth, unsigned seed)
+      : path(scanPath(s, c, truth, seed)), walls(wallSegmentsInBand(s, c.band_low_m, c.band_high_m, &wall_of)),
+        field(walls, c.raster_m, c.clamp_m, c.margin_m), model(c, c.clamp_m),
+        d(discountOf(WallLabels(walls, wall_of, c.raster_m, c.clamp_m), field, model, path, truth)) {}
+  PathCloud path;
+  std::vector<int> wall_of;  // before walls: filled by its initializer
+  std::vector<Segment2> walls;
+  DistanceField field;
+  PointModel model;
+  Discount d;
+};
+
 }  // namespace
 
 TEST(OracleRobust, TwinsThatDifferByOneWallAreDecidableButNotRobustly) {
@@ -95,17 +118,11 @@ TEST(OracleRobust, RobustValueAgainstBruteForceAndItsBoundNeverBelow) {
   addWall(s, kSeenFirst.first, kSeenFirst.second), addWall(s, kSeenLater.first, kSeenLater.second);
   OracleConfig c = smallMargin();
   c.max_points_per_scan = 48;
-  std::mt19937 rng(5);
   const Eigen::Vector3d truth(1.4, 4.0, 1.3);
-  PathCloud path;
-  for (const auto& p : bandPoints(scanFrom(s, truth, 30.0, rng), Eigen::Isometry3d::Identity(), -0.2, 1.3, c)) path.add(p.x(), p.y());
-  path.finish();
+  const OneScan one(s, c, truth, 5);
+  const auto& [path, wall_of, walls, field, model, d] = one;
   ASSERT_GE(path.size(), 30u);
-  std::vector<int> wall_of;
-  const std::vector<Segment2> walls = wallSegmentsInBand(s, c.band_low_m, c.band_high_m, &wall_of);
-  const DistanceField field(walls, c.raster_m, c.clamp_m, c.margin_m);
-  const PointModel model(c, c.clamp_m);
-  const Discount d = discountOf(WallLabels(walls, wall_of, c.raster_m, c.clamp_m), field, model, path, truth);
+  std::mt19937 rng(6);
   EXPECT_GE(d.groups, 4);  // the walls in view, the partitions among them
 
   // The value by brute force: for no wall and for each group in turn, the rival's scores off it
@@ -162,17 +179,10 @@ TEST(OracleRobust, BranchAndBoundFindsWhatEveryCellGives) {
   addWall(s, {0.5, 2.4}, {0.5, 3.0});
   OracleConfig c;
   c.margin_m = 0.5, c.max_points_per_scan = 40;
-  std::mt19937 rng(3);
   const Eigen::Vector3d truth(2.2, 0.8, 0.4);
-  PathCloud path;
-  for (const auto& p : bandPoints(scanFrom(s, truth, 30.0, rng), Eigen::Isometry3d::Identity(), -0.2, 1.3, c)) path.add(p.x(), p.y());
-  path.finish();
+  const OneScan one(s, c, truth, 3);
+  const auto& [path, wall_of, walls, field, model, d] = one;
   ASSERT_GE(path.size(), 30u);
-  std::vector<int> wall_of;
-  const std::vector<Segment2> walls = wallSegmentsInBand(s, c.band_low_m, c.band_high_m, &wall_of);
-  const DistanceField field(walls, c.raster_m, c.clamp_m, c.margin_m);
-  const PointModel model(c, c.clamp_m);
-  const Discount d = discountOf(WallLabels(walls, wall_of, c.raster_m, c.clamp_m), field, model, path, truth);
   ASSERT_GE(d.groups, 3);
   const Lattice lattice(field, c);
   const SearchContext context{field, model, path, lattice, TruthZone{truth, 0.5, 10.0 * M_PI / 180.0}, &d};

@@ -33,17 +33,9 @@ WallLabels::WallLabels(const std::vector<Segment2>& walls, const std::vector<int
   for (std::size_t k = 0; k < walls.size(); ++k) {
     const Segment2& s = walls[k];
     walls_ = std::max(walls_, wall_of[k] + 1);
-    const Eigen::Vector2d a = s.a.cwiseMin(s.b).array() - clamp_m, b = s.a.cwiseMax(s.b).array() + clamp_m;
-    const int i0 = std::max(0, static_cast<int>(std::floor((a.x() - lower_.x()) / cell_m)));
-    const int i1 = std::min(nx_ - 1, static_cast<int>(std::ceil((b.x() - lower_.x()) / cell_m)));
-    const int j0 = std::max(0, static_cast<int>(std::floor((a.y() - lower_.y()) / cell_m)));
-    const int j1 = std::min(ny_ - 1, static_cast<int>(std::ceil((b.y() - lower_.y()) / cell_m)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        const std::size_t at = static_cast<std::size_t>(j) * nx_ + i;
-        const float d = segmentDistance(lower_ + cell_m * Eigen::Vector2d(i, j), s);
-        if (d < nearest[at]) nearest[at] = d, labels_[at] = wall_of[k];  // ties: the first wall
-      }
+    forCellsNear(s, lower_, cell_m, clamp_m, nx_, ny_, [&](std::size_t at, float d) {
+      if (d < nearest[at]) nearest[at] = d, labels_[at] = wall_of[k];  // ties: the first wall
+    });
   }
 }
 

@@ -45,18 +45,8 @@ DistanceField::DistanceField(const std::vector<Segment2>& walls, double cell_m, 
   ny_ = static_cast<int>(std::ceil((upper_.y() - lower_.y()) / cell_m)) + 1;
   values_.assign(static_cast<std::size_t>(nx_) * ny_, clamp_);
   // Exact distances, each segment writing the cells within clamp of it.
-  for (const auto& s : walls) {
-    const Eigen::Vector2d lo = s.a.cwiseMin(s.b).array() - clamp_m, hi = s.a.cwiseMax(s.b).array() + clamp_m;
-    const int i0 = std::max(0, static_cast<int>(std::floor((lo.x() - lower_.x()) / cell_m)));
-    const int i1 = std::min(nx_ - 1, static_cast<int>(std::ceil((hi.x() - lower_.x()) / cell_m)));
-    const int j0 = std::max(0, static_cast<int>(std::floor((lo.y() - lower_.y()) / cell_m)));
-    const int j1 = std::min(ny_ - 1, static_cast<int>(std::ceil((hi.y() - lower_.y()) / cell_m)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        float& v = values_[static_cast<std::size_t>(j) * nx_ + i];
-        v = std::min(v, segmentDistance(lower_ + cell_m * Eigen::Vector2d(i, j), s));
-      }
-  }
+  for (const auto& s : walls)
+    forCellsNear(s, lower_, cell_m, clamp_m, nx_, ny_, [&](std::size_t at, float d) { values_[at] = std::min(values_[at], d); });
   // The min-pyramid, quantized downwards (still a lower bound).
   inv_cell_ = 1.0f / cell_;
   levels_.resize(kLevels);
