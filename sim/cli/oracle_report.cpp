@@ -102,8 +102,8 @@ void printOracleSummary(const nlohmann::json& s, std::ostream& out) {
       << s["decidable_robust_localized"].get<int>() << " of them localized; decision lag median "
       << cell(s["median_decision_lag_robust_s"], 1) << " s, p90 " << cell(s["p90_decision_lag_robust_s"], 1) << " s; ratio median "
       << cell(s["median_decision_ratio_robust"], 2) << ", p90 " << cell(s["p90_decision_ratio_robust"], 2) << "; CPU "
-      << fixed(s["robust_oracle_cpu_seconds"].get<double>(), 0) << " s beside the plain answer's "
-      << fixed(s["oracle_cpu_seconds"].get<double>(), 0) << " s\n";
+      << fixed(s["robust_oracle_cpu_seconds"].get<double>(), 1) << " s beside the plain answer's "
+      << fixed(s["oracle_cpu_seconds"].get<double>(), 1) << " s\n";
 }
 
 }  // namespace bimloc::cli
