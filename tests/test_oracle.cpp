@@ -7,6 +7,7 @@
 // - a corridor of identical bays, seen by a range-limited sensor, becomes decidable when its end
 //   comes into range;
 // - the branch-and-bound finds the same best cell as evaluating every cell of the same grid.
+#include "oracle_fixtures.hpp"
 #include "sgraph_fixtures.hpp"
 #include "sim/oracle/oracle.hpp"
 #include "sim/oracle/place_search.hpp"
@@ -19,88 +20,9 @@
 
 using namespace bimloc;
 using namespace bimloc::sim::oracle;
+using namespace bimloc::test;
 
 namespace {
-
-constexpr double kBaseZ = 0.5;  // base frame above the floor; walls from 0 to 2.8 m
-
-// A wall whose room-side face runs along a -> b at the given side (thickness 0.2 m, the axis
-// 0.1 m behind the face), grown 0.2 m at both ends so that corners close.
-void addWall(bim::Storey& s, Eigen::Vector2d a, Eigen::Vector2d b, const Eigen::Vector2d& offset = Eigen::Vector2d::Zero()) {
-  const Eigen::Vector2d u = (b - a).normalized();
-  a += offset - 0.2 * u, b += offset + 0.2 * u;
-  s.walls.push_back(test::boxWall("W" + std::to_string(s.walls.size()), a, b, 0.2));
-}
-
-// The nearest face hit along the ray from p at heading a, within max_range.
-std::optional<Eigen::Vector2d> castRay(const bim::Storey& s, const Eigen::Vector2d& p, double a, double max_range) {
-  const Eigen::Vector2d d(std::cos(a), std::sin(a));
-  double best = max_range;
-  bool hit = false;
-  for (const auto& w : s.walls)
-    for (const auto& f : w.faces) {
-      const Eigen::Vector2d f0 = f.start.head<2>(), e = f.end.head<2>() - f0;
-      const double den = d.x() * e.y() - d.y() * e.x();
-      if (std::abs(den) < 1e-12) continue;
-      const Eigen::Vector2d w0 = f0 - p;
-      const double t = (w0.x() * e.y() - w0.y() * e.x()) / den, u = (w0.x() * d.y() - w0.y() * d.x()) / den;
-      if (u >= 0 && u <= 1 && t > 1e-6 && t < best) best = t, hit = true;
-    }
-  if (!hit) return std::nullopt;
-  return p + best * d;
-}
-
-struct Walk {
-  std::vector<double> times;
-  std::vector<Eigen::Vector3d> poses;  // map x, y, yaw
-};
-
-// Waypoints at 0.5 m/s, heading along each leg, a pose every 0.1 s (a 10 Hz lidar).
-Walk walk(const std::vector<Eigen::Vector2d>& waypoints) {
-  Walk w;
-  double t = 0;
-  for (std::size_t k = 0; k + 1 < waypoints.size(); ++k) {
-    const Eigen::Vector2d a = waypoints[k], b = waypoints[k + 1];
-    const double yaw = std::atan2(b.y() - a.y(), b.x() - a.x()), length = (b - a).norm();
-    for (double s = 0; s < length; s += 0.05, t += 0.1) w.times.push_back(t), w.poses.emplace_back(a.x() + s * std::cos(yaw), a.y() + s * std::sin(yaw), yaw);
-  }
-  return w;
-}
-
-// One turn from `pose`: a ray a degree, range noise 1 cm, each return at the band's height and
-// again above it (the ceiling's rows, which the oracle must drop). Lidar frame = base frame.
-std::vector<Eigen::Vector3f> scanFrom(const bim::Storey& s, const Eigen::Vector3d& pose, double max_range, std::mt19937& rng) {
-  std::normal_distribution<double> noise(0.0, 0.01);
-  std::vector<Eigen::Vector3f> points;
-  for (int k = 0; k < 360; ++k) {
-    const double a = pose.z() + k * M_PI / 180.0;
-    const auto hit = castRay(s, pose.head<2>(), a, max_range);
-    if (!hit) continue;
-    const double range = (*hit - pose.head<2>()).norm() + noise(rng), local = k * M_PI / 180.0;
-    points.emplace_back(static_cast<float>(range * std::cos(local)), static_cast<float>(range * std::sin(local)), 0.5f);
-    points.emplace_back(static_cast<float>(range * std::cos(local)), static_cast<float>(range * std::sin(local)), 2.0f);
-  }
-  return points;
-}
-
-// The oracle's verdict on the walk: odometry exact, in an odom frame turned and moved from the map's.
-OracleVerdict runOracle(const bim::Storey& s, const Walk& w, double max_range, const OracleConfig& config) {
-  std::mt19937 rng(7);
-  const Eigen::Isometry3d T_odom_map = Eigen::Translation3d(3.0, -2.0, 0.0) * Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ());
-  KeyframeRecorder recorder(config, Eigen::Isometry3d::Identity(), kBaseZ);
-  for (std::size_t k = 0; k < w.poses.size(); ++k) {
-    const Eigen::Vector3d& p = w.poses[k];
-    const Eigen::Isometry3d T_map_base = Eigen::Translation3d(p.x(), p.y(), kBaseZ) * Eigen::AngleAxisd(p.z(), Eigen::Vector3d::UnitZ());
-    recorder.add(w.times[k], T_odom_map * T_map_base, [&] { return scanFrom(s, p, max_range, rng); });
-  }
-  return decideWhen(s, 0.0, recorder.keyframes(), w.poses.front(), config);
-}
-
-OracleConfig smallMargin() {
-  OracleConfig c;
-  c.margin_m = 1.0;  // the test buildings stand alone: a metre around them is enough room for rivals
-  return c;
-}
 
 // An L-shaped room: [0, 6] x [0, 3] and [0, 3] x [3, 8], moved by `offset`; with a doorway
 // x 1-2 in its north wall when `door`.
@@ -138,12 +60,7 @@ TEST(Oracle, TwinRoomsBecomeDecidableOnceTheDoorIsInView) {
   lRoom(s, {20, 0}, false);
   const Walk w = walk({{5.2, 1.5}, {1.4, 1.5}, {1.4, 6.5}});
   // When the first ray through the doorway reaches the corridor's wall.
-  std::optional<double> door_seen;
-  for (std::size_t k = 0; k < w.poses.size() && !door_seen; ++k)
-    for (int a = 0; a < 360 && !door_seen; ++a) {
-      const auto hit = castRay(s, w.poses[k].head<2>(), w.poses[k].z() + a * M_PI / 180.0, 30.0);
-      if (hit && hit->y() > 10.0) door_seen = w.times[k];
-    }
+  const std::optional<double> door_seen = firstSeen(s, w, 30.0, [](const Eigen::Vector2d& hit) { return hit.y() > 10.0; });
   ASSERT_TRUE(door_seen.has_value());
   const OracleVerdict v = runOracle(s, w, 30.0, smallMargin());
   ASSERT_TRUE(v.decidable_at_s.has_value()) << "door seen at " << *door_seen;

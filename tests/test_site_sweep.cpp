@@ -50,11 +50,12 @@ TEST(SiteSweep, OracleFieldsInEveryRowAndRun) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto out = nlohmann::json::parse(r.out);
   ASSERT_EQ(out["rows"].size(), 1u);
-  for (const char* key : {"decidable", "decidable_localized", "median_decision_lag_s", "median_oracle_seconds"})
+  for (const char* key : {"decidable", "decidable_localized", "median_decision_lag_s", "median_oracle_seconds", "decidable_robust",
+                          "median_decision_lag_robust_s", "p90_decision_ratio_robust", "robust_oracle_cpu_seconds"})
     EXPECT_TRUE(out["rows"][0].contains(key)) << key;
   ASSERT_EQ(out["scenarios"].size(), 1u);
-  EXPECT_TRUE(out["scenarios"][0].contains("decidable_at_s"));
-  EXPECT_TRUE(out["scenarios"][0].contains("oracle"));
+  for (const char* key : {"decidable_at_s", "decidable_robust_at_s", "decision_lag_robust_s", "decision_ratio_robust", "oracle"})
+    EXPECT_TRUE(out["scenarios"][0].contains(key)) << key;
   const auto table = test::runBimloc(sweep);
   ASSERT_EQ(table.exit_code, 0) << table.err;
   EXPECT_NE(table.out.find("dec. localized"), std::string::npos) << table.out;

@@ -5,8 +5,11 @@
 #include <bimloc/geometry/planar_pose.hpp>
 
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <unordered_set>
 
 namespace bimloc::sim::oracle {
@@ -92,6 +95,47 @@ double decisionThreshold(double free_area_m2, const OracleConfig& c, double* pla
   return std::log(m / c.alpha);
 }
 
+namespace {
+
+// The first keyframe >= lowest from which `holds` is true at every check: backwards from the
+// last keyframe, every stride-th, until a check fails; then each keyframe back from the first
+// that held to the one that failed. Unset when the last keyframe fails.
+std::optional<std::size_t> firstFromWhich(std::size_t count, std::size_t lowest, std::size_t stride,
+                                          const std::function<bool(std::size_t)>& holds) {
+  std::optional<std::size_t> first;
+  std::size_t failed = 0;
+  bool any_failed = false;
+  for (std::size_t k = count; k-- > lowest;) {
+    if (!holds(k)) {
+      any_failed = true, failed = k;
+      break;
+    }
+    first = k;
+    if (k < lowest + stride) {
+      for (std::size_t j = k; j-- > lowest;) {
+        if (!holds(j)) break;
+        first = j;
+      }
+      break;
+    }
+    k -= stride - 1;
+  }
+  if (any_failed && first)
+    for (std::size_t j = *first; j-- > failed + 1;) {
+      if (!holds(j)) break;
+      first = j;
+    }
+  return first;
+}
+
+double threadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+}  // namespace
+
 bim::Storey withEveryWall(const bim::Building& building, std::size_t storey) {
   bim::Storey out;
   const bim::Storey& own = building.storeys.at(storey);
@@ -104,55 +148,68 @@ bim::Storey withEveryWall(const bim::Building& building, std::size_t storey) {
 OracleVerdict decideWhen(const bim::Storey& storey, double floor_z, const std::vector<Keyframe>& keyframes,
                          const Eigen::Vector3d& truth_start, const OracleConfig& config) {
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = threadCpuSeconds();
   OracleVerdict verdict;
   verdict.keyframes = static_cast<int>(keyframes.size());
-  const DistanceField field(wallSegmentsInBand(storey, floor_z + config.band_low_m, floor_z + config.band_high_m),
-                            config.raster_m, config.clamp_m, config.margin_m);
+  std::vector<int> wall_of;
+  const std::vector<Segment2> walls = wallSegmentsInBand(storey, floor_z + config.band_low_m, floor_z + config.band_high_m, &wall_of);
+  const DistanceField field(walls, config.raster_m, config.clamp_m, config.margin_m);
   const PointModel model(config, config.clamp_m);
   const Lattice lattice(field, config);
   verdict.threshold = decisionThreshold(lattice.free_area_m2, config, &verdict.rival_places);
   const TruthZone zone{truth_start, config.place_radius_m, config.place_deg * M_PI / 180.0};
+  // The truth's place scored on the same grid: its best cell, or the true start itself; its
+  // score Q and the start that gives it.
+  struct Truth {
+    float q;
+    Eigen::Vector3d pose;
+  };
+  const auto truthOf = [&](const SearchContext& context, std::size_t* nodes, std::size_t* cells) {
+    const SearchAnswer truth = searchPlaces(context, Region::Truth, -std::numeric_limits<float>::infinity(), false);
+    const float at_start = pathScore(field, model, context.path, truth_start.x(), truth_start.y(), truth_start.z());
+    *nodes += truth.nodes, *cells += truth.cells;
+    return truth.best >= at_start ? Truth{truth.best, truth.pose} : Truth{at_start, truth_start};
+  };
   // Whether the scans up to keyframe k rule every rival out.
   const auto ruledOut = [&](std::size_t k) {
     const PathCloud path = pathOf(keyframes, k + 1);
     if (k + 1 == keyframes.size()) verdict.points = path.size();
     const SearchContext context{field, model, path, lattice, zone};
-    // The truth's place scored on the same grid: its best cell, or the true start itself.
-    const SearchAnswer truth = searchPlaces(context, Region::Truth, -std::numeric_limits<float>::infinity(), false);
-    const float q = std::max(truth.best, pathScore(field, model, path, truth_start.x(), truth_start.y(), truth_start.z()));
+    const float q = truthOf(context, &verdict.nodes, &verdict.cells).q;
     const SearchAnswer rival = searchPlaces(context, Region::Rivals, q - static_cast<float>(verdict.threshold), true);
     ++verdict.checks;
-    verdict.nodes += truth.nodes + rival.nodes, verdict.cells += truth.cells + rival.cells;
+    verdict.nodes += rival.nodes, verdict.cells += rival.cells;
     return !rival.reached;
   };
-  // Backwards from the last keyframe, every check_every-th: the first from which every later
-  // check rules every rival out; then each keyframe back from there to the failed check.
-  std::optional<std::size_t> first;
   const auto stride = static_cast<std::size_t>(std::max(1, config.check_every));
-  std::size_t failed = 0;
-  bool any_failed = false;
-  for (std::size_t k = keyframes.size(); k-- > 0;) {
-    if (!ruledOut(k)) {
-      any_failed = true, failed = k;
-      break;
-    }
-    first = k;
-    if (k < stride) {
-      for (std::size_t j = k; j-- > 0;) {
-        if (!ruledOut(j)) break;
-        first = j;
-      }
-      break;
-    }
-    k -= stride - 1;
-  }
-  if (any_failed && first)
-    for (std::size_t j = *first; j-- > failed + 1;) {
-      if (!ruledOut(j)) break;
-      first = j;
-    }
+  const std::optional<std::size_t> first = firstFromWhich(keyframes.size(), 0, stride, ruledOut);
   if (first) verdict.decidable_at_s = keyframes[*first].time_s;
   verdict.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  verdict.cpu_seconds = threadCpuSeconds() - cpu_start;
+  if (!config.robust || !first) return verdict;
+
+  // The robust answer: the same test with each rival's robust value (one wall's points dropped
+  // from both sums, sim/oracle/deviation.hpp), whose groups follow the truth's best start.
+  const auto robust_start = std::chrono::steady_clock::now();
+  const double robust_cpu_start = threadCpuSeconds();
+  const WallLabels labels(walls, wall_of, config.raster_m, config.clamp_m);
+  const auto ruledOutRobustly = [&](std::size_t k) {
+    const PathCloud path = pathOf(keyframes, k + 1);
+    const SearchContext plain{field, model, path, lattice, zone};
+    const Truth truth = truthOf(plain, &verdict.robust_nodes, &verdict.robust_cells);
+    const Discount discount = discountOf(labels, field, model, path, truth.pose);
+    const SearchContext context{field, model, path, lattice, zone, &discount};
+    const SearchAnswer rival = searchPlaces(context, Region::Rivals, truth.q - static_cast<float>(verdict.threshold), true);
+    ++verdict.robust_checks;
+    verdict.robust_nodes += rival.nodes, verdict.robust_cells += rival.cells;
+    return !rival.reached;
+  };
+  // A rival ruled out robustly is ruled out (its robust value is at least its score), so the
+  // keyframe before decidable_at_s, which failed, fails robustly too: no need to look before it.
+  const std::optional<std::size_t> robust = firstFromWhich(keyframes.size(), *first, stride, ruledOutRobustly);
+  if (robust) verdict.decidable_robust_at_s = keyframes[*robust].time_s;
+  verdict.robust_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - robust_start).count();
+  verdict.robust_cpu_seconds = threadCpuSeconds() - robust_cpu_start;
   return verdict;
 }
 

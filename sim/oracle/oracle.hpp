@@ -53,6 +53,15 @@ struct OracleVerdict {
   double seconds = 0;       // the oracle's wall time
   int keyframes = 0, checks = 0;
   std::size_t points = 0, nodes = 0, cells = 0;
+
+  // The robust answer (docs/oracle.md): the same question with one site deviation allowed, a
+  // rival ruled out only when it stays so with any one plan wall's points dropped. Never before
+  // decidable_at_s; unset when that is, or when some rival survives one deviation at the end.
+  std::optional<double> decidable_robust_at_s;
+  double robust_seconds = 0;  // its wall time, beside `seconds`
+  double cpu_seconds = 0, robust_cpu_seconds = 0;  // the thread's CPU time: the plain answer's, the robust one's
+  int robust_checks = 0;
+  std::size_t robust_nodes = 0, robust_cells = 0;
 };
 
 // The threshold ln(M / alpha) for M rival places on free_area_m2 (docs/oracle.md).
@@ -65,7 +74,8 @@ double decisionThreshold(double free_area_m2, const OracleConfig& config, double
 bim::Storey withEveryWall(const bim::Building& building, std::size_t storey);
 
 // The verdict for a run on `storey` whose base started at truth_start (x, y, yaw) and kept
-// `keyframes`; floor_z: the floor's world z under the start (the band is above it).
+// `keyframes`; floor_z: the floor's world z under the start (the band is above it). With
+// config.robust, also the robust answer.
 OracleVerdict decideWhen(const bim::Storey& storey, double floor_z, const std::vector<Keyframe>& keyframes,
                          const Eigen::Vector3d& truth_start, const OracleConfig& config = {});
 

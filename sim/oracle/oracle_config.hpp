@@ -45,6 +45,8 @@ struct OracleConfig {
   // The test runs at every check_every-th keyframe back from the last (about a metre of walk),
   // and at every keyframe between the last check that failed and the first that held.
   int check_every = 4;
+  // Also the robust answer: one site deviation allowed (one plan wall's points dropped).
+  bool robust = true;
 };
 
 }  // namespace bimloc::sim::oracle

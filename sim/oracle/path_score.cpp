@@ -61,7 +61,7 @@ float pathBound(const DistanceField& field, const PointModel& model, const PathC
   for (std::size_t i = 0; i < path.size(); ++i) {
     const float px = c * path.x[i] - s * path.y[i] + tx, py = s * path.x[i] + c * path.y[i] + ty;
     const float turn = chord * path.r[i] + 1e-4f;  // and float rounding
-    sum += model.boundOfCode(field.minCodeOver(px - hx - turn, py - hy - turn, px + hx + turn, py + hy + turn));
+    sum += pointBound(field, model, px, py, hx, hy, turn);
     if (sum < stop_below) return sum;
   }
   return sum;

@@ -53,6 +53,12 @@ float pathScore(const DistanceField& field, const PointModel& model, const PathC
 float pathBound(const DistanceField& field, const PointModel& model, const PathCloud& path, double cx, double cy, double yaw,
                 double half_x, double half_y, double half_yaw, float stop_below = -std::numeric_limits<float>::infinity());
 
+// The bound of one point of pathBound: at (px, py) for the box's centre, moved by at most
+// hx + turn in x and hy + turn in y by any start in the box.
+inline float pointBound(const DistanceField& field, const PointModel& model, float px, float py, float hx, float hy, float turn) {
+  return model.boundOfCode(field.minCodeOver(px - hx - turn, py - hy - turn, px + hx + turn, py + hy + turn));
+}
+
 inline float PointModel::score(float d) const {
   const float f = std::max(0.0f, d) / step_;
   const auto k = static_cast<std::size_t>(f);

@@ -54,8 +54,7 @@ float nodeBound(const SearchContext& c, const Node& n, float stop_below) {
   const Lattice& l = c.lattice;
   const double cx = l.origin.x() + (n.i0 + 0.5 * (n.ni - 1)) * l.step_m, cy = l.origin.y() + (n.j0 + 0.5 * (n.nj - 1)) * l.step_m;
   const double yaw = (n.t0 + 0.5 * (n.nt - 1)) * l.step_rad;
-  return pathBound(c.field, c.model, c.path, cx, cy, yaw, 0.5 * n.ni * l.step_m, 0.5 * n.nj * l.step_m, 0.5 * n.nt * l.step_rad,
-                   stop_below);
+  return boundOver(c, {cx, cy, yaw}, {0.5 * n.ni * l.step_m, 0.5 * n.nj * l.step_m, 0.5 * n.nt * l.step_rad}, stop_below);
 }
 
 std::vector<Node> children(const SearchContext& c, const Node& n) {
@@ -81,7 +80,7 @@ std::vector<Node> children(const SearchContext& c, const Node& n) {
 // below the lattice the bounds of its eight halves, down to `depth` more halvings. A cell none of
 // whose parts may reach the bar is skipped without its local search (the bound still holds).
 bool mayReach(const SearchContext& c, const Eigen::Vector3d& centre, const Eigen::Vector3d& half, float bar, int depth) {
-  if (pathBound(c.field, c.model, c.path, centre.x(), centre.y(), centre.z(), half.x(), half.y(), half.z(), bar) < bar) return false;
+  if (boundOver(c, centre, half, bar) < bar) return false;
   if (depth == 0) return true;
   const Eigen::Vector3d quarter = 0.5 * half;
   for (int k = 0; k < 8; ++k) {
@@ -129,12 +128,24 @@ int Lattice::freeIn(int i0, int j0, int ni, int nj) const {
   return at(i0 + ni, j0 + nj) - at(i0, j0 + nj) - at(i0 + ni, j0) + at(i0, j0);
 }
 
+float valueAt(const SearchContext& c, double x, double y, double yaw, float stop_below) {
+  if (c.discount) return robustScore(c.field, c.model, c.path, *c.discount, x, y, yaw, stop_below);
+  return pathScore(c.field, c.model, c.path, x, y, yaw, stop_below);
+}
+
+float boundOver(const SearchContext& c, const Eigen::Vector3d& centre, const Eigen::Vector3d& half, float stop_below) {
+  if (c.discount)
+    return robustBound(c.field, c.model, c.path, *c.discount, centre.x(), centre.y(), centre.z(), half.x(), half.y(), half.z(),
+                       stop_below);
+  return pathBound(c.field, c.model, c.path, centre.x(), centre.y(), centre.z(), half.x(), half.y(), half.z(), stop_below);
+}
+
 float cellValue(const SearchContext& c, int i, int j, int t, Eigen::Vector3d* best_pose, float stop_at) {
   const Lattice& l = c.lattice;
   const Eigen::Vector3d centre = l.pose(i, j, t);
   const Eigen::Vector3d half(0.5 * l.step_m, 0.5 * l.step_m, 0.5 * l.step_rad);
   Eigen::Vector3d p = centre;
-  float v = pathScore(c.field, c.model, c.path, p.x(), p.y(), p.z());
+  float v = valueAt(c, p.x(), p.y(), p.z());
   Eigen::Vector3d step(0.25 * l.step_m, 0.25 * l.step_m, 0.25 * l.step_rad);
   for (int level = 0; level < kRefineLevels && v < stop_at; ++level, step *= 0.5) {
     for (bool improved = true; improved && v < stop_at;) {
@@ -144,7 +155,7 @@ float cellValue(const SearchContext& c, int i, int j, int t, Eigen::Vector3d* be
           Eigen::Vector3d q = p;
           q[axis] += sign * step[axis];
           if (std::abs(q[axis] - centre[axis]) > half[axis] + 1e-12) continue;
-          const float w = pathScore(c.field, c.model, c.path, q.x(), q.y(), q.z(), v);
+          const float w = valueAt(c, q.x(), q.y(), q.z(), v);
           if (w > v) {
             v = w, p = q, improved = true;
             break;

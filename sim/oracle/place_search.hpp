@@ -3,6 +3,7 @@
 // (pathBound over a node's cells), or, for the tests, every lattice pose in turn.
 #pragma once
 
+#include "sim/oracle/deviation.hpp"
 #include "sim/oracle/path_score.hpp"
 
 #include <Eigen/Core>
@@ -49,7 +50,15 @@ struct SearchContext {
   const PathCloud& path;
   const Lattice& lattice;
   TruthZone zone;
+  // When set, a pose's value is its robust one (robustScore: one wall's points dropped), and the
+  // bounds are robustBound's; else pathScore and pathBound.
+  const Discount* discount = nullptr;
 };
+
+// A start's value (pathScore, or robustScore with a discount) and its bound over a box.
+float valueAt(const SearchContext& c, double x, double y, double yaw, float stop_below = -std::numeric_limits<float>::infinity());
+float boundOver(const SearchContext& c, const Eigen::Vector3d& centre, const Eigen::Vector3d& half,
+                float stop_below = -std::numeric_limits<float>::infinity());
 
 // A cell's value: the best start a local search (pattern search from the lattice pose, steps
 // halved down to 1/32 of the cell) finds within the cell. Stops once it reaches `stop_at`.

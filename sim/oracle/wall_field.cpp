@@ -4,8 +4,6 @@
 #include <cmath>
 
 namespace bimloc::sim::oracle {
-namespace {
-
 float segmentDistance(const Eigen::Vector2d& p, const Segment2& s) {
   const Eigen::Vector2d ab = s.b - s.a;
   const double len2 = ab.squaredNorm();
@@ -13,12 +11,12 @@ float segmentDistance(const Eigen::Vector2d& p, const Segment2& s) {
   return static_cast<float>((s.a + t * ab - p).norm());
 }
 
-}  // namespace
-
-std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low, double z_high) {
+std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low, double z_high, std::vector<int>* wall_of) {
   std::vector<Segment2> out;
-  for (const auto& wall : storey.walls)
-    for (const auto& face : wall.faces) {
+  if (wall_of) wall_of->clear();
+  for (std::size_t w = 0; w < storey.walls.size(); ++w)
+    for (const auto& face : storey.walls[w].faces) {
+      const auto& wall = storey.walls[w];
       const double z0 = face.start.z(), z1 = z0 + wall.height_m, length = face.length_m();
       if (z1 <= z_low || z0 >= z_high || length <= 0) continue;
       // Doorways: openings spanning the whole band leave no surface in it.
@@ -33,6 +31,7 @@ std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low
         from = std::max(from, hi);
       }
       if (from < length) out.push_back({a + from * u, a + length * u});
+      if (wall_of) wall_of->resize(out.size(), static_cast<int>(w));
     }
   return out;
 }
@@ -46,18 +45,8 @@ DistanceField::DistanceField(const std::vector<Segment2>& walls, double cell_m, 
   ny_ = static_cast<int>(std::ceil((upper_.y() - lower_.y()) / cell_m)) + 1;
   values_.assign(static_cast<std::size_t>(nx_) * ny_, clamp_);
   // Exact distances, each segment writing the cells within clamp of it.
-  for (const auto& s : walls) {
-    const Eigen::Vector2d lo = s.a.cwiseMin(s.b).array() - clamp_m, hi = s.a.cwiseMax(s.b).array() + clamp_m;
-    const int i0 = std::max(0, static_cast<int>(std::floor((lo.x() - lower_.x()) / cell_m)));
-    const int i1 = std::min(nx_ - 1, static_cast<int>(std::ceil((hi.x() - lower_.x()) / cell_m)));
-    const int j0 = std::max(0, static_cast<int>(std::floor((lo.y() - lower_.y()) / cell_m)));
-    const int j1 = std::min(ny_ - 1, static_cast<int>(std::ceil((hi.y() - lower_.y()) / cell_m)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        float& v = values_[static_cast<std::size_t>(j) * nx_ + i];
-        v = std::min(v, segmentDistance(lower_ + cell_m * Eigen::Vector2d(i, j), s));
-      }
-  }
+  for (const auto& s : walls)
+    forCellsNear(s, lower_, cell_m, clamp_m, nx_, ny_, [&](std::size_t at, float d) { values_[at] = std::min(values_[at], d); });
   // The min-pyramid, quantized downwards (still a lower bound).
   inv_cell_ = 1.0f / cell_;
   levels_.resize(kLevels);

@@ -23,9 +23,27 @@ struct Segment2 {
   Eigen::Vector2d a = Eigen::Vector2d::Zero(), b = Eigen::Vector2d::Zero();
 };
 
+// The distance from p to the segment.
+float segmentDistance(const Eigen::Vector2d& p, const Segment2& s);
+
+// Calls f(index, distance) for each cell of a raster (origin `lower`, side cell_m, nx x ny,
+// row-major) whose centre lies in the segment's box grown by reach_m: its exact distance to it.
+template <typename F>
+void forCellsNear(const Segment2& s, const Eigen::Vector2d& lower, double cell_m, double reach_m, int nx, int ny, F&& f) {
+  const Eigen::Vector2d lo = s.a.cwiseMin(s.b).array() - reach_m, hi = s.a.cwiseMax(s.b).array() + reach_m;
+  const int i0 = std::max(0, static_cast<int>(std::floor((lo.x() - lower.x()) / cell_m)));
+  const int i1 = std::min(nx - 1, static_cast<int>(std::ceil((hi.x() - lower.x()) / cell_m)));
+  const int j0 = std::max(0, static_cast<int>(std::floor((lo.y() - lower.y()) / cell_m)));
+  const int j1 = std::min(ny - 1, static_cast<int>(std::ceil((hi.y() - lower.y()) / cell_m)));
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) f(static_cast<std::size_t>(j) * nx + i, segmentDistance(lower + cell_m * Eigen::Vector2d(i, j), s));
+}
+
 // Every wall face of `storey` that reaches into [z_low, z_high] (world z), as a segment at its
-// base; a face's openings that span the whole band (doorways) cut it.
-std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low, double z_high);
+// base; a face's openings that span the whole band (doorways) cut it. With `wall_of`, also each
+// segment's wall (its index in storey.walls): what one site deviation stands for (docs/oracle.md).
+std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low, double z_high,
+                                         std::vector<int>* wall_of = nullptr);
 
 class DistanceField {
  public:

@@ -1,0 +1,117 @@
+#include "sim/oracle/deviation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bimloc::sim::oracle {
+namespace {
+
+// The values below are summed in double and the bound raised by this much: a float sum of ~10^4
+// terms of up to 8.4 nats may round by a few hundredths, a double one by ~10^-7, so the bound,
+// rounded to float to the nearest as the value is, stays at or above it (docs/oracle.md).
+constexpr double kRoundingSlack = 1e-3;
+
+// The greatest per-group sum, or 0 (no wall dropped): the one deviation most favourable to the rival.
+double bestDrop(const Discount& d) {
+  double most = 0;
+  for (const double v : d.scratch) most = std::max(most, v);
+  return most;
+}
+
+}  // namespace
+
+WallLabels::WallLabels(const std::vector<Segment2>& walls, const std::vector<int>& wall_of, double cell_m, double clamp_m)
+    : cell_(cell_m) {
+  if (walls.empty()) return;
+  Eigen::Vector2d lo = walls.front().a, hi = walls.front().a;
+  for (const auto& s : walls) lo = lo.cwiseMin(s.a).cwiseMin(s.b), hi = hi.cwiseMax(s.a).cwiseMax(s.b);
+  lower_ = lo.array() - clamp_m;
+  nx_ = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * clamp_m) / cell_m)) + 1;
+  ny_ = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * clamp_m) / cell_m)) + 1;
+  labels_.assign(static_cast<std::size_t>(nx_) * ny_, -1);
+  std::vector<float> nearest(labels_.size(), static_cast<float>(clamp_m));
+  for (std::size_t k = 0; k < walls.size(); ++k) {
+    const Segment2& s = walls[k];
+    walls_ = std::max(walls_, wall_of[k] + 1);
+    forCellsNear(s, lower_, cell_m, clamp_m, nx_, ny_, [&](std::size_t at, float d) {
+      if (d < nearest[at]) nearest[at] = d, labels_[at] = wall_of[k];  // ties: the first wall
+    });
+  }
+}
+
+int WallLabels::at(float x, float y) const {
+  const double fx = (x - lower_.x()) / cell_, fy = (y - lower_.y()) / cell_;
+  if (!(std::abs(fx) < 1e7 && std::abs(fy) < 1e7)) return -1;
+  const auto i = static_cast<long>(std::lround(fx)), j = static_cast<long>(std::lround(fy));
+  if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return -1;
+  return labels_[static_cast<std::size_t>(j) * nx_ + static_cast<std::size_t>(i)];
+}
+
+Discount discountOf(const WallLabels& labels, const DistanceField& field, const PointModel& model, const PathCloud& path,
+                    const Eigen::Vector3d& truth_pose) {
+  Discount d;
+  const auto c = static_cast<float>(std::cos(truth_pose.z())), s = static_cast<float>(std::sin(truth_pose.z()));
+  const auto tx = static_cast<float>(truth_pose.x()), ty = static_cast<float>(truth_pose.y());
+  std::vector<std::int32_t> renumber(static_cast<std::size_t>(labels.walls()), -1);
+  d.group.resize(path.size()), d.truth.resize(path.size());
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    // The same placement and score as pathScore's.
+    const float px = c * path.x[i] - s * path.y[i] + tx, py = s * path.x[i] + c * path.y[i] + ty;
+    d.truth[i] = model.score(field.at(px, py));
+    const int wall = labels.at(px, py);
+    if (wall < 0) {
+      d.group[i] = -1;
+      continue;
+    }
+    auto& g = renumber[static_cast<std::size_t>(wall)];
+    if (g < 0) g = d.groups++;
+    d.group[i] = g;
+  }
+  d.scratch.assign(static_cast<std::size_t>(d.groups), 0.0);
+  return d;
+}
+
+// Both below: for each wall w the term T_w = sum of the rival's (or its bound's) values over the
+// points off w + the truth's over the points on w, returned as max(T_none, max_w T_w) =
+// sum + max(0, max_w sum over w's points of (truth - rival)). Every point adds a value <= 0 to
+// every T_w, so each only falls as points are added: once sum + the greatest group sum seen so
+// far (>= the greatest now) is below stop_below, the final value is too.
+
+float robustScore(const DistanceField& field, const PointModel& model, const PathCloud& path, const Discount& d, double x, double y,
+                  double yaw, float stop_below) {
+  const auto c = static_cast<float>(std::cos(yaw)), s = static_cast<float>(std::sin(yaw));
+  const auto tx = static_cast<float>(x), ty = static_cast<float>(y);
+  std::fill(d.scratch.begin(), d.scratch.end(), 0.0);
+  double sum = 0, seen = 0;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const float v = model.score(field.at(c * path.x[i] - s * path.y[i] + tx, s * path.x[i] + c * path.y[i] + ty));
+    sum += v;
+    if (d.group[i] >= 0) seen = std::max(seen, d.scratch[static_cast<std::size_t>(d.group[i])] += d.truth[i] - static_cast<double>(v));
+    if (sum + seen < stop_below) return static_cast<float>(sum + seen);
+  }
+  return static_cast<float>(sum + bestDrop(d));
+}
+
+float robustBound(const DistanceField& field, const PointModel& model, const PathCloud& path, const Discount& d, double cx, double cy,
+                  double yaw, double half_x, double half_y, double half_yaw, float stop_below) {
+  // The box and the per-point bound are pathBound's (path_score.cpp), point for point.
+  const auto c = static_cast<float>(std::cos(yaw)), s = static_cast<float>(std::sin(yaw));
+  const auto tx = static_cast<float>(cx), ty = static_cast<float>(cy);
+  const auto chord = static_cast<float>(2.0 * std::sin(std::min(half_yaw, M_PI) / 2.0));
+  const auto hx = static_cast<float>(half_x), hy = static_cast<float>(half_y);
+  std::fill(d.scratch.begin(), d.scratch.end(), 0.0);
+  double sum = kRoundingSlack, seen = 0;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const float px = c * path.x[i] - s * path.y[i] + tx, py = s * path.x[i] + c * path.y[i] + ty;
+    const float bound = pointBound(field, model, px, py, hx, hy, chord * path.r[i] + 1e-4f);
+    sum += bound;
+    // truth - bound <= truth - value: a group's sum here bounds its sum in robustScore from below,
+    // but T_w = sum - (group's sum of bounds) + (group's sum of truths) >= the value's T_w, term by term.
+    if (d.group[i] >= 0)
+      seen = std::max(seen, d.scratch[static_cast<std::size_t>(d.group[i])] += d.truth[i] - static_cast<double>(bound));
+    if (sum + seen < stop_below) return static_cast<float>(sum + seen);
+  }
+  return static_cast<float>(sum + bestDrop(d));
+}
+
+}  // namespace bimloc::sim::oracle
