@@ -51,14 +51,6 @@ Eigen::Matrix3d particleCovariance(const pf::ParticleFilter& filter) {
   return cov;
 }
 
-// The plan each storey's stages localize in: with the walls of other storeys that stand in its
-// band when `standing` (split levels), else as filed.
-bim::Building sensedPlan(const bim::Building& plan, bool standing, bim::StandingWallsReport& report) {
-  if (standing) return bim::withStandingWalls(plan, {}, &report);
-  report.added.assign(plan.storeys.size(), 0);
-  return bim::withStandingWalls(plan, {0.0, 0.0, 1e300});  // no wall overlaps a band by 1e300 m
-}
-
 }  // namespace
 
 const char* toString(LocalizerMethod method) {
@@ -95,7 +87,8 @@ const char* toString(LocalizationState state) {
 
 struct Localizer::Impl {
   // The plan as the robot senses it: each storey with the walls of other storeys that stand in
-  // its band (bim/standing_walls.hpp); every stage reads `building`, which is this.
+  // its band (bim/standing_walls.hpp; empty with storeys.standing_walls false); every stage
+  // reads `building`, which is this, or the plan as filed when it is off.
   bim::StandingWallsReport standing;
   bim::Building sensed;
   const bim::Building& building;
@@ -163,8 +156,9 @@ struct Localizer::Impl {
   bool places_due = false;          // ... on this step: the kept places are replaced
 
   Impl(const bim::Building& b, const Eigen::Isometry3d& mount, const LocalizerConfig& c)
-      : sensed(sensedPlan(b, c.storeys.standing_walls, standing)), building(sensed), filed(b), T_base_lidar(mount), config(seeded(c)),
-        follower(sensed, c.storeys) {}
+      : sensed(c.storeys.standing_walls ? bim::withStandingWalls(b, {}, &standing) : bim::Building{}),
+        building(c.storeys.standing_walls ? sensed : b), filed(b), T_base_lidar(mount), config(seeded(c)),
+        follower(building, c.storeys) {}
 
   bool usesTracker() const { return config.method == LocalizerMethod::SGraph; }
   bool lost() const { return tracker && tracker->state() == sgraph::TrackingState::Lost; }
