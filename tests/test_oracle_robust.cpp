@@ -56,7 +56,7 @@ struct OneScan {
   OneScan(const bim::Storey& s, const OracleConfig& c, const Eigen::Vector3d& truth, unsigned seed)
       : path(scanPath(s, c, truth, seed)), walls(wallSegmentsInBand(s, c.band_low_m, c.band_high_m, &wall_of)),
         field(walls, c.raster_m, c.clamp_m, c.margin_m), model(c, c.clamp_m),
-        d(discountOf(WallLabels(walls, wall_of, c.raster_m, c.clamp_m), field, model, path, truth)) {}
+        d(discountOf(WallLabels(field, wall_of), field, model, path, truth)) {}
   PathCloud path;
   std::vector<int> wall_of;  // before walls: filled by its initializer
   std::vector<Segment2> walls;

@@ -20,31 +20,8 @@ double bestDrop(const Discount& d) {
 
 }  // namespace
 
-WallLabels::WallLabels(const std::vector<Segment2>& walls, const std::vector<int>& wall_of, double cell_m, double clamp_m)
-    : cell_(cell_m) {
-  if (walls.empty()) return;
-  Eigen::Vector2d lo = walls.front().a, hi = walls.front().a;
-  for (const auto& s : walls) lo = lo.cwiseMin(s.a).cwiseMin(s.b), hi = hi.cwiseMax(s.a).cwiseMax(s.b);
-  lower_ = lo.array() - clamp_m;
-  nx_ = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * clamp_m) / cell_m)) + 1;
-  ny_ = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * clamp_m) / cell_m)) + 1;
-  labels_.assign(static_cast<std::size_t>(nx_) * ny_, -1);
-  std::vector<float> nearest(labels_.size(), static_cast<float>(clamp_m));
-  for (std::size_t k = 0; k < walls.size(); ++k) {
-    const Segment2& s = walls[k];
-    walls_ = std::max(walls_, wall_of[k] + 1);
-    forCellsNear(s, lower_, cell_m, clamp_m, nx_, ny_, [&](std::size_t at, float d) {
-      if (d < nearest[at]) nearest[at] = d, labels_[at] = wall_of[k];  // ties: the first wall
-    });
-  }
-}
-
-int WallLabels::at(float x, float y) const {
-  const double fx = (x - lower_.x()) / cell_, fy = (y - lower_.y()) / cell_;
-  if (!(std::abs(fx) < 1e7 && std::abs(fy) < 1e7)) return -1;
-  const auto i = static_cast<long>(std::lround(fx)), j = static_cast<long>(std::lround(fy));
-  if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return -1;
-  return labels_[static_cast<std::size_t>(j) * nx_ + static_cast<std::size_t>(i)];
+WallLabels::WallLabels(const DistanceField& field, const std::vector<int>& wall_of) : field_(&field), wall_of_(wall_of) {
+  for (const int w : wall_of_) walls_ = std::max(walls_, w + 1);
 }
 
 Discount discountOf(const WallLabels& labels, const DistanceField& field, const PointModel& model, const PathCloud& path,

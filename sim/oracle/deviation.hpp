@@ -16,19 +16,21 @@
 
 namespace bimloc::sim::oracle {
 
-// Which plan wall is nearest to each point of the storey, on a raster (the cell centre nearest a
-// point speaks for it), out to clamp_m from the walls; -1 beyond.
+// Which plan wall is nearest to a point (the field's nearest segment, exactly; the first of
+// equals), out to clamp from the walls; -1 beyond.
 class WallLabels {
  public:
-  WallLabels(const std::vector<Segment2>& walls, const std::vector<int>& wall_of, double cell_m, double clamp_m);
-  int at(float x, float y) const;
+  WallLabels(const DistanceField& field, const std::vector<int>& wall_of);
+  int at(float x, float y) const {
+    const int s = field_->nearest(x, y);
+    return s < 0 ? -1 : wall_of_[static_cast<std::size_t>(s)];
+  }
   int walls() const { return walls_; }  // one more than the largest wall index
 
  private:
-  Eigen::Vector2d lower_ = Eigen::Vector2d::Zero();
-  double cell_ = 0.05;
-  int nx_ = 0, ny_ = 0, walls_ = 0;
-  std::vector<std::int32_t> labels_;
+  const DistanceField* field_;
+  std::vector<int> wall_of_;
+  int walls_ = 0;
 };
 
 // What the robust score needs of a path: each point's group (the wall it lies on along the

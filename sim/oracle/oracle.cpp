@@ -192,7 +192,7 @@ OracleVerdict decideWhen(const bim::Storey& storey, double floor_z, const std::v
   // from both sums, sim/oracle/deviation.hpp), whose groups follow the truth's best start.
   const auto robust_start = std::chrono::steady_clock::now();
   const double robust_cpu_start = threadCpuSeconds();
-  const WallLabels labels(walls, wall_of, config.raster_m, config.clamp_m);
+  const WallLabels labels(field, wall_of);
   const auto ruledOutRobustly = [&](std::size_t k) {
     const PathCloud path = pathOf(keyframes, k + 1);
     const SearchContext plain{field, model, path, lattice, zone};

@@ -26,8 +26,8 @@ struct OracleConfig {
   double sigma_m = 0.05;
   double z_hit = 0.95;
 
-  // The distance field: exact distances to the wall segments at cell centres, bilinear
-  // between; beyond clamp_m a point is clutter for every pose anyway.
+  // The distance field: exact distances to the wall segments, each raster square listing the
+  // segments that can be nearest in it; beyond clamp_m a point is clutter for every pose anyway.
   double raster_m = 0.05, clamp_m = 0.5;
 
   // The search grid over start poses (the issue asks for at most 0.1 m and 2 deg); each grid

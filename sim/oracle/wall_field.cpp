@@ -1,14 +1,47 @@
 #include "sim/oracle/wall_field.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 namespace bimloc::sim::oracle {
-float segmentDistance(const Eigen::Vector2d& p, const Segment2& s) {
-  const Eigen::Vector2d ab = s.b - s.a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - s.a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return static_cast<float>((s.a + t * ab - p).norm());
+namespace {
+
+// A square's corners.
+std::array<Eigen::Vector2d, 4> cornersOf(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  return {lo, Eigen::Vector2d(hi.x(), lo.y()), hi, Eigen::Vector2d(lo.x(), hi.y())};
+}
+
+double pointSquareDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  return (p.cwiseMax(lo).cwiseMin(hi) - p).norm();
+}
+
+// Whether the segment meets the square (Liang-Barsky: clip its parameter interval to each slab).
+bool meets(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const Segment2& s) {
+  double t0 = 0, t1 = 1;
+  const Eigen::Vector2d d = s.b - s.a;
+  for (int axis = 0; axis < 2; ++axis) {
+    if (d[axis] == 0) {
+      if (s.a[axis] < lo[axis] || s.a[axis] > hi[axis]) return false;
+      continue;
+    }
+    double ta = (lo[axis] - s.a[axis]) / d[axis], tb = (hi[axis] - s.a[axis]) / d[axis];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+double squareDistance(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const Segment2& s) {
+  if (meets(lo, hi, s)) return 0.0;
+  double d = std::min(pointSquareDistance(s.a, lo, hi), pointSquareDistance(s.b, lo, hi));
+  for (const auto& c : cornersOf(lo, hi)) d = std::min(d, std::sqrt(segmentDistance2(c, s)));
+  return d;
 }
 
 std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low, double z_high, std::vector<int>* wall_of) {
@@ -37,43 +70,98 @@ std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low
 }
 
 DistanceField::DistanceField(const std::vector<Segment2>& walls, double cell_m, double clamp_m, double margin_m)
-    : cell_(static_cast<float>(cell_m)), clamp_(static_cast<float>(clamp_m)) {
+    : cell_(static_cast<float>(cell_m)), clamp_(static_cast<float>(clamp_m)), segments_(walls) {
   lower_ = Eigen::Vector2d::Constant(walls.empty() ? 0.0 : 1e300), upper_ = Eigen::Vector2d::Constant(walls.empty() ? 0.0 : -1e300);
   for (const auto& s : walls) lower_ = lower_.cwiseMin(s.a).cwiseMin(s.b), upper_ = upper_.cwiseMax(s.a).cwiseMax(s.b);
+  // At least clamp round the segments: off the raster every point is then beyond clamp, and
+  // at() is exact everywhere.
+  margin_m = std::max(margin_m, clamp_m + cell_m);
   lower_.array() -= margin_m, upper_.array() += margin_m;
   nx_ = static_cast<int>(std::ceil((upper_.x() - lower_.x()) / cell_m)) + 1;
   ny_ = static_cast<int>(std::ceil((upper_.y() - lower_.y()) / cell_m)) + 1;
-  values_.assign(static_cast<std::size_t>(nx_) * ny_, clamp_);
-  // Exact distances, each segment writing the cells within clamp of it.
+  const std::size_t squares = static_cast<std::size_t>(nx_) * ny_;
+  // Each square is taken a millimetre larger on every side: a point that float rounding puts in
+  // the square next to its own (off by ~1e-5 m) still finds its nearest segment listed.
+  const double grow = 1e-3;
+  const auto squareAt = [&](std::size_t k, Eigen::Vector2d* lo, Eigen::Vector2d* hi) {
+    const auto i = static_cast<double>(k % static_cast<std::size_t>(nx_)), j = static_cast<double>(k / static_cast<std::size_t>(nx_));
+    *lo = lower_ + cell_m * Eigen::Vector2d(i, j) - Eigen::Vector2d::Constant(grow);
+    *hi = lower_ + cell_m * Eigen::Vector2d(i + 1, j + 1) + Eigen::Vector2d::Constant(grow);
+  };
+  // The squares that may come within clamp of a segment: those whose lower corner lies in its
+  // box grown by clamp and two cells.
+  const auto forSquaresNear = [&](const Segment2& s, auto&& f) {
+    const double reach = clamp_m + 2 * cell_m;
+    const Eigen::Vector2d lo = s.a.cwiseMin(s.b).array() - reach, hi = s.a.cwiseMax(s.b).array() + reach;
+    const int i0 = std::max(0, static_cast<int>(std::floor((lo.x() - lower_.x()) / cell_m)));
+    const int i1 = std::min(nx_ - 1, static_cast<int>(std::ceil((hi.x() - lower_.x()) / cell_m)));
+    const int j0 = std::max(0, static_cast<int>(std::floor((lo.y() - lower_.y()) / cell_m)));
+    const int j1 = std::min(ny_ - 1, static_cast<int>(std::ceil((hi.y() - lower_.y()) / cell_m)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) f(static_cast<std::size_t>(j) * nx_ + i);
+  };
+  // 1. Each square's least distance to any segment (its code), and the least over the segments
+  // of the farthest a point of the square can be from it (its farthest corner: the distance to a
+  // segment is convex): no segment farther than that from the whole square is ever nearest in it.
+  std::vector<double> least(squares, clamp_m), farthest(squares, std::numeric_limits<double>::infinity());
   for (const auto& s : walls)
-    forCellsNear(s, lower_, cell_m, clamp_m, nx_, ny_, [&](std::size_t at, float d) { values_[at] = std::min(values_[at], d); });
+    forSquaresNear(s, [&](std::size_t k) {
+      Eigen::Vector2d lo, hi;
+      squareAt(k, &lo, &hi);
+      least[k] = std::min(least[k], squareDistance(lo, hi, s));
+      double far = 0;
+      for (const auto& c : cornersOf(lo, hi)) far = std::max(far, segmentDistance2(c, s));
+      farthest[k] = std::min(farthest[k], std::sqrt(far));
+    });
+  // 2. The candidates: the segments within min(farthest, clamp) of the square, ascending.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // (square, segment)
+  for (std::size_t n = 0; n < walls.size(); ++n)
+    forSquaresNear(walls[n], [&](std::size_t k) {
+      Eigen::Vector2d lo, hi;
+      squareAt(k, &lo, &hi);
+      if (squareDistance(lo, hi, walls[n]) <= std::min(farthest[k], clamp_m)) pairs.emplace_back(k, n);
+    });
+  std::stable_sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  first_.assign(squares + 1, 0);
+  for (const auto& [k, n] : pairs) ++first_[k + 1];
+  for (std::size_t k = 0; k < squares; ++k) first_[k + 1] += first_[k];
+  candidates_.reserve(pairs.size());
+  for (const auto& [k, n] : pairs) candidates_.push_back(n);
   // The min-pyramid, quantized downwards (still a lower bound).
   inv_cell_ = 1.0f / cell_;
   levels_.resize(kLevels);
-  const float scale = 255.0f / clamp_;
-  codes_.resize(values_.size());
-  for (std::size_t k = 0; k < values_.size(); ++k) codes_[k] = static_cast<std::uint8_t>(std::min(255.0f, std::floor(values_[k] * scale)));
+  const double scale = 255.0 / clamp_m;
+  codes_.resize(squares);
+  for (std::size_t k = 0; k < squares; ++k) codes_[k] = static_cast<std::uint8_t>(std::min(255.0, std::floor(least[k] * scale)));
   for (int k = 1; k <= kLevels; ++k) {
     auto& level = levels_[k - 1];
-    level.assign(values_.size(), 0);
+    level.assign(squares, 0);
     const int half = 1 << (k - 1);
+    const auto& below = k == 1 ? codes_ : levels_[k - 2];
+    const std::size_t dx = half, dy = static_cast<std::size_t>(half) * nx_;
     for (int j = 0; j + 2 * half <= ny_; ++j)
       for (int i = 0; i + 2 * half <= nx_; ++i) {
         const std::size_t at = static_cast<std::size_t>(j) * nx_ + i;
-        if (k == 1) {
-          const float m = std::min(std::min(cell(i, j), cell(i + 1, j)), std::min(cell(i, j + 1), cell(i + 1, j + 1)));
-          level[at] = static_cast<std::uint8_t>(std::min(255.0f, std::floor(m * scale)));
-        } else {
-          const auto& below = levels_[k - 2];
-          const std::size_t dx = half, dy = static_cast<std::size_t>(half) * nx_;
-          level[at] = std::min(std::min(below[at], below[at + dx]), std::min(below[at + dy], below[at + dx + dy]));
-        }
+        level[at] = std::min(std::min(below[at], below[at + dx]), std::min(below[at + dy], below[at + dx + dy]));
       }
   }
 }
 
+int DistanceField::nearest(float x, float y) const {
+  const std::size_t k = squareOf(x, y);
+  if (k == npos) return -1;
+  const Eigen::Vector2d p(x, y);
+  double least = static_cast<double>(clamp_) * clamp_;
+  int best = -1;
+  for (std::uint32_t c = first_[k]; c < first_[k + 1]; ++c) {
+    const double d = segmentDistance2(p, segments_[candidates_[c]]);
+    if (d < least) least = d, best = static_cast<int>(candidates_[c]);
+  }
+  return best;
+}
+
 std::size_t DistanceField::bytes() const {
-  std::size_t n = values_.size() * sizeof(float) + codes_.size();
+  std::size_t n = segments_.size() * sizeof(Segment2) + (first_.size() + candidates_.size()) * sizeof(std::uint32_t) + codes_.size();
   for (const auto& l : levels_) n += l.size();
   return n;
 }

@@ -1,7 +1,8 @@
 // The plan's walls as the oracle sees them: the wall faces cut by a height band, as 2D
-// segments, and their distance field on a raster (exact distances at cell centres, clamped,
-// bilinear between), with a min-pyramid that bounds the field from below over any box: what
-// the branch-and-bound's bound needs (sim/oracle/place_search.hpp).
+// segments, and the distance to the nearest of them, exact at every point (each square of a
+// raster lists the segments that can be nearest anywhere in it), with a min-pyramid of each
+// square's least distance that bounds the field from below over any box: what the
+// branch-and-bound's bound needs (sim/oracle/place_search.hpp).
 #pragma once
 
 #include <bimloc/bim/building.hpp>
@@ -23,21 +24,19 @@ struct Segment2 {
   Eigen::Vector2d a = Eigen::Vector2d::Zero(), b = Eigen::Vector2d::Zero();
 };
 
-// The distance from p to the segment.
-float segmentDistance(const Eigen::Vector2d& p, const Segment2& s);
-
-// Calls f(index, distance) for each cell of a raster (origin `lower`, side cell_m, nx x ny,
-// row-major) whose centre lies in the segment's box grown by reach_m: its exact distance to it.
-template <typename F>
-void forCellsNear(const Segment2& s, const Eigen::Vector2d& lower, double cell_m, double reach_m, int nx, int ny, F&& f) {
-  const Eigen::Vector2d lo = s.a.cwiseMin(s.b).array() - reach_m, hi = s.a.cwiseMax(s.b).array() + reach_m;
-  const int i0 = std::max(0, static_cast<int>(std::floor((lo.x() - lower.x()) / cell_m)));
-  const int i1 = std::min(nx - 1, static_cast<int>(std::ceil((hi.x() - lower.x()) / cell_m)));
-  const int j0 = std::max(0, static_cast<int>(std::floor((lo.y() - lower.y()) / cell_m)));
-  const int j1 = std::min(ny - 1, static_cast<int>(std::ceil((hi.y() - lower.y()) / cell_m)));
-  for (int j = j0; j <= j1; ++j)
-    for (int i = i0; i <= i1; ++i) f(static_cast<std::size_t>(j) * nx + i, segmentDistance(lower + cell_m * Eigen::Vector2d(i, j), s));
+// The squared distance from p to the segment, and the distance (its square root, in float).
+inline double segmentDistance2(const Eigen::Vector2d& p, const Segment2& s) {
+  const Eigen::Vector2d ab = s.b - s.a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - s.a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (s.a + t * ab - p).squaredNorm();
 }
+inline float segmentDistance(const Eigen::Vector2d& p, const Segment2& s) { return static_cast<float>(std::sqrt(segmentDistance2(p, s))); }
+
+// The least distance from the square [lo, hi] to the segment: 0 where they meet, else the least
+// of the segment's ends to the square and the square's corners to the segment (two disjoint
+// convex polygons are nearest at a vertex of one of them).
+double squareDistance(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const Segment2& s);
 
 // Every wall face of `storey` that reaches into [z_low, z_high] (world z), as a segment at its
 // base; a face's openings that span the whole band (doorways) cut it. With `wall_of`, also each
@@ -47,16 +46,21 @@ std::vector<Segment2> wallSegmentsInBand(const bim::Storey& storey, double z_low
 
 class DistanceField {
  public:
-  // The raster covers the segments' extent grown by margin_m.
+  // The raster covers the segments' extent grown by margin_m (at least clamp and a cell).
   DistanceField(const std::vector<Segment2>& walls, double cell_m, double clamp_m, double margin_m);
 
-  // Distance to the nearest wall at p, bilinear between cell centres, at most clamp (and clamp
-  // outside the raster).
+  // The exact distance from p to the nearest wall segment, at most clamp (and clamp outside the
+  // raster): the least segmentDistance over the segments, to the bit. Why exact: an
+  // interpolated raster is biased by up to half a cell next to a wall, by an amount that depends
+  // on where the wall falls between cell centres, so two twin rooms a non-whole number of cells
+  // apart scored tens of nats apart over a path's ~1 000 points (docs/oracle.md).
   float at(float x, float y) const;
-  // A lower bound of at() over the box [x0, x1] x [y0, y1], as a code: the least value among the
-  // cells whose centres surround any point of the box, in units of clamp / 255 rounded down.
-  // What the branch-and-bound's inner loop reads: a table lookup per point instead of a division
-  // and a search (PointModel::boundOfCode).
+  // The segment nearest to p (the first of equals), or -1 where every one is beyond clamp.
+  int nearest(float x, float y) const;
+  // A lower bound of at() over the box [x0, x1] x [y0, y1], as a code: the least distance over
+  // the raster squares that cover the box, in units of clamp / 255 rounded down. What the
+  // branch-and-bound's inner loop reads: a table lookup per point instead of a search
+  // (PointModel::boundOfCode).
   std::uint8_t minCodeOver(float x0, float y0, float x1, float y1) const;
   float codeDistance(std::uint8_t code) const { return static_cast<float>(code) * clamp_ / 255.0f; }
 
@@ -66,37 +70,49 @@ class DistanceField {
   std::size_t bytes() const;
 
  private:
-  float cell(int i, int j) const { return values_[static_cast<std::size_t>(j) * nx_ + i]; }
+  // Square (i, j) of the raster: [lower + (i, j) cell, lower + (i + 1, j + 1) cell]; the
+  // segments that can be nearest in it are candidates_[first_[k] .. first_[k + 1]).
+  std::size_t squareOf(float x, float y) const;  // or npos, off the raster
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
   Eigen::Vector2d lower_, upper_;
   float cell_ = 0.05f, clamp_ = 0.5f;
   int nx_ = 0, ny_ = 0;
-  std::vector<float> values_;  // cell (i, j) centre at lower + (i, j) * cell
-  std::vector<std::uint8_t> codes_;  // values_ in units of clamp / 255, rounded down
+  std::vector<Segment2> segments_;
+  std::vector<std::uint32_t> first_;       // nx * ny + 1 offsets
+  std::vector<std::uint32_t> candidates_;  // segment indices, ascending within a square
+  std::vector<std::uint8_t> codes_;  // each square's least distance in units of clamp / 255, rounded down
   float inv_cell_ = 20.0f;
-  // levels_[k - 1][j * nx + i]: the least value over cells [i, i + 2^k) x [j, j + 2^k), in
-  // units of clamp / 255 rounded down (a lower bound), for k = 1..kLevels.
+  // levels_[k - 1][j * nx + i]: the least code over squares [i, i + 2^k) x [j, j + 2^k),
+  // for k = 1..kLevels.
   static constexpr int kLevels = 7;
   std::vector<std::vector<std::uint8_t>> levels_;
 };
 
 // Inline: the search calls these once per point per pose or node.
-inline float DistanceField::at(float x, float y) const {
+inline std::size_t DistanceField::squareOf(float x, float y) const {
   const float fx = (x - static_cast<float>(lower_.x())) / cell_, fy = (y - static_cast<float>(lower_.y())) / cell_;
-  if (!(std::abs(fx) < 1e6f && std::abs(fy) < 1e6f)) return clamp_;  // far off the raster (or not finite)
+  if (!(std::abs(fx) < 1e6f && std::abs(fy) < 1e6f)) return npos;  // far off the raster (or not finite)
   const int i = floorIndex(fx), j = floorIndex(fy);
-  if (i < 0 || j < 0 || i >= nx_ - 1 || j >= ny_ - 1) return clamp_;
-  const float u = fx - static_cast<float>(i), v = fy - static_cast<float>(j);
-  const float* row = &values_[static_cast<std::size_t>(j) * nx_ + i];
-  const float* next = row + nx_;
-  return (1 - v) * ((1 - u) * row[0] + u * row[1]) + v * ((1 - u) * next[0] + u * next[1]);
+  if (i < 0 || j < 0 || i >= nx_ - 1 || j >= ny_ - 1) return npos;
+  return static_cast<std::size_t>(j) * nx_ + i;
+}
+
+inline float DistanceField::at(float x, float y) const {
+  const std::size_t k = squareOf(x, y);
+  if (k == npos || first_[k] == first_[k + 1]) return clamp_;
+  const Eigen::Vector2d p(x, y);
+  double least = static_cast<double>(clamp_) * clamp_;
+  for (std::uint32_t c = first_[k]; c < first_[k + 1]; ++c) least = std::min(least, segmentDistance2(p, segments_[candidates_[c]]));
+  // sqrt and the float rounding are monotone: the least of the distances, to the bit.
+  return std::min(clamp_, static_cast<float>(std::sqrt(least)));
 }
 
 inline std::uint8_t DistanceField::minCodeOver(float x0, float y0, float x1, float y1) const {
-  // Cells whose centres surround a point p: floor((p - lower) / cell) and the next one. They are
-  // found by multiplying with 1 / cell, which may round across a cell's edge: the box is grown by
-  // a thousandth of a cell each way first, so that no such cell is missed (one more, at worst: a
-  // bound a little looser, never wrong). at() is clamp wherever its cells leave the raster: only
-  // the cells inside count. Four squares of side 2^k > size / 2 at the box's corners cover it.
+  // The squares a point p may lie in: floor((p - lower) / cell), and the next one (a bound a
+  // little looser, never wrong). They are found by multiplying with 1 / cell, which may round
+  // across a square's edge: the box is grown by a thousandth of a cell each way first, so that
+  // none is missed. at() is clamp wherever p leaves the raster: only the squares inside count.
+  // Four blocks of side 2^k > size / 2 at the box's corners cover it.
   const float lx = static_cast<float>(lower_.x()), ly = static_cast<float>(lower_.y());
   const float fx0 = (x0 - lx) * inv_cell_ - 1e-3f, fx1 = (x1 - lx) * inv_cell_ + 1e-3f;
   const float fy0 = (y0 - ly) * inv_cell_ - 1e-3f, fy1 = (y1 - ly) * inv_cell_ + 1e-3f;
