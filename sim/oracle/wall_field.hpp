@@ -108,17 +108,18 @@ inline float DistanceField::at(float x, float y) const {
 }
 
 inline std::uint8_t DistanceField::minCodeOver(float x0, float y0, float x1, float y1) const {
-  // The squares a point p may lie in: floor((p - lower) / cell), and the next one (a bound a
-  // little looser, never wrong). They are found by multiplying with 1 / cell, which may round
-  // across a square's edge: the box is grown by a thousandth of a cell each way first, so that
-  // none is missed. at() is clamp wherever p leaves the raster: only the squares inside count.
-  // Four blocks of side 2^k > size / 2 at the box's corners cover it.
+  // The squares the box's points lie in: floor((p - lower) / cell) over the box. They are found
+  // by multiplying with 1 / cell, which may round across a square's edge: the box is grown by a
+  // thousandth of a cell each way first, so that none is missed (at() finds a point's nearest
+  // segment whichever of two neighbouring squares it is put in: their lists hold every segment
+  // that can be nearest within a millimetre of them). at() is clamp wherever p leaves the
+  // raster: only the squares inside count. Four blocks of side 2^k > size / 2 at the box's corners cover it.
   const float lx = static_cast<float>(lower_.x()), ly = static_cast<float>(lower_.y());
   const float fx0 = (x0 - lx) * inv_cell_ - 1e-3f, fx1 = (x1 - lx) * inv_cell_ + 1e-3f;
   const float fy0 = (y0 - ly) * inv_cell_ - 1e-3f, fy1 = (y1 - ly) * inv_cell_ + 1e-3f;
   if (!(fx0 > -1e6f && fy0 > -1e6f && fx1 < 1e6f && fy1 < 1e6f)) return 0;  // no useful bound: the least
-  const int i0 = std::max(floorIndex(fx0), 0), i1 = std::min(floorIndex(fx1) + 1, nx_ - 1);
-  const int j0 = std::max(floorIndex(fy0), 0), j1 = std::min(floorIndex(fy1) + 1, ny_ - 1);
+  const int i0 = std::max(floorIndex(fx0), 0), i1 = std::min(floorIndex(fx1), nx_ - 1);
+  const int j0 = std::max(floorIndex(fy0), 0), j1 = std::min(floorIndex(fy1), ny_ - 1);
   if (i0 > i1 || j0 > j1) return 255;  // wholly off the raster: clamp
   const int size = std::max(i1 - i0 + 1, j1 - j0 + 1);
   if (size == 1) return codes_[static_cast<std::size_t>(j0) * nx_ + i0];
