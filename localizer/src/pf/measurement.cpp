@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 namespace bimloc::pf::detail {
 namespace {
@@ -71,7 +72,6 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   // The local search also matches a plane behind a face, in its openings (below): as far as
   // the deepest wall with openings.
   const double behind_m = opening_margin_m >= 0.0 ? rooms.fillingDepth() : 0.0;
-  const MatchReach reach_of(c.sigma_d_m, max_angle_rad, gate, margin_m, behind_m);
   const auto faceAt = [&](const Landmark& l) { return static_cast<std::uint32_t>(&l - index->faces().data()); };
   // A point of the yaw-free base frame, in the map at the particle's pose.
   const auto inMap = [&](const Eigen::Vector2d& b) { return Eigen::Vector2d(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y()); };
@@ -82,6 +82,10 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   std::vector<Piece> pieces;
   // The shortlist stands for the index only where the index would be asked: every face a candidate.
   if (shortlist && !(index && rooms.seesEveryFace() && shortlist->match.size() == observations.size())) shortlist = nullptr;
+  // How far from a plane its match can lie: only where the index is asked (a room's faces are
+  // all considered): its sine and square root were paid at every particle of every weighing.
+  std::optional<MatchReach> reach_of;
+  if (via_index && !shortlist) reach_of.emplace(c.sigma_d_m, max_angle_rad, gate, margin_m, behind_m);
   for (std::size_t k = 0; k < observations.size(); ++k) {
     const Observation& o = observations[k];
     // The observed normal in the map (a plane moves with a pose: n' = R n).
@@ -97,7 +101,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const double span_half = 0.5 * (span_known ? o.wall_span_m : o.extent_m);
     // Without the room factor, only the faces that pass near the plane's points can match it
     // (face_index.hpp): the same best match as over every face, at the cost of what is near.
-    const double radius = shortlist ? shortlist->radius_m[k] : via_index ? reach_of.at(o.range_m) : 0.0;
+    const double radius = shortlist ? shortlist->radius_m[k] : via_index ? reach_of->at(o.range_m) : 0.0;
     const bool indexed = via_index && radius < kIndexedRadiusM;
     const bool cell_ordered = indexed && fine;
     double best = gate;
