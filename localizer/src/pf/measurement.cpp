@@ -48,7 +48,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
                               bool out_of_rooms_penalised, double floor, double opening_margin_m, const FaceShortlist* shortlist) {
   MatchResult result;
   const double gate = c.gate_mahalanobis2;
-  if (per_observation) per_observation->clear();
+  if (per_observation) per_observation->clear(), per_observation->reserve(observations.size());  // grown once, not by doubling
   const FaceIndex* index = rooms.faceIndex();
   const bool outside = p.room < 0;
   if (outside && !index && !rooms.seesEveryFace()) {
@@ -80,6 +80,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     double azimuth, d, cost, support;
   };
   std::vector<Piece> pieces;
+  if (opening_margin_m >= 0.0) pieces.reserve(observations.size());  // one allocation, not one per doubling
   // The shortlist stands for the index only where the index would be asked: every face a candidate.
   if (shortlist && !(index && rooms.seesEveryFace() && shortlist->match.size() == observations.size())) shortlist = nullptr;
   // How far from a plane its match can lie: only where the index is asked (a room's faces are
@@ -222,6 +223,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       double azimuth, d, weighted_cost, support;
     };
     std::vector<Surface> surfaces;
+    surfaces.reserve(pieces.size());
     for (const Piece& piece : pieces) {
       const auto same = std::find_if(surfaces.begin(), surfaces.end(), [&](const Surface& u) {
         return std::abs(wrapAngle(piece.azimuth - u.azimuth)) <= reach / inv_az && std::abs(piece.d - u.d) <= reach * c.sigma_d_m;
