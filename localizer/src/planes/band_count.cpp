@@ -80,39 +80,6 @@ __attribute__((target("avx2"))) std::size_t countAvx2(const float* x, const floa
   return count + countTail(x, y, z, packed, n, a, b, c, d, t);
 }
 
-// Sixteen points at a time, the same float operations again, the inliers counted from the
-// compare's mask. AVX-512F allows fused multiply-adds, which would round differently: the
-// contraction is off for this function (checked in the object code: no vfmadd).
-__attribute__((target("avx512f"), optimize("fp-contract=off"))) std::size_t countAvx512(const float* x, const float* y,
-                                                                                     const float* z, std::size_t n, float a,
-                                                                                     float b, float c, float d, float t,
-                                                                                     std::size_t best) {
-  const std::size_t packed = n & ~std::size_t(3), wide = n & ~std::size_t(15);
-  const __m512 va = _mm512_set1_ps(a), vb = _mm512_set1_ps(b), vc = _mm512_set1_ps(c), vd = _mm512_set1_ps(d);
-  const __m512 vt = _mm512_set1_ps(t);
-  std::size_t count = 0, i = 0;
-  while (i < wide) {
-    const std::size_t end = std::min(wide, i + kBandCheckEvery);
-    for (; i < end; i += 16) {
-      const __m512 r =
-          _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(va, _mm512_loadu_ps(x + i)), _mm512_mul_ps(vb, _mm512_loadu_ps(y + i))),
-                        _mm512_add_ps(_mm512_mul_ps(vc, _mm512_loadu_ps(z + i)), vd));
-      count += static_cast<std::size_t>(__builtin_popcount(_mm512_cmp_ps_mask(_mm512_abs_ps(r), vt, _CMP_LT_OS)));
-    }
-    if (count + (n - i) <= best) return count;
-  }
-  for (; i < packed; ++i) count += inBandPacked(a, b, c, d, t, x[i], y[i], z[i]);
-  return count + countTail(x, y, z, packed, n, a, b, c, d, t);
-}
-
-bool hasAvx512() {
-  static const bool yes = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx512f") != 0;
-  }();
-  return yes;
-}
-
 bool hasAvx2() {
   static const bool yes = [] {
     __builtin_cpu_init();  // harmless when libgcc's constructor has run it already
@@ -160,25 +127,11 @@ __attribute__((target("avx2"))) void indicesInBandAvx2(const float* x, const flo
 std::size_t countInBand(const float* x, const float* y, const float* z, std::size_t n, float a, float b, float c, float d, float t,
                         std::size_t best) {
 #if BIMLOC_BAND_COUNT_X86
-  if (hasAvx512()) return countAvx512(x, y, z, n, a, b, c, d, t, best);
   return hasAvx2() ? countAvx2(x, y, z, n, a, b, c, d, t, best) : countSse2(x, y, z, n, a, b, c, d, t, best);
 #else
   (void)best;
   return countInBandPlain(x, y, z, n, a, b, c, d, t);
 #endif
-}
-
-std::size_t countInBandWidth(int lanes, const float* x, const float* y, const float* z, std::size_t n, float a, float b,
-                             float c, float d, float t, std::size_t best, bool* available) {
-  *available = false;
-#if BIMLOC_BAND_COUNT_X86
-  if (lanes == 4) return *available = true, countSse2(x, y, z, n, a, b, c, d, t, best);
-  if (lanes == 8 && hasAvx2()) return *available = true, countAvx2(x, y, z, n, a, b, c, d, t, best);
-  if (lanes == 16 && hasAvx512()) return *available = true, countAvx512(x, y, z, n, a, b, c, d, t, best);
-#else
-  (void)lanes, (void)x, (void)y, (void)z, (void)n, (void)a, (void)b, (void)c, (void)d, (void)t, (void)best;
-#endif
-  return 0;
 }
 
 void indicesInBand(const float* x, const float* y, const float* z, std::size_t n, float nx, float ny, float nz, float d, float t,

@@ -19,11 +19,6 @@ namespace bimloc::planes::detail {
 std::size_t countInBand(const float* x, const float* y, const float* z, std::size_t n, float a, float b, float c, float d,
                         float t, std::size_t best);
 
-// countInBand through one width of vectors (4: SSE2, 8: AVX2, 16: AVX-512F), for the tests to
-// hold each to the plain count; 0 when this machine (or build) lacks that width.
-std::size_t countInBandWidth(int lanes, const float* x, const float* y, const float* z, std::size_t n, float a, float b,
-                             float c, float d, float t, std::size_t best, bool* available);
-
 // The same count, point by point in plain C++ (the reference the tests hold it to).
 std::size_t countInBandPlain(const float* x, const float* y, const float* z, std::size_t n, float a, float b, float c, float d,
                              float t);
