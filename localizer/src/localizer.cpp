@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace bimloc {
 namespace {
@@ -37,14 +38,17 @@ Eigen::Matrix3d particleCovariance(const pf::ParticleFilter& filter) {
   double sum = 0;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   double s = 0, c = 0;
+  std::vector<double> weights;  // each exp once: both passes need it
+  weights.reserve(particles.size());
   for (const auto& p : particles) {
-    const double w = std::exp(p.log_weight - top);
+    const double w = weights.emplace_back(std::exp(p.log_weight - top));
     sum += w, mean.x() += w * p.x, mean.y() += w * p.y, s += w * std::sin(p.yaw), c += w * std::cos(p.yaw);
   }
   mean.head<2>() /= sum;
   mean.z() = std::atan2(s, c);
-  for (const auto& p : particles) {
-    const double w = std::exp(p.log_weight - top) / sum;
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const auto& p = particles[k];
+    const double w = weights[k] / sum;
     const Eigen::Vector3d e(p.x - mean.x(), p.y - mean.y(), wrapAngle(p.yaw - mean.z()));
     cov += w * e * e.transpose();
   }

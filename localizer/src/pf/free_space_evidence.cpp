@@ -105,7 +105,7 @@ int FreeSpaceMap::regionKey(const Eigen::Vector2d& p) const {
 
 std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0,
                                                                   double dz_per_m, double max_t, double lateral_per_m,
-                                                                  double position_sigma_m) const {
+                                                                  double position_sigma_m, std::vector<std::uint32_t>* scratch) const {
   std::optional<Crossing> best;
   if (faces_.empty() || !(max_t > 0.0)) return best;
   // Amanatides-Woo traversal of the cells along the ray; a crossing found in a cell may lie in
@@ -118,7 +118,9 @@ std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::V
   double tx = u.x() != 0.0 ? ((sx > 0 ? (ix + 1 - gx) : (gx - ix)) * cell_m_) / std::abs(u.x()) : inf;
   double ty = u.y() != 0.0 ? ((sy > 0 ? (iy + 1 - gy) : (gy - iy)) * cell_m_) / std::abs(u.y()) : inf;
   double t_cell = 0.0;  // where the current cell begins along the ray
-  std::vector<std::uint32_t> tried;
+  std::vector<std::uint32_t> own;
+  std::vector<std::uint32_t>& tried = scratch ? *scratch : own;
+  tried.clear();
   while (t_cell <= max_t && (!best || t_cell <= best->t)) {
     if (ix >= 0 && iy >= 0 && ix < nx_ && iy < ny_) {
       for (const std::uint32_t i : cells_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix)]) {
@@ -183,6 +185,7 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
   // bound taken for a sigma is the safe side of a uniform error's (bound / sqrt 3).
   const double sigma_yaw = std::hypot(params.sigma_yaw_rad, profile.skew_yaw_rad);
   const double sigma_m = std::hypot(params.sigma_m, profile.skew_m);
+  std::vector<std::uint32_t> tried;  // firstCrossing's, reused ray after ray
   for (std::size_t ray = 0; ray < profile.ends_base.size(); ++ray) {
     const Eigen::Vector3f& e = profile.ends_base[ray];
     const auto index = static_cast<std::int32_t>(ray);
@@ -192,7 +195,7 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
     if (!(r > 1e-3)) continue;
     const Eigen::Vector2d u = v / r;
     const double dz = (z_base + e.z() - z0) / r;
-    const auto x = map.firstCrossing(o, u, z0, dz, r + params.open_m, sigma_yaw, sigma_m);
+    const auto x = map.firstCrossing(o, u, z0, dz, r + params.open_m, sigma_yaw, sigma_m, &tried);
     if (!x) {
       // Nothing solid along the ray up to open_m past its end: it ended in the place's open.
       hits.push_back({kOpenKeyBase + map.regionKey(end), static_cast<float>(params.open_wall_faces * params.face_worth), index});

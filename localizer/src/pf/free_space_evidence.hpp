@@ -81,9 +81,11 @@ class FreeSpaceMap {
   // t = 0 by dz_per_m), 0 < t <= max_t. Openings the ray passes through are not crossings.
   // lateral_per_m (the place's heading sigma) and position_sigma_m (its position's) say how far
   // along a face the crossing may be off: that close to a face's end or an opening's edge it
-  // is `uncertain`.
+  // is `uncertain`. `scratch` (optional): a list to hold the faces tried, so that a caller
+  // casting many rays allocates it once.
   std::optional<Crossing> firstCrossing(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0, double dz_per_m,
-                                        double max_t, double lateral_per_m = 0.0, double position_sigma_m = 0.0) const;
+                                        double max_t, double lateral_per_m = 0.0, double position_sigma_m = 0.0,
+                                        std::vector<std::uint32_t>* scratch = nullptr) const;
   int regionKey(const Eigen::Vector2d& p) const;  // a 2 m cell of the floor
 
  private:

@@ -6,8 +6,8 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <tuple>
 #include <unordered_map>
-#include <unordered_set>
 
 namespace bimloc::pf::detail {
 namespace {
@@ -36,22 +36,33 @@ constexpr int kMinAssociated = 3;
 // search's and the seeds' scoring took half the time with it (docs/results/2026-11-26-h28speed2.md).
 constexpr int kAnywhere = -2;
 
-std::optional<Particle> solvePair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a,
-                                  const Landmark& b, double z, int room, const RoomIndex& rooms, double along_m) {
-  const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
-  if (std::abs(wrapAngle(b.azimuth - a.azimuth - turn)) > kAngleTolerance) return std::nullopt;
-  if (!atFaceHeight(obs[i], a, z) || !atFaceHeight(obs[j], b, z)) return std::nullopt;
-  const double yaw = wrapAngle(a.azimuth - obs[i].azimuth_base);
+// The heading observation i on landmark a fixes, with its cosine and sine: one per (i, a),
+// shared by every (j, b) paired with them.
+struct Heading {
+  double yaw, c, s;
+};
+Heading headingOf(const Observation& o, const Landmark& a) {
+  const double yaw = wrapAngle(a.azimuth - o.azimuth_base);
+  return {yaw, std::cos(yaw), std::sin(yaw)};
+}
+
+// solvePair with its first two tests (the turn between the faces, the heights) passed and
+// the heading given.
+std::optional<Particle> solveAt(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a,
+                                const Landmark& b, const Heading& h, double z, int room, const RoomIndex& rooms, double along_m) {
   // With the heading fixed, each plane is one line for (x, y): n·(x, y) = d_off - d - n_z z.
   Eigen::Matrix2d A;
   A << a.normal.x(), a.normal.y(), b.normal.x(), b.normal.y();
   if (std::abs(A.determinant()) < 0.3) return std::nullopt;
   const Eigen::Vector2d rhs(obs[i].d_offset - a.d - a.normal.z() * z, obs[j].d_offset - b.d - b.normal.z() * z);
   const Eigen::Vector2d xy = A.inverse() * rhs;
+  // The room's box first: the cheapest test, and most poses solved from a room's faces fall
+  // outside it (all the tests must pass, in any order).
+  if (room >= 0 && !rooms.mayBeIn(room, xy.x(), xy.y())) return std::nullopt;  // roomAt would say so, slower
   if (along_m >= 0.0) {
     // Each plane's points along its face (matchObservations' rule): elsewhere the pair of
     // faces explains neither plane, and the pose is a coincidence of two lines.
-    const double c = std::cos(yaw), s = std::sin(yaw);
+    const double c = h.c, s = h.s;
     const auto along = [&](const Observation& o, const Landmark& l) {
       const Eigen::Vector2d m(xy.x() + c * o.centroid_base.x() - s * o.centroid_base.y(), xy.y() + s * o.centroid_base.x() + c * o.centroid_base.y());
       const double u = (m - l.start).dot(l.direction);
@@ -59,11 +70,18 @@ std::optional<Particle> solvePair(const std::vector<Observation>& obs, std::size
     };
     if (!along(obs[i], a) || !along(obs[j], b)) return std::nullopt;
   }
-  if (room >= 0 && !rooms.mayBeIn(room, xy.x(), xy.y())) return std::nullopt;  // roomAt would say so, slower
   Particle p;
-  p.x = xy.x(), p.y = xy.y(), p.yaw = yaw, p.room = rooms.roomAt(xy.x(), xy.y());
+  p.x = xy.x(), p.y = xy.y(), p.yaw = h.yaw, p.room = rooms.roomAt(xy.x(), xy.y());
   if ((p.room < 0 && room != kAnywhere) || (room >= 0 && p.room != room)) return std::nullopt;
   return p;
+}
+
+std::optional<Particle> solvePair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a,
+                                  const Landmark& b, double z, int room, const RoomIndex& rooms, double along_m) {
+  const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
+  if (std::abs(wrapAngle(b.azimuth - a.azimuth - turn)) > kAngleTolerance) return std::nullopt;
+  if (!atFaceHeight(obs[i], a, z) || !atFaceHeight(obs[j], b, z)) return std::nullopt;
+  return solveAt(obs, i, j, a, b, headingOf(obs[i], a), z, room, rooms, along_m);
 }
 
 // The pose scored; kept when it explains enough of the scan (and is not below the floor).
@@ -116,20 +134,24 @@ void dropRepeatedPoses(std::vector<Particle>& poses) {
     std::memcpy(&u, &v, sizeof u);
     return u;
   };
+  // The poses' bits sorted (ties by position in the list): the first of each run of equal
+  // bits is the first in the list. A sort of one flat array, where a hash set allocated a
+  // node per pose.
   struct Key {
     std::uint64_t x, y, yaw;
-    bool operator==(const Key& o) const { return x == o.x && y == o.y && yaw == o.yaw; }
+    std::size_t at;
+    bool sameBits(const Key& o) const { return x == o.x && y == o.y && yaw == o.yaw; }
+    bool operator<(const Key& o) const { return std::tie(x, y, yaw, at) < std::tie(o.x, o.y, o.yaw, o.at); }
   };
-  struct KeyHash {
-    std::size_t operator()(const Key& k) const {
-      return static_cast<std::size_t>(k.x * 0x9E3779B97F4A7C15ull ^ (k.y + 0x632BE59BD9B4E019ull) * 0xC2B2AE3D27D4EB4Full ^ k.yaw);
-    }
-  };
-  std::unordered_set<Key, KeyHash> seen;
-  seen.reserve(poses.size());
+  std::vector<Key> keys(poses.size());
+  for (std::size_t k = 0; k < poses.size(); ++k) keys[k] = {bits(poses[k].x), bits(poses[k].y), bits(poses[k].yaw), k};
+  std::sort(keys.begin(), keys.end());
+  std::vector<char> first(poses.size(), 0);
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    if (k == 0 || !keys[k].sameBits(keys[k - 1])) first[keys[k].at] = 1;
   std::size_t kept = 0;
   for (std::size_t k = 0; k < poses.size(); ++k)
-    if (seen.insert({bits(poses[k].x), bits(poses[k].y), bits(poses[k].yaw)}).second) poses[kept++] = poses[k];
+    if (first[k]) poses[kept++] = poses[k];
   poses.resize(kept);
 }
 
@@ -145,14 +167,18 @@ void scorePoses(std::vector<Particle>& poses, const std::vector<Observation>& ob
 // The poses from one room's landmarks: every pair of observations against every pair. The
 // pairs solvePair turns down at its first two tests (the turn between the faces, the heights)
 // are passed over here: those tests once per observation and face, not per pair of pairs
-// (the seeds go over every room of the storey at every weighing). The poses are the same, in
-// the same order.
+// (the seeds go over every room of the storey at every weighing); and the heading of each
+// (observation, face) once, not per pair of pairs. The poses are the same, in the same order.
 void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
-                   const RoomIndex& rooms, double along_m, std::vector<Particle>& poses, std::vector<char>& at_height) {
+                   const RoomIndex& rooms, double along_m, std::vector<Particle>& poses, std::vector<char>& at_height,
+                   std::vector<Heading>& headings, std::vector<char>& known) {
   const std::size_t m = marks.size();
   at_height.resize(obs.size() * m);
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t a = 0; a < m; ++a) at_height[i * m + a] = atFaceHeight(obs[i], marks[a], z) ? 1 : 0;
+  // The heading of (i, a), once it is first needed (most are never: no b turns with it).
+  headings.resize(obs.size() * m);
+  known.assign(obs.size() * m, 0);
   for (std::size_t i = 0; i < obs.size(); ++i)
     for (std::size_t j = 0; j < obs.size(); ++j) {
       if (!pairable(obs, i, j)) continue;
@@ -162,7 +188,9 @@ void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vec
         for (std::size_t b = 0; b < m; ++b) {
           if (a == b || !at_height[j * m + b] || std::abs(wrapAngle(marks[b].azimuth - marks[a].azimuth - turn)) > kAngleTolerance)
             continue;
-          if (const auto p = solvePair(obs, i, j, marks[a], marks[b], z, room, rooms, along_m)) poses.push_back(*p);
+          const std::size_t ia = i * m + a;
+          if (!known[ia]) headings[ia] = headingOf(obs[i], marks[a]), known[ia] = 1;
+          if (const auto p = solveAt(obs, i, j, marks[a], marks[b], headings[ia], z, room, rooms, along_m)) poses.push_back(*p);
         }
       }
     }
@@ -218,16 +246,17 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observati
   std::vector<Particle> poses;
   const int room = config.use_rooms ? 0 : outside_rooms ? kAnywhere : -1;
   const double along_m = config.segment_margin_m;
-  std::vector<char> at_height;
+  std::vector<char> at_height, known;
+  std::vector<Heading> headings;
   if (config.use_rooms) {
     for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r)
-      fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, along_m, poses, at_height);
+      fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, along_m, poses, at_height, headings, known);
   } else {
     // The ablation: every room holds every face; one pass over them is enough.
     if (const FaceIndex* index = rooms.fineIndex())
       fromIndex(observations, z_base, *index, rooms, config, room, along_m, poses);
     else
-      fromLandmarks(observations, z_base, rooms.landmarks(0), room, rooms, along_m, poses, at_height);
+      fromLandmarks(observations, z_base, rooms.landmarks(0), room, rooms, along_m, poses, at_height, headings, known);
   }
   scorePoses(poses, observations, z_base, rooms, config, room != kAnywhere, bound, all);
   // Those below the floor are out before they are sorted: the ones the caller wants, best

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 namespace bimloc::pf::detail {
 namespace {
@@ -47,7 +48,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
                               bool out_of_rooms_penalised, double floor, double opening_margin_m, const FaceShortlist* shortlist) {
   MatchResult result;
   const double gate = c.gate_mahalanobis2;
-  if (per_observation) per_observation->clear();
+  if (per_observation) per_observation->clear(), per_observation->reserve(observations.size());  // grown once, not by doubling
   const FaceIndex* index = rooms.faceIndex();
   const bool outside = p.room < 0;
   if (outside && !index && !rooms.seesEveryFace()) {
@@ -71,7 +72,6 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   // The local search also matches a plane behind a face, in its openings (below): as far as
   // the deepest wall with openings.
   const double behind_m = opening_margin_m >= 0.0 ? rooms.fillingDepth() : 0.0;
-  const MatchReach reach_of(c.sigma_d_m, max_angle_rad, gate, margin_m, behind_m);
   const auto faceAt = [&](const Landmark& l) { return static_cast<std::uint32_t>(&l - index->faces().data()); };
   // A point of the yaw-free base frame, in the map at the particle's pose.
   const auto inMap = [&](const Eigen::Vector2d& b) { return Eigen::Vector2d(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y()); };
@@ -80,8 +80,13 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     double azimuth, d, cost, support;
   };
   std::vector<Piece> pieces;
+  if (opening_margin_m >= 0.0) pieces.reserve(observations.size());  // one allocation, not one per doubling
   // The shortlist stands for the index only where the index would be asked: every face a candidate.
   if (shortlist && !(index && rooms.seesEveryFace() && shortlist->match.size() == observations.size())) shortlist = nullptr;
+  // How far from a plane its match can lie: only where the index is asked (a room's faces are
+  // all considered): its sine and square root were paid at every particle of every weighing.
+  std::optional<MatchReach> reach_of;
+  if (via_index && !shortlist) reach_of.emplace(c.sigma_d_m, max_angle_rad, gate, margin_m, behind_m);
   for (std::size_t k = 0; k < observations.size(); ++k) {
     const Observation& o = observations[k];
     // The observed normal in the map (a plane moves with a pose: n' = R n).
@@ -97,7 +102,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const double span_half = 0.5 * (span_known ? o.wall_span_m : o.extent_m);
     // Without the room factor, only the faces that pass near the plane's points can match it
     // (face_index.hpp): the same best match as over every face, at the cost of what is near.
-    const double radius = shortlist ? shortlist->radius_m[k] : via_index ? reach_of.at(o.range_m) : 0.0;
+    const double radius = shortlist ? shortlist->radius_m[k] : via_index ? reach_of->at(o.range_m) : 0.0;
     const bool indexed = via_index && radius < kIndexedRadiusM;
     const bool cell_ordered = indexed && fine;
     double best = gate;
@@ -218,6 +223,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       double azimuth, d, weighted_cost, support;
     };
     std::vector<Surface> surfaces;
+    surfaces.reserve(pieces.size());
     for (const Piece& piece : pieces) {
       const auto same = std::find_if(surfaces.begin(), surfaces.end(), [&](const Surface& u) {
         return std::abs(wrapAngle(piece.azimuth - u.azimuth)) <= reach / inv_az && std::abs(piece.d - u.d) <= reach * c.sigma_d_m;

@@ -62,6 +62,8 @@ class FaceMargin {
   void addScan(bool p_out_of_rooms, bool q_out_of_rooms) {
     out_of_rooms_ += (q_out_of_rooms ? 1.0 : 0.0) - (p_out_of_rooms ? 1.0 : 0.0);
   }
+  // Room for n observations' terms (add), allocated once.
+  void reserve(std::size_t n) { deltas_.reserve(n); }
   // One observation, as matched at P and at Q.
   void add(const ObservationMatch& at_p, const ObservationMatch& at_q);
   // The margin, the room prior spread over a window of `scans` scans. With `per_face`, each

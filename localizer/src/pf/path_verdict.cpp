@@ -37,6 +37,10 @@ double FaceMargin::total(double gate, double scans, std::vector<std::pair<int, d
 double PathEvidence::distinctMargin(const Candidate& p, const Candidate& q, std::vector<std::pair<int, double>>* per_face) const {
   // Faces of P as keys 0 ... ; faces of Q (observations Q explains and P does not) after them.
   FaceMargin margin;
+  std::size_t terms = 0;
+  for (std::size_t k = 0; k < p.per_scan.size() && k < q.per_scan.size(); ++k)
+    terms += std::min(p.per_scan[k].per_observation.size(), q.per_scan[k].per_observation.size());
+  margin.reserve(terms);
   for (std::size_t k = 0; k < p.per_scan.size() && k < q.per_scan.size(); ++k) {
     const ScanScore& a = p.per_scan[k];
     const ScanScore& b = q.per_scan[k];

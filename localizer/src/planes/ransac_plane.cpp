@@ -74,6 +74,10 @@ class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
   SeededPlaneModel(const PointCloudConstPtr& cloud, const pcl::Indices& indices, std::uint32_t seed)
       : pcl::SampleConsensusModelPlane<pcl::PointXYZ>(cloud, indices, false) {
     rng_alg_.seed(seed);
+    // PCL's default constraint, [](auto) { return true; }, takes the coefficients by value: a
+    // VectorXf copied, so allocated and freed, at every hypothesis scored (isModelValid). The
+    // same answer by reference.
+    setModelConstraints([](const Eigen::VectorXf&) { return true; });
     x_.reserve(indices.size()), y_.reserve(indices.size()), z_.reserve(indices.size());
     for (const auto i : indices) {
       const auto& p = (*cloud)[i];
