@@ -100,39 +100,46 @@ DistanceField::DistanceField(const std::vector<Segment2>& walls, double cell_m, 
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) f(static_cast<std::size_t>(j) * nx_ + i);
   };
-  // 1. Each square's least distance to any segment (its code), and the least over the segments
-  // of the farthest a point of the square can be from it (its farthest corner: the distance to a
-  // segment is convex): no segment farther than that from the whole square is ever nearest in it.
-  std::vector<double> least(squares, clamp_m), farthest(squares, std::numeric_limits<double>::infinity());
+  // 1. Each square's least distance to any segment, as its code (floor is monotone: the least
+  // code is the code of the least), and the least over the segments of the farthest a point of
+  // the square can be from it (its farthest corner: the distance to a segment is convex): no
+  // segment farther than that from the whole square is ever nearest in it. Kept in float,
+  // rounded up (a candidate more, never one less): 5 bytes a square where a large storey has
+  // millions of squares.
+  const double scale = 255.0 / clamp_m;
+  codes_.assign(squares, 255);
+  std::vector<float> farthest(squares, std::numeric_limits<float>::infinity());
   for (const auto& s : walls)
     forSquaresNear(s, [&](std::size_t k) {
       Eigen::Vector2d lo, hi;
       squareAt(k, &lo, &hi);
-      least[k] = std::min(least[k], squareDistance(lo, hi, s));
+      const auto code = static_cast<std::uint8_t>(std::min(255.0, std::floor(squareDistance(lo, hi, s) * scale)));
+      codes_[k] = std::min(codes_[k], code);
       double far = 0;
       for (const auto& c : cornersOf(lo, hi)) far = std::max(far, segmentDistance2(c, s));
-      farthest[k] = std::min(farthest[k], std::sqrt(far));
+      const float up = std::nextafter(static_cast<float>(std::sqrt(far)), std::numeric_limits<float>::infinity());
+      farthest[k] = std::min(farthest[k], up);
     });
-  // 2. The candidates: the segments within min(farthest, clamp) of the square, ascending.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // (square, segment)
+  // 2. The candidates: the segments within min(farthest, clamp) of the square, ascending (a
+  // counting sort by square: the segments arrive in order).
+  first_.assign(squares + 1, 0);
+  const auto isCandidate = [&](std::size_t k, const Segment2& s) {
+    Eigen::Vector2d lo, hi;
+    squareAt(k, &lo, &hi);
+    return squareDistance(lo, hi, s) <= std::min(static_cast<double>(farthest[k]), clamp_m);
+  };
+  for (const auto& s : walls)
+    forSquaresNear(s, [&](std::size_t k) { first_[k + 1] += isCandidate(k, s); });
+  for (std::size_t k = 0; k < squares; ++k) first_[k + 1] += first_[k];
+  candidates_.resize(first_[squares]);
+  std::vector<std::uint32_t> next(first_.begin(), first_.end() - 1);
   for (std::size_t n = 0; n < walls.size(); ++n)
     forSquaresNear(walls[n], [&](std::size_t k) {
-      Eigen::Vector2d lo, hi;
-      squareAt(k, &lo, &hi);
-      if (squareDistance(lo, hi, walls[n]) <= std::min(farthest[k], clamp_m)) pairs.emplace_back(k, n);
+      if (isCandidate(k, walls[n])) candidates_[next[k]++] = static_cast<std::uint32_t>(n);
     });
-  std::stable_sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  first_.assign(squares + 1, 0);
-  for (const auto& [k, n] : pairs) ++first_[k + 1];
-  for (std::size_t k = 0; k < squares; ++k) first_[k + 1] += first_[k];
-  candidates_.reserve(pairs.size());
-  for (const auto& [k, n] : pairs) candidates_.push_back(n);
   // The min-pyramid, quantized downwards (still a lower bound).
   inv_cell_ = 1.0f / cell_;
   levels_.resize(kLevels);
-  const double scale = 255.0 / clamp_m;
-  codes_.resize(squares);
-  for (std::size_t k = 0; k < squares; ++k) codes_[k] = static_cast<std::uint8_t>(std::min(255.0, std::floor(least[k] * scale)));
   for (int k = 1; k <= kLevels; ++k) {
     auto& level = levels_[k - 1];
     level.assign(squares, 0);
