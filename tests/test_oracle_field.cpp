@@ -58,10 +58,13 @@ TEST(OracleField, IsTheLeastDistanceOverEverySegmentToTheBit) {
         px = static_cast<float>(x(rng)), py = static_cast<float>(y(rng));
       } else {  // near a segment: on it, beside it, past its ends
         const Segment2& s = segments[static_cast<std::size_t>(k) % segments.size()];
-        const Eigen::Vector2d p = s.a + (1.4 * u01(rng) - 0.2) * (s.b - s.a) + (k % 4 == 1 ? 0.0 : 1.0) * Eigen::Vector2d(off(rng), off(rng));
+        const Eigen::Vector2d beside = (k % 4 == 1 ? 0.0 : 1.0) * Eigen::Vector2d(off(rng), off(rng));
+        const Eigen::Vector2d p = s.a + (1.4 * u01(rng) - 0.2) * (s.b - s.a) + beside;
         px = static_cast<float>(p.x()), py = static_cast<float>(p.y());
       }
-      if (k % 7 == 0) px = static_cast<float>(field.lower().x() + cell * std::round((px - field.lower().x()) / cell));  // on a square's edge
+      if (k % 7 == 0) {  // on a square's edge
+        px = static_cast<float>(field.lower().x() + cell * std::round((px - field.lower().x()) / cell));
+      }
       int nearest = -2;
       const float brute = bruteDistance(segments, px, py, static_cast<float>(clamp), &nearest);
       ASSERT_EQ(field.at(px, py), brute) << "world " << world << " point " << px << ", " << py;
