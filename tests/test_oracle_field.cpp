@@ -110,7 +110,7 @@ TEST(OracleField, IdenticalRoomsANonWholeNumberOfCellsApartScoreAlike) {
   const DistanceField field(wallSegmentsInBand(s, c.band_low_m, c.band_high_m), c.raster_m, c.clamp_m, c.margin_m);
   const PointModel model(c, c.clamp_m);
   std::mt19937 rng(5);
-  for (const Eigen::Vector3d pose : {Eigen::Vector3d(1.5, 1.5, 0.3), Eigen::Vector3d(1.2, 6.0, -1.2), Eigen::Vector3d(4.8, 1.2, 2.5)}) {
+  for (const Eigen::Vector3d& pose : {Eigen::Vector3d(1.5, 1.5, 0.3), Eigen::Vector3d(1.2, 6.0, -1.2), Eigen::Vector3d(4.8, 1.2, 2.5)}) {
     PathCloud path;
     for (const auto& p : bandPoints(scanFrom(s, pose, 30.0, rng), Eigen::Isometry3d::Identity(), -0.2, 1.3, c)) path.add(p.x(), p.y());
     path.finish();

@@ -74,13 +74,13 @@ float robustBound(const DistanceField& field, const PointModel& model, const Pat
   // The box and the per-point bound are pathBound's (path_score.cpp), point for point.
   const auto c = static_cast<float>(std::cos(yaw)), s = static_cast<float>(std::sin(yaw));
   const auto tx = static_cast<float>(cx), ty = static_cast<float>(cy);
-  const auto chord = static_cast<float>(2.0 * std::sin(std::min(half_yaw, M_PI) / 2.0));
+  const float chord = chordPerMetre(half_yaw);
   const auto hx = static_cast<float>(half_x), hy = static_cast<float>(half_y);
   std::fill(d.scratch.begin(), d.scratch.end(), 0.0);
   double sum = kRoundingSlack, seen = 0;
   for (std::size_t i = 0; i < path.size(); ++i) {
     const float px = c * path.x[i] - s * path.y[i] + tx, py = s * path.x[i] + c * path.y[i] + ty;
-    const float bound = pointBound(field, model, px, py, hx, hy, chord * path.r[i] + 1e-4f);
+    const float bound = pointBound(field, model, px, py, hx, hy, pointTurn(chord, path.r[i]));
     sum += bound;
     // truth - bound <= truth - value: a group's sum here bounds its sum in robustScore from below,
     // but T_w = sum - (group's sum of bounds) + (group's sum of truths) >= the value's T_w, term by term.

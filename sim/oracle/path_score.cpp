@@ -53,15 +53,12 @@ float pathBound(const DistanceField& field, const PointModel& model, const PathC
                 double half_x, double half_y, double half_yaw, float stop_below) {
   const auto c = static_cast<float>(std::cos(yaw)), s = static_cast<float>(std::sin(yaw));
   const auto tx = static_cast<float>(cx), ty = static_cast<float>(cy);
-  // A turn by at most half_yaw about the start moves a point at distance r by at most the
-  // chord 2 r sin(half_yaw / 2), in each axis.
-  const auto chord = static_cast<float>(2.0 * std::sin(std::min(half_yaw, M_PI) / 2.0));
+  const float chord = chordPerMetre(half_yaw);
   const auto hx = static_cast<float>(half_x), hy = static_cast<float>(half_y);
   float sum = 0;
   for (std::size_t i = 0; i < path.size(); ++i) {
     const float px = c * path.x[i] - s * path.y[i] + tx, py = s * path.x[i] + c * path.y[i] + ty;
-    const float turn = chord * path.r[i] + 1e-4f;  // and float rounding
-    sum += pointBound(field, model, px, py, hx, hy, turn);
+    sum += pointBound(field, model, px, py, hx, hy, pointTurn(chord, path.r[i]));
     if (sum < stop_below) return sum;
   }
   return sum;

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -52,6 +53,12 @@ float pathScore(const DistanceField& field, const PointModel& model, const PathC
 // Stops early below `stop_below` as pathScore does.
 float pathBound(const DistanceField& field, const PointModel& model, const PathCloud& path, double cx, double cy, double yaw,
                 double half_x, double half_y, double half_yaw, float stop_below = -std::numeric_limits<float>::infinity());
+
+// A turn by at most half_yaw about the start moves a point at distance r by at most the chord
+// 2 r sin(half_yaw / 2), in each axis: the chord per metre of r, and a point's turn with float
+// rounding's margin. pathBound and robustBound both place their boxes with these.
+inline float chordPerMetre(double half_yaw) { return static_cast<float>(2.0 * std::sin(std::min(half_yaw, M_PI) / 2.0)); }
+inline float pointTurn(float chord_per_m, float r) { return chord_per_m * r + 1e-4f; }
 
 // The bound of one point of pathBound: at (px, py) for the box's centre, moved by at most
 // hx + turn in x and hy + turn in y by any start in the box.

@@ -24,14 +24,13 @@ struct Segment2 {
   Eigen::Vector2d a = Eigen::Vector2d::Zero(), b = Eigen::Vector2d::Zero();
 };
 
-// The squared distance from p to the segment, and the distance (its square root, in float).
+// The squared distance from p to the segment (DistanceField::at takes the root of the least).
 inline double segmentDistance2(const Eigen::Vector2d& p, const Segment2& s) {
   const Eigen::Vector2d ab = s.b - s.a;
   const double len2 = ab.squaredNorm();
   const double t = len2 > 0 ? std::clamp((p - s.a).dot(ab) / len2, 0.0, 1.0) : 0.0;
   return (s.a + t * ab - p).squaredNorm();
 }
-inline float segmentDistance(const Eigen::Vector2d& p, const Segment2& s) { return static_cast<float>(std::sqrt(segmentDistance2(p, s))); }
 
 // The least distance from the square [lo, hi] to the segment: 0 where they meet, else the least
 // of the segment's ends to the square and the square's corners to the segment (two disjoint
@@ -50,7 +49,7 @@ class DistanceField {
   DistanceField(const std::vector<Segment2>& walls, double cell_m, double clamp_m, double margin_m);
 
   // The exact distance from p to the nearest wall segment, at most clamp (and clamp outside the
-  // raster): the least segmentDistance over the segments, to the bit. Why exact: an
+  // raster): the least distance over every segment, to the bit. Why exact: an
   // interpolated raster is biased by up to half a cell next to a wall, by an amount that depends
   // on where the wall falls between cell centres, so two twin rooms a non-whole number of cells
   // apart scored 5-6 nats apart on one scan of an L room (tests/test_oracle_field.cpp).
