@@ -37,7 +37,9 @@ Walk walk(const std::vector<Eigen::Vector2d>& waypoints);
 std::vector<Eigen::Vector3f> scanFrom(const bim::Storey& s, const Eigen::Vector3d& pose, double max_range, std::mt19937& rng);
 
 // The oracle's verdict on the walk: odometry exact, in an odom frame turned and moved from the map's.
-sim::oracle::OracleVerdict runOracle(const bim::Storey& s, const Walk& w, double max_range, const sim::oracle::OracleConfig& config);
+// The scans are cast in `site` when given (a site that differs from its plan), else in the plan s.
+sim::oracle::OracleVerdict runOracle(const bim::Storey& s, const Walk& w, double max_range, const sim::oracle::OracleConfig& config,
+                                     const bim::Storey* site = nullptr);
 
 // The default config with a metre round the building (the test buildings stand alone: enough
 // room for rivals).

@@ -6,6 +6,8 @@
 //   robot sees through the doorway, not before;
 // - a corridor of identical bays, seen by a range-limited sensor, becomes decidable when its end
 //   comes into range;
+// - on a site that is not its plan (a doorway walled up), the test can rule the true place out,
+//   and reports it;
 // - the branch-and-bound finds the same best cell as evaluating every cell of the same grid.
 #include "oracle_fixtures.hpp"
 #include "sgraph_fixtures.hpp"
@@ -49,6 +51,7 @@ TEST(Oracle, PointSymmetricRoomIsNeverDecidable) {
   EXPECT_GT(v.keyframes, 20);
   EXPECT_GT(v.threshold, std::log(1.0 / 0.01));
   EXPECT_FALSE(v.decidable_at_s.has_value()) << "decidable at " << v.decidable_at_s.value_or(-1);
+  EXPECT_FALSE(v.truth_ruled_out);  // its twin explains the scans as well, not better
 }
 
 TEST(Oracle, TwinRoomsBecomeDecidableOnceTheDoorIsInView) {
@@ -66,6 +69,28 @@ TEST(Oracle, TwinRoomsBecomeDecidableOnceTheDoorIsInView) {
   ASSERT_TRUE(v.decidable_at_s.has_value()) << "door seen at " << *door_seen;
   EXPECT_GE(*v.decidable_at_s, *door_seen - 1e-9);  // before, A and B explain every point alike
   EXPECT_LE(*v.decidable_at_s, *door_seen + 1.0);
+}
+
+TEST(Oracle, ASiteThatIsNotItsPlanCanRuleTheTruthOut) {
+  // The plan of TwinRoomsBecomeDecidableOnceTheDoorIsInView; on the site, room A's doorway is
+  // walled up (built as room B). Once the robot sees that wall, room B explains the scans better
+  // than the true place A by more than the threshold: the plain test rules the truth out, and
+  // says so. On the site that is its plan, the same walk never does.
+  bim::Storey plan;
+  lRoom(plan, {0, 0}, true);
+  addWall(plan, {-2, 10.5}, {5, 10.5});
+  lRoom(plan, {20, 0}, false);
+  bim::Storey site;
+  lRoom(site, {0, 0}, false);
+  addWall(site, {-2, 10.5}, {5, 10.5});
+  lRoom(site, {20, 0}, false);
+  const Walk w = walk({{5.2, 1.5}, {1.4, 1.5}, {1.4, 6.5}});
+  const OracleVerdict as_planned = runOracle(plan, w, 30.0, smallMargin());
+  EXPECT_TRUE(as_planned.decidable_at_s.has_value());
+  EXPECT_FALSE(as_planned.truth_ruled_out);
+  const OracleVerdict walled_up = runOracle(plan, w, 30.0, smallMargin(), &site);
+  EXPECT_TRUE(walled_up.truth_ruled_out);
+  EXPECT_FALSE(walled_up.decidable_at_s.has_value());
 }
 
 TEST(Oracle, CorridorOfIdenticalBaysBecomesDecidableWhenItsEndIsInRange) {

@@ -170,15 +170,22 @@ OracleVerdict decideWhen(const bim::Storey& storey, double floor_z, const std::v
     *nodes += truth.nodes, *cells += truth.cells;
     return truth.best >= at_start ? Truth{truth.best, truth.pose} : Truth{at_start, truth_start};
   };
-  // Whether the scans up to keyframe k rule every rival out.
+  // Whether the scans up to keyframe k rule every rival out. With every scan (the first check),
+  // also whether they rule the truth out: a rival above it by the threshold (searched only when
+  // some rival comes within the threshold of it, the only case where one can be above).
   const auto ruledOut = [&](std::size_t k) {
     const PathCloud path = pathOf(keyframes, k + 1);
-    if (k + 1 == keyframes.size()) verdict.points = path.size();
     const SearchContext context{field, model, path, lattice, zone};
     const float q = truthOf(context, &verdict.nodes, &verdict.cells).q;
     const SearchAnswer rival = searchPlaces(context, Region::Rivals, q - static_cast<float>(verdict.threshold), true);
     ++verdict.checks;
     verdict.nodes += rival.nodes, verdict.cells += rival.cells;
+    if (k + 1 == keyframes.size() && rival.reached) {
+      const SearchAnswer above = searchPlaces(context, Region::Rivals, q + static_cast<float>(verdict.threshold), true);
+      verdict.nodes += above.nodes, verdict.cells += above.cells;
+      verdict.truth_ruled_out = above.reached;
+    }
+    if (k + 1 == keyframes.size()) verdict.points = path.size();
     return !rival.reached;
   };
   const auto stride = static_cast<std::size_t>(std::max(1, config.check_every));

@@ -53,6 +53,12 @@ struct OracleVerdict {
   double seconds = 0;       // the oracle's wall time
   int keyframes = 0, checks = 0;
   std::size_t points = 0, nodes = 0, cells = 0;
+  // With every scan of the run, some rival place explains them better than the truth by the
+  // threshold: the test rules the TRUE place out. On a site that is its plan that is the test's
+  // false alarm (rate at most alpha); on a site that differs from its plan it says the plain
+  // model (every point within the sensor's noise of a plan wall) does not hold there, so neither
+  // does its limit: a localizer that decided by it would decide falsely.
+  bool truth_ruled_out = false;
 
   // The robust answer (docs/oracle.md): the same question with one site deviation allowed, a
   // rival ruled out only when it stays so with any one plan wall's points dropped. Never before
