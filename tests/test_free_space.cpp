@@ -88,10 +88,13 @@ TEST(FreeSpace, ARayThroughAWallCostsByHowFarBeyond) {
   EXPECT_GT(through[0].cost, 0.99 * kFaceWorth);
   // Just beyond by less than the gate (3 sigma): noise, no cost.
   EXPECT_TRUE(hitsOf(oneWall(), {{4.9 + 2.5 * params.sigma_m, 0.0}}).empty());
-  // By 4 sigma: the cost of 4 sigma.
+  // By 4 sigma: the cost of 4 sigma. (Head-on, the heading's gate moves the crossing at 4.9 m
+  // to 4.9 / cos(3.3 deg), 8 mm farther: sigma 0.0501 m, the cost 5e-4 lower.)
   const auto four = hitsOf(oneWall(), {{4.9 + 4.0 * params.sigma_m, 0.0}});
   ASSERT_EQ(four.size(), 1u);
-  EXPECT_NEAR(four[0].cost, throughCost(4.0 * params.sigma_m, params.sigma_m, kFaceWorth), 1e-5);
+  const double tilt = params.gate_sigmas * params.sigma_yaw_rad;
+  const double head_on = std::hypot(params.sigma_m, 4.9 * (1.0 / std::cos(tilt) - 1.0) / params.gate_sigmas);
+  EXPECT_NEAR(four[0].cost, throughCost(4.0 * params.sigma_m, head_on, kFaceWorth), 1e-5);
   // Obliquely (60 deg off the normal), the same 4 sigma along the ray is 2 sigma of its range:
   // within the gate.
   const Eigen::Vector2d u(std::cos(M_PI / 3), std::sin(M_PI / 3));

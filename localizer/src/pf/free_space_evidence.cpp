@@ -14,7 +14,8 @@ constexpr double kFreeSpaceCornerM = 0.15;
 // drawn to within centimetres, a ray is a few centimetres wide at range, and a door leaf stands
 // in the frame. No verdict, as at a corner.
 constexpr double kFreeSpaceOpeningMarginM = 0.1;
-// The ray's range sigma grows as 1 / |cos| of its incidence on the face, up to this.
+// Where along a face a ray crosses it is uncertain by the pose over |cos| of the incidence, up to
+// this (the corner and frame margins).
 constexpr double kFreeSpaceMinCos = 0.3;
 constexpr double kFreeSpaceRegionM = 2.0;
 
@@ -207,10 +208,18 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
     // ray sideways by r sigma_yaw at the wall and so along it by that times tan(incidence). At
     // grazing incidence on a wall far away that is metres: a ray that ended on the hall's far
     // corner must not count as through the side wall beside it (random hall, 1 deg off).
-    const double cos_i = std::max(kFreeSpaceMinCos, x->cos_incidence);
-    const double tan_i = std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / cos_i;
-    const double lateral = x->t * sigma_yaw * tan_i;
-    const double sigma = std::hypot(sigma_m / cos_i, lateral);
+    // Exactly, not to first order: the ray meets the face at the angle a (sin a = |cos| of the
+    // incidence), from h = t sin a off the face's line; turned away from the face by the gate's
+    // heading g sigma_yaw it crosses at h / sin(a - g sigma_yaw), and at a <= g sigma_yaw it may
+    // run parallel to the face and never cross it: no verdict. Likewise the place's position
+    // across the face moves the crossing by sigma_m / sin a, unbounded at grazing. (A floor of
+    // |cos| 0.3 on both, as before, made the truth's rays down a 50 m school corridor, 3.6 deg
+    // to its side walls, pay a wall each: 1.3 deg of heading moves a crossing from 10.7 to 16.7 m.)
+    const double sin_a = x->cos_incidence, g = params.gate_sigmas;
+    const double a = std::asin(std::min(1.0, sin_a)), tilt = g * sigma_yaw;
+    if (!(a > tilt)) continue;
+    const double lateral = x->t * (sin_a / std::sin(a - tilt) - 1.0) / g;  // one sigma's worth of the gate's slip
+    const double sigma = std::hypot(sigma_m / sin_a, lateral);
     const double beyond = r - x->t;
     if (beyond > params.gate_sigmas * sigma)
       hits.push_back({x->wall, static_cast<float>(throughCost(beyond, sigma, params.face_worth)), index});
