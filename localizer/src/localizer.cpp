@@ -616,8 +616,8 @@ void Localizer::Impl::suggestGoal(const Eigen::Isometry3d& T_odom_base, Localiza
     // each: the places change with nearly every weighing, and a new best goal each time had the
     // base turn back and forth between two goals, walking 2 m in 40 s (site_office R104).
     std::optional<double> still;
-    if (goal && !reached) still = planner->worthOf(r.places, between(odom, goal->T_odom_goal));
-    if (still)
+    if (goal && !reached) still = planner->informationOf(r.places, between(odom, goal->T_odom_goal));
+    if (still && *still >= config.guide.min_information)
       goal->information = *still;
     else if ((goal = planner->suggest(r.places, odom)))
       goal_planned_count = places.size();

@@ -79,30 +79,16 @@ struct GoalPlanner::Impl {
     return apart;
   }
 
-  // The mean over pairs of places of min(1, walls apart / faces_to_decide): with the true place
-  // any of them alike, the places a goal is expected to rule out are (N - 1) times this.
-  // `every_place_loses_one`, when given: whichever place is true, at least one other is
-  // predicted decided from it (faces_to_decide walls apart), so the count of places falls.
-  double information(const std::vector<Scan>& scans, bool* every_place_loses_one = nullptr) const {
+  // The mean over pairs of places of min(1, walls apart / faces_to_decide).
+  double information(const std::vector<Scan>& scans) const {
     double sum = 0;
     int pairs = 0;
-    std::vector<char> loses(scans.size(), 0);
     for (std::size_t i = 0; i < scans.size(); ++i)
       for (std::size_t j = i + 1; j < scans.size(); ++j) {
-        const double pair = std::min(1.0, wallsApart(scans[i], scans[j]) / std::max(1e-9, config.faces_to_decide));
-        if (pair >= 1.0) loses[i] = loses[j] = 1;
-        sum += pair;
+        sum += std::min(1.0, wallsApart(scans[i], scans[j]) / std::max(1e-9, config.faces_to_decide));
         ++pairs;
       }
-    if (every_place_loses_one)
-      *every_place_loses_one = scans.size() >= 2 && std::all_of(loses.begin(), loses.end(), [](char l) { return l != 0; });
     return pairs ? sum / pairs : 0.0;
-  }
-
-  // Whether a goal of this information is worth walking to (GuideConfig::min_information): it
-  // decides every pair, or it rules out at least one place whichever is true.
-  bool worth(double information, bool every_place_loses_one) const {
-    return information >= config.min_information || every_place_loses_one;
   }
 };
 
@@ -139,19 +125,6 @@ std::optional<double> GoalPlanner::informationOf(const std::vector<Place>& place
     scans.push_back(m.scanAt(there));
   }
   return m.information(scans);
-}
-
-std::optional<double> GoalPlanner::worthOf(const std::vector<Place>& places, const PlanarPose& motion) const {
-  const Impl& m = *impl_;
-  std::vector<Impl::Scan> scans;
-  for (const auto& p : places) {
-    const PlanarPose there = compose(p.T_map_base, motion);
-    if (!std::isfinite(m.walkFrom(p.T_map_base.head<2>(), there.head<2>()))) return std::nullopt;
-    scans.push_back(m.scanAt(there));
-  }
-  bool loses = false;
-  const double info = m.information(scans, &loses);
-  return m.worth(info, loses) ? std::optional<double>(info) : std::nullopt;
 }
 
 std::optional<LookGoal> GoalPlanner::suggest(const std::vector<Place>& places, const PlanarPose& T_odom_base) const {
@@ -197,10 +170,9 @@ std::optional<LookGoal> GoalPlanner::suggest(const std::vector<Place>& places, c
     }
     if (!std::isfinite(walk_m)) continue;
     for (std::size_t i = 0; i < places.size(); ++i) scans[i] = m.scan(near[i], there[i]);
-    bool loses = false;
-    const double info = m.information(scans, &loses);
+    const double info = m.information(scans);
     const double score = info - c.travel_cost_per_m * walk_m;
-    if (!m.worth(info, loses) || score <= best_score) continue;
+    if (info < c.min_information || score <= best_score) continue;
     best_score = score;
     LookGoal g;
     g.motion = motion;

@@ -48,13 +48,8 @@ struct GuideConfig {
   // Information is in [0, 1]: the mean, over pairs of places, of the walls that tell them apart
   // over faces_to_decide, at most 1. Each metre of walk costs this much of it.
   double travel_cost_per_m = 0.02;
-  // A goal is worth walking to when it is predicted to decide every pair (this much
-  // information), or, with three places or more, to rule out at least one place whichever of
-  // them is true (some other place faces_to_decide walls apart from each): the count of places
-  // then falls on arrival, the test a reached goal is held to (Localizer: no new goal until the
-  // count falls). Deciding all N (N - 1) / 2 pairs from one spot within reach is rare among
-  // many look-alike flats, and there the base toured (docs/results/2026-11-28-h28walk4.md). A
-  // goal that only helps (walls apart below faces_to_decide) had the base dither inside
+  // Below this much information, no goal: no candidate is predicted to decide (the faces apart
+  // reach faces_to_decide for every pair). A goal that only helps had the base dither inside
   // look-alike offices where the tour would have left them (site_office 8 -> 9 of 11; 45
   // generated starts 24 -> 36 of 45, docs/results/2026-11-26-session14.md).
   double min_information = 0.99;
@@ -97,7 +92,7 @@ class GoalPlanner {
   GoalPlanner(GoalPlanner&&) noexcept;
 
   // The goal, or nothing with fewer than two places, or when no candidate within reach is free
-  // in every place and worth walking to (GuideConfig::min_information).
+  // in every place and tells them apart by at least config.min_information.
   std::optional<LookGoal> suggest(const std::vector<Place>& places, const PlanarPose& T_odom_base) const;
   // The predicted scan from a map pose: range per ray (ray k at yaw + 2 pi k / scan_rays),
   // scan_range_m where it hits nothing. For tests and pictures.
@@ -110,9 +105,6 @@ class GoalPlanner {
   // The information of one motion of the base (its frame now) for these places; nothing where
   // the goal is out of reach (reachable() is false) in one of them.
   std::optional<double> informationOf(const std::vector<Place>& places, const PlanarPose& motion) const;
-  // informationOf, where the goal is also worth walking to as suggest() asks (min_information,
-  // or a place ruled out whichever is true); nothing otherwise.
-  std::optional<double> worthOf(const std::vector<Place>& places, const PlanarPose& motion) const;
   const GuideConfig& config() const;
 
  private:
