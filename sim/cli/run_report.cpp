@@ -98,6 +98,9 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
           {"storey_candidates", storeysJson(r.storey_candidates)}, {"passed", r.passed}, {"failures", r.failures},
           {"warnings", r.warnings}, {"sim_seconds", r.sim_seconds}};
   if (r.recording) j["recording"] = recordingJson(*r.recording);  // `localize` only: the schema of `run` is unchanged
+  if (r.guide)  // motion disambiguate only: a tour's JSON is unchanged
+    j["guide"] = {{"place_steps", r.guide->place_steps}, {"goal_steps", r.guide->goal_steps},
+                  {"goals_taken", r.guide->goals_taken}, {"first_goal_s", valueOrNull(r.guide->first_goal_s)}};
   addOracleFields(j, r);
   return j;
 }

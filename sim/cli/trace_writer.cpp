@@ -20,7 +20,7 @@ std::string writeTrace(const std::string& dir, const std::string& scenario_name,
   std::string csv =
       "time_s,truth_x_m,truth_y_m,truth_yaw_deg,estimate_x_m,estimate_y_m,estimate_yaw_deg,position_error_m,"
       "observations,associated,hypotheses,injected,ess,path_best_x_m,path_best_y_m,path_best_yaw_deg,path_margin,"
-      "path_candidates,rival_x_m,rival_y_m,rival_yaw_deg,pose_margin,converged";
+      "path_candidates,rival_x_m,rival_y_m,rival_yaw_deg,pose_margin,converged,places,goal_x_m,goal_y_m,goal_information,goal_walk_m";
   csv += storeys ? ",storey,storey_margin\n" : "\n";
   for (const auto& row : rows) {
     const auto& r = row.report;
@@ -30,11 +30,14 @@ std::string writeTrace(const std::string& dir, const std::string& scenario_name,
     // (ParticleFilterConfig::settle_pose; nan otherwise).
     const Eigen::Vector3d rival = r.path_rivals.empty() ? Eigen::Vector3d::Constant(std::nan("")) : r.path_rivals.front().first;
     char line[512];
-    std::snprintf(line, sizeof line, "%.2f,%.3f,%.3f,%.2f,%.3f,%.3f,%.2f,%.3f,%d,%d,%d,%d,%.1f,%.3f,%.3f,%.2f,%.2f,%d,%.3f,%.3f,%.2f,%.2f,%d",
+    std::snprintf(line, sizeof line, "%.2f,%.3f,%.3f,%.2f,%.3f,%.3f,%.2f,%.3f,%d,%d,%d,%d,%.1f,%.3f,%.3f,%.2f,%.2f,%d,%.3f,%.3f,%.2f,%.2f,%d,%zu,%.3f,%.3f,%.3f,%.2f",
                   row.time_s, row.truth.x(), row.truth.y(), row.truth.z() * kDeg, row.estimate.x(), row.estimate.y(),
                   row.estimate.z() * kDeg, (row.estimate - row.truth).head<2>().norm(), r.observations, r.associated,
                   r.hypotheses, r.injected, r.ess, best.x(), best.y(), best.z() * kDeg, r.path_margin, r.path_candidates,
-                  rival.x(), rival.y(), rival.z() * kDeg, r.pose_margin, r.converged ? 1 : 0);
+                  rival.x(), rival.y(), rival.z() * kDeg, r.pose_margin, r.converged ? 1 : 0, row.places,
+                  // The goal in the map as the best place has it (nan: none suggested).
+                  row.goal ? row.goal->T_map_goal.front().x() : std::nan(""), row.goal ? row.goal->T_map_goal.front().y() : std::nan(""),
+                  row.goal ? row.goal->information : std::nan(""), row.goal ? row.goal->walk_m : std::nan(""));
     csv += line;
     if (!storeys) {
       csv += "\n";

@@ -97,7 +97,7 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
   const LocalizationResult step = localizer_->step(t, T_odom_base, timed);
   estimate_ = step.T_map_base;
   storey_ = step.storey;
-  last_state_ = step.state, last_goal_ = step.goal;
+  last_state_ = step.state, last_goal_ = step.goal, last_places_ = step.places.size();
   const auto minute = static_cast<std::size_t>(t / 60.0);
   if (r_.localizer_seconds_by_minute.size() <= minute) r_.localizer_seconds_by_minute.resize(minute + 1, 0.0);
   r_.localizer_seconds_by_minute[minute] +=
@@ -115,7 +115,8 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
     const pf::UpdateReport& report = bank.filter;
     if (trace && report.weighed)
       trace->push_back({t, planarPose(truth), planarPose(step.T_map_base), report,
-                        r_.storey_auto ? building.storeys[bank.leader].name : std::string(), bank.storey_margin});
+                        r_.storey_auto ? building.storeys[bank.leader].name : std::string(), bank.storey_margin,
+                        step.places.size(), step.goal});
     // The places listed at the end: the last fitted (the localizer fits them at its places_interval_s).
     if (report.path_best && report.places_fitted) last_verdict_ = report, verdict_storey_ = bank.leader;
   }

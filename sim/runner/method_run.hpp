@@ -33,6 +33,7 @@ class MethodRun {
   // The last step's state and suggested goal: what a steered base follows (GuidedWalk).
   LocalizationState lastState() const { return last_state_; }
   const std::optional<guide::LookGoal>& lastGoal() const { return last_goal_; }
+  std::size_t lastPlaces() const { return last_places_; }  // LocalizationResult::places' count
 
   // The snapshot of `phase` now (initialization before the first step).
   void snapshotNow(const char* phase, double t, const Eigen::Isometry3d& truth, const SnapshotHook& snapshot) const;
@@ -51,6 +52,7 @@ class MethodRun {
   MapErrorSampler map_error_;
   LocalizationState last_state_ = LocalizationState::Searching;
   std::optional<guide::LookGoal> last_goal_;
+  std::size_t last_places_ = 0;
   std::optional<Eigen::Isometry3d> estimate_;    // the last step's, for the snapshots
   std::optional<std::size_t> storey_;            // ... and its storey
   std::optional<pf::UpdateReport> last_verdict_;  // the last update the path evidence spoke at

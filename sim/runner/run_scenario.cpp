@@ -91,6 +91,7 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   Eigen::Isometry3d previous_truth = Eigen::Isometry3d::Identity();
   const double half_turn = 0.5 * sim.lidar().turnPeriod_s();
   double search_cpu = 0, tracking_cpu = 0, search_sim = 0, tracking_sim = 0;
+  ScenarioResult::GuideUse guide_use;
   for (std::size_t i = 0; i < sim.turnCount(); ++i) {
     const double cpu_turn = processCpuSeconds();
     const bool searching = runs.empty() || runs.front().searching();
@@ -131,7 +132,14 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
     (searching ? search_cpu : tracking_cpu) += processCpuSeconds() - cpu_turn;
     (searching ? search_sim : tracking_sim) += sim.lidar().turnPeriod_s();
     // The poses of this whole turn are cast: the walk may change course only after it.
-    if (walk) walk->follow(runs[0].lastState(), runs[0].lastGoal(), T_odom_base, truth, sim.turnStamp(i + 1));
+    if (walk) {
+      walk->follow(runs[0].lastState(), runs[0].lastGoal(), T_odom_base, truth, sim.turnStamp(i + 1));
+      if (runs[0].lastState() == LocalizationState::Searching) {
+        guide_use.place_steps += runs[0].lastPlaces() >= 2 ? 1 : 0;
+        guide_use.goal_steps += runs[0].lastGoal() ? 1 : 0;
+        if (runs[0].lastGoal() && !guide_use.first_goal_s) guide_use.first_goal_s = t;
+      }
+    }
   }
   const double t_end = sim.lidar().turnPeriod_s() * (static_cast<double>(sim.turnCount()) - 0.5);
   const Eigen::Isometry3d truth_end = truthAt(std::max(0.0, t_end));
@@ -142,6 +150,10 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   for (std::size_t k = 0; k < runs.size(); ++k) {
     ScenarioResult r = runs[k].finish(t_end, truth_end, hookOf(k));
     r.path_length_m = path_length_m;
+    if (walk) {
+      guide_use.goals_taken = walk->goalsTaken();
+      if (k == 0) r.guide = guide_use;
+    }
     r.sim_seconds = static_cast<double>(sim.turnCount()) * sim.lidar().turnPeriod_s();
     // The oracle's own cost is in r.oracle->seconds, not in the run's.
     r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count() -

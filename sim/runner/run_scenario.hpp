@@ -101,6 +101,14 @@ struct ScenarioResult {
   // with the building and the tour, and is not the loop.
   double setup_seconds = 0;
   double path_length_m = 0;  // the robot's true path in the plane
+  // A guided walk's (motion disambiguate) use of the localizer's goals, while searching: the
+  // steps with two or more places, the steps with a goal suggested, the goals the base took up,
+  // and when the first goal was suggested. Unset for a tour (its localizer plans no goal).
+  struct GuideUse {
+    int place_steps = 0, goal_steps = 0, goals_taken = 0;
+    std::optional<double> first_goal_s;
+  };
+  std::optional<GuideUse> guide;
   // The error of the localizer's estimate at every step (for plots; not in the JSON).
   struct ErrorSample {
     double time_s = 0, position_m = 0, yaw_deg = 0;
@@ -149,6 +157,9 @@ struct TraceRow {
   pf::UpdateReport report;          // of the leading storey's filter
   std::string storey;               // with storey auto: the leading (or decided) storey; else empty
   std::optional<double> storey_margin;  // StoreyBankReport::storey_margin
+  // The localizer's places (LocalizationResult::places) and its goal, if any (motion disambiguate).
+  std::size_t places = 0;
+  std::optional<guide::LookGoal> goal;
 };
 
 // One localizer step, for `bimloc run --tum`: the true and the estimated map <- base, and
