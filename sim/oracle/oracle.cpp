@@ -180,12 +180,14 @@ OracleVerdict decideWhen(const bim::Storey& storey, double floor_z, const std::v
     const SearchAnswer rival = searchPlaces(context, Region::Rivals, q - static_cast<float>(verdict.threshold), true);
     ++verdict.checks;
     verdict.nodes += rival.nodes, verdict.cells += rival.cells;
-    if (k + 1 == keyframes.size() && rival.reached) {
-      const SearchAnswer above = searchPlaces(context, Region::Rivals, q + static_cast<float>(verdict.threshold), true);
-      verdict.nodes += above.nodes, verdict.cells += above.cells;
-      verdict.truth_ruled_out = above.reached;
+    if (k + 1 == keyframes.size()) {
+      verdict.points = path.size();
+      if (rival.reached) {
+        const SearchAnswer above = searchPlaces(context, Region::Rivals, q + static_cast<float>(verdict.threshold), true);
+        verdict.nodes += above.nodes, verdict.cells += above.cells;
+        verdict.truth_ruled_out = above.reached;
+      }
     }
-    if (k + 1 == keyframes.size()) verdict.points = path.size();
     return !rival.reached;
   };
   const auto stride = static_cast<std::size_t>(std::max(1, config.check_every));

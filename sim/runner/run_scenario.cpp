@@ -150,9 +150,9 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   for (std::size_t k = 0; k < runs.size(); ++k) {
     ScenarioResult r = runs[k].finish(t_end, truth_end, hookOf(k));
     r.path_length_m = path_length_m;
-    if (walk) {
+    if (walk && k == 0) {  // the walk follows the first method's goals
       guide_use.goals_taken = walk->goalsTaken();
-      if (k == 0) r.guide = guide_use;
+      r.guide = guide_use;
     }
     r.sim_seconds = static_cast<double>(sim.turnCount()) * sim.lidar().turnPeriod_s();
     // The oracle's own cost is in r.oracle->seconds, not in the run's.
