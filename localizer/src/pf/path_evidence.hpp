@@ -218,12 +218,6 @@ class PathEvidence {
   // says against Q less what it says against P. Both are log-likelihood ratios counted in the
   // same unit (one face), so one bar (evidenceMargin) holds for their sum.
   double margin(const Candidate& p, const Candidate& q) const;
-  // The margin of P over the place Q stands for: the lowest margin(p, q') over the poses q' of
-  // that place, those within kSamePlaceM / kSamePlaceRad of Q now (the bounds within which the
-  // pool keeps one candidate, so any of them could have stood for the place), found by pattern
-  // search on the margin from Q's pose, whose margin is `at_q`. It stops once below `floor`
-  // (the verdict then cannot decide, whatever the exact value). Never above `at_q`.
-  double placeMargin(const Candidate& p, const Candidate& q, double at_q, double floor, const Pose2& odom) const;
   // The rivals' margins (index into candidates_): the planes' for all, then the free space's
   // added to the closest ones, until no rival left could come below the lowest found.
   void addFreeSpace(const Candidate& best, std::vector<std::pair<double, std::size_t>>& rivals) const;

@@ -123,45 +123,6 @@ void PathEvidence::addFreeSpace(const Candidate& best, std::vector<std::pair<dou
   std::sort(rivals.begin(), rivals.end());
 }
 
-double PathEvidence::placeMargin(const Candidate& p, const Candidate& q, double at_q, double floor, const Pose2& odom) const {
-  // Why the lowest: the verdict claims that P is better than every other place, and a place is
-  // a set of poses, not the one its candidate holds. Its candidate was fitted on the likelihood
-  // (refine: the sum over every observation of every scan), while the verdict counts each face
-  // once (distinctMargin): two poses of one place millimetres apart can trade a little fit on a
-  // face seen in many scans for a face seen in one or two, and their margins then differ by up
-  // to a face (h28seeds2: 7.81 against 9.12 for the same mirror flat, 2 cm and 0.26 deg apart;
-  // which of them stood for it depended on when the proposals came). As a generalized
-  // likelihood-ratio test maximizes the rival's likelihood over its free parameters, the margin
-  // against a place is taken at the pose of that place that is best for it in the statistic
-  // that decides: the lowest margin. It only ever lowers a margin, so it can only withhold a
-  // decision ("never falsely"), and which candidate stands for the place matters less.
-  const Pose2 start = compose(q.T_map_odom, odom);
-  Pose2 pose = start;
-  double lowest = at_q;
-  // The steps of refine: the association is discrete, the margin has no useful gradient.
-  double step_m = 0.08, step_rad = 1.0 * M_PI / 180.0;
-  for (int level = 0; level < 3 && lowest >= floor; ++level, step_m *= 0.5, step_rad *= 0.5) {
-    for (bool improved = true; improved && lowest >= floor;) {
-      improved = false;
-      for (const Pose2& delta : {Pose2(step_m, 0, 0), Pose2(-step_m, 0, 0), Pose2(0, step_m, 0), Pose2(0, -step_m, 0),
-                                 Pose2(0, 0, step_rad), Pose2(0, 0, -step_rad)}) {
-        const Pose2 moved = pose + delta;
-        if (!near(moved, start, kSamePlaceM, kSamePlaceRad)) continue;  // another candidate's, then
-        const Pose2 T_map_odom = compose(moved, inverse(odom));
-        if (!admitted(T_map_odom)) continue;
-        const double m = margin(p, scored(T_map_odom, true));
-        if (m < lowest - 1e-9) {
-          lowest = m;
-          pose = moved;
-          improved = true;
-          if (lowest < floor) break;
-        }
-      }
-    }
-  }
-  return lowest;
-}
-
 bool PathEvidence::fixesPose(const Candidate& p) const {
   std::vector<int> faces;
   for (const auto& scan : p.per_scan)
@@ -194,7 +155,6 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
   std::vector<std::pair<double, std::size_t>> rivals;
   std::vector<std::size_t> same_place;
   std::vector<std::size_t> left_by_free_space;  // bests the free space swapped away from: no way back
-  std::vector<std::size_t> fitted_rivals;        // the rivals the last round fitted and took the margin of
   bool swapped = false;
   // Three rounds may swap the best; a swap in the third leaves margins computed for the best it
   // swapped away from, so a fourth round, which swaps nothing, computes the margins of the best
@@ -219,7 +179,6 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
     swapped = false;
     std::size_t fitted = 0;
     same_place.clear();
-    fitted_rivals.clear();
     for (std::size_t r = 0; r < rivals.size() && fitted < 3; ++r) {
       Candidate& rival = candidates_[rivals[r].second];
       refine(rival, odom);
@@ -236,7 +195,6 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
       }
       outfitted |= fits_better;
       ++fitted;
-      fitted_rivals.push_back(rivals[r].second);
       rivals[r].first = margin(candidates_[best], rival);
       // The free space may say the rival is the better place where the planes could not tell
       // (two offices alike but for their doors): the roles swap, as for a better fit. Only
@@ -257,15 +215,6 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
                               }),
                rivals.end());
   std::sort(rivals.begin(), rivals.end());
-  // A verdict that would decide: its margin over each fitted rival is taken over that rival's
-  // place, not its candidate's pose (placeMargin). Only then: below the bar the margin decides
-  // nothing, and the search costs a margin per step.
-  if (!rivals.empty() && rivals.front().first >= config_.evidenceMargin()) {
-    for (auto& [m, i] : rivals)
-      if (std::find(fitted_rivals.begin(), fitted_rivals.end(), i) != fitted_rivals.end())
-        m = placeMargin(candidates_[best], candidates_[i], m, config_.evidenceMargin(), odom);
-    std::sort(rivals.begin(), rivals.end());
-  }
   v.has_best = true;
   v.best = compose(candidates_[best].T_map_odom, odom);
   v.best_log_likelihood = candidates_[best].log_likelihood;
