@@ -236,6 +236,24 @@ std::vector<pf::detail::Observation> roomFacesSeenFrom(const bim::Storey& storey
   return seen;
 }
 
+// Where the turning tests start (map <- odom): in R104, 0.4 m west and 0.5 m south of its
+// centre, heading 0.3 rad, where every scan of a turn sees at least three of its faces.
+pf::detail::Pose2 startInR104(const bim::Room& r104) { return {r104.centre.x() - 0.4, r104.centre.y() - 0.5, 0.3}; }
+
+// The robot turning on the spot in `room`, 20 degrees a scan for 8 scans, from map <- odom
+// `start`: each scan the room's faces in view joins the evidence. Returns the last odometry pose.
+pf::detail::Pose2 turnOnTheSpot(pf::detail::PathEvidence& evidence, const bim::Storey& storey, const bim::Room& room,
+                                const pf::detail::Pose2& start) {
+  pf::detail::Pose2 odom = pf::detail::Pose2::Zero();
+  for (int k = 0; k < 8; ++k) {
+    odom = pf::detail::Pose2(0.0, 0.0, 0.35 * k);
+    const auto seen = roomFacesSeenFrom(storey, room, pf::detail::compose(start, odom));
+    EXPECT_GE(seen.size(), 3u);
+    EXPECT_TRUE(evidence.addScan(odom, 0.0, seen)) << k;
+  }
+  return odom;
+}
+
 }  // namespace
 
 TEST(PathEvidence, ACandidateThatFittingMovesOntoTheBestPlaceIsThatPlaceNotARival) {
@@ -249,21 +267,11 @@ TEST(PathEvidence, ACandidateThatFittingMovesOntoTheBestPlaceIsThatPlaceNotARiva
   const bim::Room* r103 = storey.findRoom("R103");
   ASSERT_TRUE(r104 && r103);
   const pf::ParticleFilterConfig config;
-  const pf::detail::Pose2 start(r104->centre.x() - 0.4, r104->centre.y() - 0.5, 0.3);  // map <- odom
-  const auto walk = [&](pf::detail::PathEvidence& evidence) {
-    pf::detail::Pose2 odom = pf::detail::Pose2::Zero();
-    for (int k = 0; k < 8; ++k) {  // turning on the spot, 20 degrees a scan
-      odom = pf::detail::Pose2(0.0, 0.0, 0.35 * k);
-      const auto seen = roomFacesSeenFrom(storey, *r104, pf::detail::compose(start, odom));
-      EXPECT_GE(seen.size(), 3u);
-      EXPECT_TRUE(evidence.addScan(odom, 0.0, seen)) << k;
-    }
-    return odom;
-  };
+  const pf::detail::Pose2 start = startInR104(*r104);
   const Eigen::Vector2d twin_offset = r103->centre - r104->centre;
   for (const bool with_twin : {false, true}) {
     pf::detail::PathEvidence evidence(storey, config);
-    const pf::detail::Pose2 odom = walk(evidence);
+    const pf::detail::Pose2 odom = turnOnTheSpot(evidence, storey, *r104, start);
     const pf::detail::Pose2 truth = pf::detail::compose(start, odom);
     evidence.propose(truth, odom);
     evidence.propose(truth + pf::detail::Pose2(0.45, -0.40, 0.0), odom);  // 0.6 m off, the same walls around
@@ -324,4 +332,37 @@ TEST(PathEvidence, FittingNeverCarriesACandidateToAStartThePriorRulesOut) {
       EXPECT_LT(from_truth, 0.05);  // without a prior the fit finds the truth
     }
   }
+}
+
+TEST(PathEvidence, AVerdictWhoseLastRoundSwapsReportsTheMarginsOfThePlaceItNames) {
+  // Four candidates of the true place, each proposed off it by a little more than the pattern
+  // search's grid, so that each, once fitted, fits the path a little better than the one
+  // before: the first verdict's three swapping rounds each swap (checked once with a print in
+  // the rounds), the last one to the truth; and a candidate in S100, another place. The
+  // margins the verdict reports must be those of the best it names: what a second verdict, on
+  // the candidates now fitted, computes without any swap (an independent second run of the
+  // rule). Session 25's verdict reported margin 0 here (no margins computed for the best it
+  // named), and before it the margins of the best it had swapped away from.
+  const auto& storey = officeWorld().building().storeys[0];
+  const bim::Room* r104 = storey.findRoom("R104");
+  const bim::Room* s100 = storey.findRoom("S100");
+  ASSERT_TRUE(r104 && s100);
+  const pf::ParticleFilterConfig config;
+  const pf::detail::Pose2 start = startInR104(*r104);
+  pf::detail::PathEvidence evidence(storey, config);
+  const pf::detail::Pose2 odom = turnOnTheSpot(evidence, storey, *r104, start);
+  const pf::detail::Pose2 truth = pf::detail::compose(start, odom);
+  const double deg = M_PI / 180.0;
+  for (const pf::detail::Pose2& off : {pf::detail::Pose2(0.03, 0.01, 0.2 * deg), pf::detail::Pose2(0.58, 0.01, 0.0),
+                                       pf::detail::Pose2(-0.66, 0.005, 0.0), pf::detail::Pose2(0.0, 0.72, 0.0)})
+    evidence.propose(truth + off, odom);
+  const Eigen::Vector2d elsewhere = s100->centre - r104->centre;
+  evidence.propose(truth + pf::detail::Pose2(elsewhere.x(), elsewhere.y(), 0.0), odom);
+  const pf::detail::PathVerdict first = evidence.verdict(odom);
+  const pf::detail::PathVerdict again = evidence.verdict(odom);
+  ASSERT_TRUE(first.has_best && again.has_best);
+  EXPECT_LT((first.best.head<2>() - truth.head<2>()).norm(), 0.01);
+  EXPECT_LT((again.best - first.best).norm(), 1e-12);
+  EXPECT_DOUBLE_EQ(first.margin, again.margin);
+  EXPECT_GT(first.margin, config.evidenceMargin());  // S100 is another room: the path tells
 }
