@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -44,12 +45,13 @@ bim::Storey eastWall(std::optional<double> hole_z_min) {
   bim::Storey s;
   s.walls.push_back(test::boxWall("East", {5, -15}, {5, 15}, 0.2));
   s.walls.push_back(test::boxWall("Beyond", {7, -15}, {7, 15}, 0.2));
-  if (hole_z_min)
-    for (auto& f : s.walls[0].faces) {
-      const Eigen::Vector2d d = (f.end - f.start).head<2>().normalized();
-      const double a = (Eigen::Vector2d(5, -1) - f.start.head<2>()).dot(d), b = (Eigen::Vector2d(5, 1) - f.start.head<2>()).dot(d);
-      f.openings.push_back({std::min(a, b), std::max(a, b), *hole_z_min, 2.1});
-    }
+  if (!hole_z_min) return s;
+  // Along each face from its start: faces[0] runs +y from y = -15, faces[1] -y from y = 15.
+  for (auto& face : s.walls[0].faces) {
+    const double sign = face.end.y() > face.start.y() ? 1.0 : -1.0;
+    const double lo = sign * (-1.0 - face.start.y()), hi = sign * (1.0 - face.start.y());
+    face.openings.push_back({std::min(lo, hi), std::max(lo, hi), *hole_z_min, 2.1});
+  }
   return s;
 }
 
