@@ -63,6 +63,7 @@ std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
           {"evidence_injection_fraction", &c.evidence_injection_fraction, closed(0, 1)},
           {"free_space_evidence", &c.free_space_evidence},
           {"free_space_explained", &c.free_space_explained},
+          {"free_space_door_shut_probability", &c.free_space_door_shut_probability, closed(1e-6, 1)},
           {"free_space_band_low_m", &c.free_space_band_low_m, closed(0, 10)},
           {"free_space_band_high_m", &c.free_space_band_high_m, closed(0, 10)},
           {"free_space_bin_deg", &c.free_space_bin_deg, closed(0.5, 90)},

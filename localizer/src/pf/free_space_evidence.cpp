@@ -37,6 +37,10 @@ FreeSpaceParams FreeSpaceParams::of(const ParticleFilterConfig& c, double drift_
   p.open_wall_faces = c.free_space_open_wall_faces;
   p.open_faces = c.free_space_open_faces;
   p.explained = c.free_space_explained;
+  // A surface seen in a doorway of X is X's leaf, shut, with the site's probability of a shut
+  // door: that is the likelihood ratio against X of all the doorway's rays together (one leaf,
+  // one event), never more than a face (a wall in its place would be worth no more).
+  p.door_worth = std::min(p.face_worth, -std::log(std::max(1e-6, c.free_space_door_shut_probability)));
   return p;
 }
 
@@ -200,6 +204,14 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
     if (!x) {
       // Nothing solid along the ray up to open_m past its end: it ended in the place's open.
       hits.push_back({kOpenKeyBase + map.regionKey(end), static_cast<float>(params.open_wall_faces * params.face_worth), index});
+      // Unless it ended in one of the place's openings (within the gate, as a ray on a wall):
+      // a pane or a door leaf stopped it there, which another place's wall explains no better.
+      if (params.explained) {
+        const double reach = params.gate_sigmas * sigma_m / kFreeSpaceMinCos;
+        if (const auto pass = map.openingPass(o, u, z0, dz, r, reach))
+          if (std::abs(r - pass->t) <= params.gate_sigmas * sigma_m / std::max(kFreeSpaceMinCos, pass->cos_incidence))
+            hits.push_back({(pass->doorway ? kInDoorwayBase : kInWindowBase) + pass->wall, 0.0f, index});
+      }
       continue;
     }
     if (x->uncertain) continue;
@@ -262,10 +274,16 @@ double freeSpacePenalty(const std::vector<const std::vector<FreeSpaceHit>*>& per
 FreeSpaceCost freeSpaceCostGiven(const std::vector<const std::vector<FreeSpaceHit>*>& x, const std::vector<const std::vector<FreeSpaceHit>*>& y,
                                  const FreeSpaceParams& params, const std::vector<double>& counted) {
   std::vector<FreeSpaceHit> all;
-  std::vector<std::int32_t> on_wall;
+  std::vector<std::int32_t> on_wall, in_opening;
   for (std::size_t k = 0; k < x.size(); ++k) {
     if (!x[k]) continue;
     on_wall.clear();
+    in_opening.clear();
+    for (const auto& h : *x[k])
+      if (h.key >= kInDoorwayBase && h.key < kDoorExplainedBase && h.ray >= 0) {
+        if (in_opening.size() <= static_cast<std::size_t>(h.ray)) in_opening.resize(static_cast<std::size_t>(h.ray) + 1, -1);
+        in_opening[static_cast<std::size_t>(h.ray)] = h.key;
+      }
     if (k < y.size() && y[k])
       for (const auto& h : *y[k])
         if (h.key >= kOnWallBase && h.key < kExplainedBase && h.ray >= 0) {
@@ -273,9 +291,17 @@ FreeSpaceCost freeSpaceCostGiven(const std::vector<const std::vector<FreeSpaceHi
           on_wall[static_cast<std::size_t>(h.ray)] = h.key - kOnWallBase;
         }
     for (const auto& h : *x[k]) {
+      if (h.key >= kInDoorwayBase && h.key < kDoorExplainedBase) continue;  // marks, read above
       const bool open = h.key >= kOpenKeyBase && h.key < kOnWallBase;
-      const std::int32_t wall =
+      std::int32_t wall =
           open && h.ray >= 0 && static_cast<std::size_t>(h.ray) < on_wall.size() ? on_wall[static_cast<std::size_t>(h.ray)] : -1;
+      const std::int32_t opening =
+          wall >= 0 && static_cast<std::size_t>(h.ray) < in_opening.size() ? in_opening[static_cast<std::size_t>(h.ray)] : -1;
+      if (opening >= kInWindowBase) wall = -1;  // X's pane explains it as well: stays open
+      if (opening >= kInDoorwayBase && opening < kInWindowBase) {
+        all.push_back({kDoorExplainedBase + (opening - kInDoorwayBase), static_cast<float>(params.door_worth), h.ray});
+        continue;
+      }
       if (wall >= 0) all.push_back({kExplainedBase + wall, static_cast<float>(params.face_worth), h.ray});
       // A wall the planes counted keeps its rays in the open term too (bounded, as before).
       if (wall < 0 || (static_cast<std::size_t>(wall) < counted.size() && counted[static_cast<std::size_t>(wall)] > 0.0)) all.push_back(h);
@@ -289,6 +315,11 @@ FreeSpaceCost freeSpaceCostGiven(const std::vector<const std::vector<FreeSpaceHi
     auto j = i;
     for (; j != all.end() && j->key == i->key; ++j) {}
     const double n = static_cast<double>(j - i);
+    if (i->key >= kDoorExplainedBase) {  // X's doorway on wall key - base: one leaf, door_worth
+      cost.doors += params.door_worth * std::min(1.0, n / static_cast<double>(params.support_rays));
+      i = j;
+      continue;
+    }
     const auto wall = static_cast<std::size_t>(i->key - kExplainedBase);
     // One wall, one face's worth, whatever saw it: what the planes counted for it is taken off.
     const double planes = wall < counted.size() ? std::max(0.0, counted[wall]) : 0.0;

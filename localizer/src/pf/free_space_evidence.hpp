@@ -46,6 +46,13 @@ constexpr std::int32_t kOpenKeyBase = 1 << 28;
 // that this place explains is counted against that place under kExplainedBase + this wall.
 constexpr std::int32_t kOnWallBase = 1 << 29;
 constexpr std::int32_t kExplainedBase = 3 << 28;
+// Costless marks of open rays that ended in one of the place's own openings (+ its wall): in a
+// doorway, where a shut leaf would stop them; in a window, where its pane does. Such a ray the
+// other place ends on its wall counts against this place under kDoorExplainedBase + the wall,
+// at door_worth (a doorway), or not at all (a window).
+constexpr std::int32_t kInDoorwayBase = 4 << 28;
+constexpr std::int32_t kInWindowBase = 5 << 28;
+constexpr std::int32_t kDoorExplainedBase = 6 << 28;
 
 struct FreeSpaceParams {
   double sigma_m = 0.15;           // a ray's range sigma at normal incidence (noise, drift, plan)
@@ -57,6 +64,7 @@ struct FreeSpaceParams {
   double open_wall_faces = 0.25;   // per open region, in faces
   double open_faces = 1.0;         // all open regions, in faces
   bool explained = false;          // pairs: an open ray the other place ends on its wall
+  double door_worth = 1.61;        // -log P(a door shut): a ray in the place's doorway, explained
   static FreeSpaceParams of(const ParticleFilterConfig& c, double drift_m);
 };
 
@@ -87,6 +95,17 @@ class FreeSpaceMap {
                                         double max_t, double lateral_per_m = 0.0, double position_sigma_m = 0.0,
                                         std::vector<std::uint32_t>* scratch = nullptr) const;
   int regionKey(const Eigen::Vector2d& p) const;  // a 2 m cell of the floor
+  // Where the ray passes through one of the plan's openings within `reach` of t_ref along it
+  // (the nearest such pass): the opening's wall, and whether it is a doorway (it reaches down
+  // to the wall's base: a leaf, shut or not, stands in it) or a window (a sill: a pane fills it).
+  struct OpeningPass {
+    double t = 0;
+    int wall = -1;
+    double cos_incidence = 1;
+    bool doorway = false;
+  };
+  std::optional<OpeningPass> openingPass(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0, double dz_per_m, double t_ref,
+                                         double reach) const;
 
  private:
   struct Face {
@@ -113,9 +132,12 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
 double freeSpacePenalty(const std::vector<const std::vector<FreeSpaceHit>*>& per_scan, const FreeSpaceParams& params);
 // The same against X given another place Y (scan by scan, the same rays): X's open rays that end
 // on Y's wall w count per wall w, one face's worth per ray, times min(1, rays / support_rays).
+// But a ray that ended in X's own opening is what the plan allows there: a window's pane (no
+// evidence), or a doorway's leaf shut on the site (door_worth per X's wall, the same ramp).
 struct FreeSpaceCost {
   double rest = 0;                                      // through and open, as freeSpacePenalty
   std::vector<std::pair<std::int32_t, double>> explained;  // per Y's wall: the worth of X's open rays ending on it
+  double doors = 0;  // X's open rays Y ends on its wall that ended in X's own doorways: door_worth per X's wall
 };
 // `counted`: per Y's wall, what the planes already counted for it (one wall is one face's worth,
 // whatever saw it: that much is taken off; its rays stay in the bounded open term as well).

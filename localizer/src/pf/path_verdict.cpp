@@ -93,7 +93,7 @@ double PathEvidence::freeSpaceMargin(const Candidate& p, const Candidate& q, con
   double m = against_q.rest - against_p.rest;
   for (const auto& e : against_q.explained) m += e.second;
   for (const auto& e : against_p.explained) m -= e.second;
-  return m;
+  return m + against_q.doors - against_p.doors;
 }
 
 double PathEvidence::margin(const Candidate& p, const Candidate& q) const {

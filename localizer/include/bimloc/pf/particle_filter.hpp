@@ -126,6 +126,11 @@ struct ParticleFilterConfig {
   double free_space_open_wall_faces = 0.25;  // ... costs this (in faces) per wall it fell short of,
   double free_space_open_faces = 1.0;   // and all such rays together at most this
   bool free_space_explained = false;    // experiment: an open ray the other place ends on its wall
+  // With free_space_explained: a ray ending in a place's own doorway (its leaf may be shut) is
+  // explained there by the leaf, at -log of this per wall, not by the other place's wall at a
+  // face's worth (docs/sites.md: the construction preset shuts 20 % of the doors). A ray ending
+  // in a window's opening is its pane: no evidence either way.
+  double free_space_door_shut_probability = 0.2;
   // Resampling and its guards.
   double resample_ess_fraction = 0.5;  // low-variance resampling when ESS < fraction * N
   double roughening_xy_m = 0.02;       // jitter after resampling, against depletion
