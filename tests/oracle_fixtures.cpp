@@ -61,8 +61,8 @@ std::vector<Eigen::Vector3f> scanFrom(const bim::Storey& s, const Eigen::Vector3
 }
 
 // The oracle's verdict on the walk: odometry exact, in an odom frame turned and moved from the map's.
-sim::oracle::OracleVerdict runOracle(const bim::Storey& s, const Walk& w, double max_range, const sim::oracle::OracleConfig& config,
-                                     const bim::Storey* site) {
+std::vector<sim::oracle::Keyframe> oracleKeyframes(const bim::Storey& s, const Walk& w, double max_range,
+                                                    const sim::oracle::OracleConfig& config, const bim::Storey* site) {
   std::mt19937 rng(7);
   const Eigen::Isometry3d T_odom_map = Eigen::Translation3d(3.0, -2.0, 0.0) * Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ());
   sim::oracle::KeyframeRecorder recorder(config, Eigen::Isometry3d::Identity(), kOracleBaseZ);
@@ -71,7 +71,12 @@ sim::oracle::OracleVerdict runOracle(const bim::Storey& s, const Walk& w, double
     const Eigen::Isometry3d T_map_base = Eigen::Translation3d(p.x(), p.y(), kOracleBaseZ) * Eigen::AngleAxisd(p.z(), Eigen::Vector3d::UnitZ());
     recorder.add(w.times[k], T_odom_map * T_map_base, [&] { return scanFrom(site ? *site : s, p, max_range, rng); });
   }
-  return decideWhen(s, 0.0, recorder.keyframes(), w.poses.front(), config);
+  return recorder.keyframes();
+}
+
+sim::oracle::OracleVerdict runOracle(const bim::Storey& s, const Walk& w, double max_range, const sim::oracle::OracleConfig& config,
+                                     const bim::Storey* site) {
+  return decideWhen(s, 0.0, oracleKeyframes(s, w, max_range, config, site), w.poses.front(), config);
 }
 
 sim::oracle::OracleConfig smallMargin() {

@@ -36,6 +36,10 @@ Walk walk(const std::vector<Eigen::Vector2d>& waypoints);
 // again above it (the ceiling's rows, which the oracle must drop). Lidar frame = base frame.
 std::vector<Eigen::Vector3f> scanFrom(const bim::Storey& s, const Eigen::Vector3d& pose, double max_range, std::mt19937& rng);
 
+// The keyframes the oracle keeps of the walk (as runOracle records them).
+std::vector<sim::oracle::Keyframe> oracleKeyframes(const bim::Storey& s, const Walk& w, double max_range,
+                                                    const sim::oracle::OracleConfig& config, const bim::Storey* site = nullptr);
+
 // The oracle's verdict on the walk: odometry exact, in an odom frame turned and moved from the map's.
 // The scans are cast in `site` when given (a site that differs from its plan), else in the plan s.
 sim::oracle::OracleVerdict runOracle(const bim::Storey& s, const Walk& w, double max_range, const sim::oracle::OracleConfig& config,

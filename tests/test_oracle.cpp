@@ -8,7 +8,8 @@
 //   comes into range;
 // - on a site that is not its plan (a doorway walled up), the test can rule the true place out,
 //   and reports it;
-// - the branch-and-bound finds the same best cell as evaluating every cell of the same grid.
+// - the branch-and-bound finds the same best cell as evaluating every cell of the same grid;
+// - a run's keyframes replayed on its walls (decideOnWalls) give decideWhen's verdict.
 #include "oracle_fixtures.hpp"
 #include "sgraph_fixtures.hpp"
 #include "sim/oracle/oracle.hpp"
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <tuple>
 
 using namespace bimloc;
 using namespace bimloc::sim::oracle;
@@ -211,4 +213,33 @@ TEST(Oracle, AStoreysMapHoldsTheWallsOfOtherStoreysThatStandInItsBand) {
   EXPECT_EQ(facesIn(0), 4u);  // level 0's two faces and the half level's (0.9-2.9 m cross 0.3-1.8 m)
   EXPECT_EQ(facesIn(1), 4u);  // the half level's and level 0's (0-2.6 m cross 1.2-2.7 m)
   EXPECT_EQ(facesIn(2), 2u);  // level 1's alone: nothing below reaches 3.3 m
+}
+
+TEST(Oracle, KeyframesReplayedOnTheWallsGiveTheSameVerdict) {
+  // The twin L rooms of TwinRoomsBecomeDecidableOnceTheDoorIsInView, plus a partition in room A
+  // that B lacks: the robust checks run at keyframes the plain checks searched, whose truth's
+  // search decideOnWalls keeps and does not redo.
+  bim::Storey s;
+  lRoom(s, {0, 0}, true);
+  addWall(s, {-2, 10.5}, {5, 10.5});
+  addWall(s, {4.0, 1.0}, {4.0, 2.0});
+  lRoom(s, {20, 0}, false);
+  const Walk w = walk({{5.2, 1.5}, {1.4, 1.5}, {1.4, 6.5}});
+  const OracleConfig config = smallMargin();
+  const std::vector<Keyframe> keyframes = oracleKeyframes(s, w, 30.0, config);
+  const OracleVerdict v = decideWhen(s, 0.0, keyframes, w.poses.front(), config);
+  std::vector<int> wall_of;
+  const std::vector<Segment2> walls = wallSegmentsInBand(s, config.band_low_m, config.band_high_m, &wall_of);
+  const OracleVerdict r = decideOnWalls(walls, wall_of, keyframes, w.poses.front(), config);
+  ASSERT_TRUE(v.decidable_at_s.has_value());
+  const auto plain = [](const OracleVerdict& x) { return std::make_tuple(x.decidable_at_s, x.truth_ruled_out, x.checks, x.nodes, x.cells); };
+  const auto robust = [](const OracleVerdict& x) { return std::make_tuple(x.decidable_robust_at_s, x.robust_checks, x.robust_nodes); };
+  EXPECT_EQ(plain(r), plain(v));
+  EXPECT_EQ(robust(r), robust(v));
+  // Without the robust answer, the plain one is the same: it does not depend on the robust checks.
+  OracleConfig plain_only = config;
+  plain_only.robust = false;
+  const OracleVerdict p = decideOnWalls(walls, wall_of, keyframes, w.poses.front(), plain_only);
+  EXPECT_EQ(plain(p), plain(v));
+  EXPECT_EQ(robust(p), robust(OracleVerdict{}));
 }

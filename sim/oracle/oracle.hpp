@@ -6,6 +6,7 @@
 #pragma once
 
 #include "sim/oracle/oracle_config.hpp"
+#include "sim/oracle/wall_field.hpp"
 
 #include <bimloc/bim/building.hpp>
 
@@ -84,5 +85,10 @@ bim::Storey withEveryWall(const bim::Building& building, std::size_t storey);
 // config.robust, also the robust answer.
 OracleVerdict decideWhen(const bim::Storey& storey, double floor_z, const std::vector<Keyframe>& keyframes,
                          const Eigen::Vector3d& truth_start, const OracleConfig& config = {});
+
+// The same verdict on the storey's walls as the band cuts them (wallSegmentsInBand) and each
+// segment's wall: what decideWhen calls; a bench can replay a run's keyframes on it.
+OracleVerdict decideOnWalls(const std::vector<Segment2>& walls, const std::vector<int>& wall_of, const std::vector<Keyframe>& keyframes,
+                            const Eigen::Vector3d& truth_start, const OracleConfig& config = {});
 
 }  // namespace bimloc::sim::oracle
