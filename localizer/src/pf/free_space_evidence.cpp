@@ -208,7 +208,7 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
       // a pane or a door leaf stopped it there, which another place's wall explains no better.
       if (params.explained) {
         const double reach = params.gate_sigmas * sigma_m / kFreeSpaceMinCos;
-        if (const auto pass = map.openingPass(o, u, z0, dz, r, reach))
+        if (const auto pass = map.openingPass(o, u, z0, dz, r, reach, &tried))
           if (std::abs(r - pass->t) <= params.gate_sigmas * sigma_m / std::max(kFreeSpaceMinCos, pass->cos_incidence))
             hits.push_back({(pass->doorway ? kInDoorwayBase : kInWindowBase) + pass->wall, 0.0f, index});
       }
@@ -245,6 +245,22 @@ namespace {
 
 bool byKey(const FreeSpaceHit& a, const FreeSpaceHit& b) { return a.key < b.key; }
 
+// Per ray of one scan's `hits`, the key of its mark in [lo, hi), less `offset` (-1: no mark).
+void marksByRay(const std::vector<FreeSpaceHit>& hits, std::int32_t lo, std::int32_t hi, std::int32_t offset,
+                std::vector<std::int32_t>& by_ray) {
+  by_ray.clear();
+  for (const auto& h : hits)
+    if (h.key >= lo && h.key < hi && h.ray >= 0) {
+      const auto ray = static_cast<std::size_t>(h.ray);
+      if (by_ray.size() <= ray) by_ray.resize(ray + 1, -1);
+      by_ray[ray] = h.key - offset;
+    }
+}
+
+std::int32_t markOf(const std::vector<std::int32_t>& by_ray, std::int32_t ray) {
+  return ray >= 0 && static_cast<std::size_t>(ray) < by_ray.size() ? by_ray[static_cast<std::size_t>(ray)] : -1;
+}
+
 // Per key of `all` (sorted by key) the mean cost of its rays times the support ramp; the open
 // keys add up to at most open_faces faces, the others (through; on-wall marks cost nothing) add up.
 double penaltyOf(const std::vector<FreeSpaceHit>& all, const FreeSpaceParams& params) {
@@ -277,26 +293,16 @@ FreeSpaceCost freeSpaceCostGiven(const std::vector<const std::vector<FreeSpaceHi
   std::vector<std::int32_t> on_wall, in_opening;
   for (std::size_t k = 0; k < x.size(); ++k) {
     if (!x[k]) continue;
-    on_wall.clear();
-    in_opening.clear();
-    for (const auto& h : *x[k])
-      if (h.key >= kInDoorwayBase && h.key < kDoorExplainedBase && h.ray >= 0) {
-        if (in_opening.size() <= static_cast<std::size_t>(h.ray)) in_opening.resize(static_cast<std::size_t>(h.ray) + 1, -1);
-        in_opening[static_cast<std::size_t>(h.ray)] = h.key;
-      }
+    marksByRay(*x[k], kInDoorwayBase, kDoorExplainedBase, 0, in_opening);  // X's rays in its own openings
     if (k < y.size() && y[k])
-      for (const auto& h : *y[k])
-        if (h.key >= kOnWallBase && h.key < kExplainedBase && h.ray >= 0) {
-          if (on_wall.size() <= static_cast<std::size_t>(h.ray)) on_wall.resize(static_cast<std::size_t>(h.ray) + 1, -1);
-          on_wall[static_cast<std::size_t>(h.ray)] = h.key - kOnWallBase;
-        }
+      marksByRay(*y[k], kOnWallBase, kExplainedBase, kOnWallBase, on_wall);  // Y's wall each ray ended on
+    else
+      on_wall.clear();
     for (const auto& h : *x[k]) {
       if (h.key >= kInDoorwayBase && h.key < kDoorExplainedBase) continue;  // marks, read above
       const bool open = h.key >= kOpenKeyBase && h.key < kOnWallBase;
-      std::int32_t wall =
-          open && h.ray >= 0 && static_cast<std::size_t>(h.ray) < on_wall.size() ? on_wall[static_cast<std::size_t>(h.ray)] : -1;
-      const std::int32_t opening =
-          wall >= 0 && static_cast<std::size_t>(h.ray) < in_opening.size() ? in_opening[static_cast<std::size_t>(h.ray)] : -1;
+      std::int32_t wall = open ? markOf(on_wall, h.ray) : -1;
+      const std::int32_t opening = wall >= 0 ? markOf(in_opening, h.ray) : -1;
       if (opening >= kInWindowBase) wall = -1;  // X's pane explains it as well: stays open
       if (opening >= kInDoorwayBase && opening < kInWindowBase) {
         all.push_back({kDoorExplainedBase + (opening - kInDoorwayBase), static_cast<float>(params.door_worth), h.ray});

@@ -98,6 +98,7 @@ class FreeSpaceMap {
   // Where the ray passes through one of the plan's openings within `reach` of t_ref along it
   // (the nearest such pass): the opening's wall, and whether it is a doorway (it reaches down
   // to the wall's base: a leaf, shut or not, stands in it) or a window (a sill: a pane fills it).
+  // `scratch`, as firstCrossing's: the faces tried, reused ray after ray.
   struct OpeningPass {
     double t = 0;
     int wall = -1;
@@ -105,7 +106,7 @@ class FreeSpaceMap {
     bool doorway = false;
   };
   std::optional<OpeningPass> openingPass(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0, double dz_per_m, double t_ref,
-                                         double reach) const;
+                                         double reach, std::vector<std::uint32_t>* scratch = nullptr) const;
 
  private:
   struct Face {

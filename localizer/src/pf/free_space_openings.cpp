@@ -23,7 +23,8 @@ constexpr double kDoorwaySillM = 0.1;
 }  // namespace
 
 std::optional<FreeSpaceMap::OpeningPass> FreeSpaceMap::openingPass(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0,
-                                                                   double dz_per_m, double t_ref, double reach) const {
+                                                                   double dz_per_m, double t_ref, double reach,
+                                                                   std::vector<std::uint32_t>* scratch) const {
   std::optional<OpeningPass> best;
   if (faces_.empty() || !(reach >= 0.0)) return best;
   // The cells the ray's stretch [t_ref - reach, t_ref + reach] lies in: a box of them (the
@@ -32,7 +33,9 @@ std::optional<FreeSpaceMap::OpeningPass> FreeSpaceMap::openingPass(const Eigen::
   const auto cell = [&](double v, double origin) { return static_cast<int>(std::floor((v - origin) / cell_m_)); };
   const int x0 = std::max(0, cell(std::min(a.x(), b.x()), origin_.x())), x1 = std::min(nx_ - 1, cell(std::max(a.x(), b.x()), origin_.x()));
   const int y0 = std::max(0, cell(std::min(a.y(), b.y()), origin_.y())), y1 = std::min(ny_ - 1, cell(std::max(a.y(), b.y()), origin_.y()));
-  std::vector<std::uint32_t> tried;
+  std::vector<std::uint32_t> own;
+  std::vector<std::uint32_t>& tried = scratch ? *scratch : own;
+  tried.clear();
   for (int iy = y0; iy <= y1; ++iy)
     for (int ix = x0; ix <= x1; ++ix)
       for (const std::uint32_t i : cells_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix)]) {

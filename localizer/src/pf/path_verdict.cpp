@@ -155,7 +155,6 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
   std::vector<std::pair<double, std::size_t>> rivals;
   std::vector<std::size_t> same_place;
   std::vector<std::size_t> left_by_free_space;  // bests the free space swapped away from: no way back
-  bool swapped = false;
   // Three rounds may swap the best; a swap in the third leaves margins computed for the best it
   // swapped away from, so a fourth round, which swaps nothing, computes the margins of the best
   // the verdict names (session 25 reported such a verdict undecided, margin 0: Jesse.1 Level 1
@@ -176,7 +175,7 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
     // fitting moves onto the best place (it was proposed 0.5 m off the same walls, along a wall
     // or turned a little) is that place, not a rival: its margin, about 0, held off the
     // convergence of a place 20-60 over every other (Jesse.1 Level 1, 22 s).
-    swapped = false;
+    bool swapped = false;
     std::size_t fitted = 0;
     same_place.clear();
     for (std::size_t r = 0; r < rivals.size() && fitted < 3; ++r) {
