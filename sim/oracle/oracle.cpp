@@ -1,5 +1,6 @@
 #include "sim/oracle/oracle.hpp"
 
+#include "sim/oracle/first_crossing.hpp"
 #include "sim/oracle/place_search.hpp"
 
 #include <bimloc/geometry/planar_pose.hpp>
@@ -98,37 +99,6 @@ double decisionThreshold(double free_area_m2, const OracleConfig& c, double* pla
 
 namespace {
 
-// The first keyframe >= lowest from which `holds` is true at every check: backwards from the
-// last keyframe, every stride-th, until a check fails; then each keyframe back from the first
-// that held to the one that failed. Unset when the last keyframe fails.
-std::optional<std::size_t> firstFromWhich(std::size_t count, std::size_t lowest, std::size_t stride,
-                                          const std::function<bool(std::size_t)>& holds) {
-  std::optional<std::size_t> first;
-  std::size_t failed = 0;
-  bool any_failed = false;
-  for (std::size_t k = count; k-- > lowest;) {
-    if (!holds(k)) {
-      any_failed = true, failed = k;
-      break;
-    }
-    first = k;
-    if (k < lowest + stride) {
-      for (std::size_t j = k; j-- > lowest;) {
-        if (!holds(j)) break;
-        first = j;
-      }
-      break;
-    }
-    k -= stride - 1;
-  }
-  if (any_failed && first)
-    for (std::size_t j = *first; j-- > failed + 1;) {
-      if (!holds(j)) break;
-      first = j;
-    }
-  return first;
-}
-
 double threadCpuSeconds() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
@@ -176,10 +146,10 @@ OracleVerdict decideOnWalls(const std::vector<Segment2>& walls, const std::vecto
     float q;
     Eigen::Vector3d pose;
   };
-  // Kept per keyframe: the robust checks run at the plain checks' keyframes (the same schedule
-  // back from the last), and the truth's search is a pure function of the path up to k: half of
-  // the oracle's time went to searching it a second time (h28oracle3). Its nodes and cells count
-  // where it is searched.
+  // Kept per keyframe: the robust answer's first check is at the plain answer's keyframe, the
+  // run's last keyframe may be checked twice, and the truth's search is a pure function of the
+  // path up to k (h28oracle3: searching it again was half of the oracle's time). Its nodes and
+  // cells count where it is searched.
   std::map<std::size_t, Truth> truths;
   const auto truthOf = [&](std::size_t k, const SearchContext& context, std::size_t* nodes, std::size_t* cells) {
     if (const auto known = truths.find(k); known != truths.end()) return known->second;
@@ -188,9 +158,7 @@ OracleVerdict decideOnWalls(const std::vector<Segment2>& walls, const std::vecto
     *nodes += truth.nodes, *cells += truth.cells;
     return truths[k] = truth.best >= at_start ? Truth{truth.best, truth.pose} : Truth{at_start, truth_start};
   };
-  // Whether the scans up to keyframe k rule every rival out. With every scan (the first check),
-  // also whether they rule the truth out: a rival above it by the threshold (searched only when
-  // some rival comes within the threshold of it, the only case where one can be above).
+  // Whether the scans up to keyframe k rule every rival out.
   const auto ruledOut = [&](std::size_t k) {
     const PathCloud path = pathOf(keyframes, k + 1);
     const SearchContext context{field, model, path, lattice, zone};
@@ -198,18 +166,22 @@ OracleVerdict decideOnWalls(const std::vector<Segment2>& walls, const std::vecto
     const SearchAnswer rival = searchPlaces(context, Region::Rivals, q - static_cast<float>(verdict.threshold), true);
     ++verdict.checks;
     verdict.nodes += rival.nodes, verdict.cells += rival.cells;
-    if (k + 1 == keyframes.size()) {
-      verdict.points = path.size();
-      if (rival.reached) {
-        const SearchAnswer above = searchPlaces(context, Region::Rivals, q + static_cast<float>(verdict.threshold), true);
-        verdict.nodes += above.nodes, verdict.cells += above.cells;
-        verdict.truth_ruled_out = above.reached;
-      }
-    }
     return !rival.reached;
   };
   const auto stride = static_cast<std::size_t>(std::max(1, config.check_every));
-  const std::optional<std::size_t> first = firstFromWhich(keyframes.size(), 0, stride, ruledOut);
+  const std::optional<std::size_t> first = firstCrossing(keyframes.size(), 0, stride, ruledOut);
+  // With every scan of the run, whether they rule the truth out: some rival above it by the
+  // threshold (a rival that reaches it reaches the lower bar too, so no other search is needed).
+  if (!keyframes.empty()) {
+    const std::size_t last = keyframes.size() - 1;
+    const PathCloud path = pathOf(keyframes, last + 1);
+    const SearchContext context{field, model, path, lattice, zone};
+    const float q = truthOf(last, context, &verdict.nodes, &verdict.cells).q;
+    const SearchAnswer above = searchPlaces(context, Region::Rivals, q + static_cast<float>(verdict.threshold), true);
+    verdict.nodes += above.nodes, verdict.cells += above.cells;
+    verdict.truth_ruled_out = above.reached;
+    verdict.points = path.size();
+  }
   if (first) verdict.decidable_at_s = keyframes[*first].time_s;
   verdict.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   verdict.cpu_seconds = threadCpuSeconds() - cpu_start;
@@ -231,9 +203,9 @@ OracleVerdict decideOnWalls(const std::vector<Segment2>& walls, const std::vecto
     verdict.robust_nodes += rival.nodes, verdict.robust_cells += rival.cells;
     return !rival.reached;
   };
-  // A rival ruled out robustly is ruled out (its robust value is at least its score), so the
-  // keyframe before decidable_at_s, which failed, fails robustly too: no need to look before it.
-  const std::optional<std::size_t> robust = firstFromWhich(keyframes.size(), *first, stride, ruledOutRobustly);
+  // A rival ruled out robustly is ruled out (its robust value is at least its score), so every
+  // keyframe before decidable_at_s, where some rival was not, fails robustly too.
+  const std::optional<std::size_t> robust = firstCrossing(keyframes.size(), *first, stride, ruledOutRobustly);
   if (robust) verdict.decidable_robust_at_s = keyframes[*robust].time_s;
   verdict.robust_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - robust_start).count();
   verdict.robust_cpu_seconds = threadCpuSeconds() - robust_cpu_start;

@@ -1,5 +1,5 @@
 // The information-limit oracle (issue 28 §1, docs/oracle.md): it knows the truth and answers
-// from what time on the scans so far rule out every place of the storey but the true one.
+// from what time the scans so far rule out every place of the storey but the true one.
 // Independent of the localizer's code: its own model of the scans (a height band of points
 // against the plan's wall faces), its own search (every start pose of the storey on a grid,
 // branch-and-bound) and a likelihood-ratio test with a stated false-alarm rate.
@@ -46,8 +46,8 @@ std::vector<Eigen::Vector2f> bandPoints(const std::vector<Eigen::Vector3f>& lida
                                         double z_low_base, double z_high_base, const OracleConfig& config);
 
 struct OracleVerdict {
-  // The first keyframe's time from which every rival place stays ruled out; unset when some
-  // rival still explains the scans at the end.
+  // The first keyframe's time at which the scans so far rule every rival place out (the test's
+  // first crossing, checked every few keyframes); unset when no check does.
   std::optional<double> decidable_at_s;
   double threshold = 0;  // nats: log L(truth) - log L(best rival) needed to rule a rival out
   double rival_places = 0;  // the places the threshold's union bound counts
@@ -63,7 +63,7 @@ struct OracleVerdict {
 
   // The robust answer (docs/oracle.md): the same question with one site deviation allowed, a
   // rival ruled out only when it stays so with any one plan wall's points dropped. Never before
-  // decidable_at_s; unset when that is, or when some rival survives one deviation at the end.
+  // decidable_at_s; unset when that is, or when no check rules every rival out robustly.
   std::optional<double> decidable_robust_at_s;
   double robust_seconds = 0;  // its wall time, beside `seconds`
   double cpu_seconds = 0, robust_cpu_seconds = 0;  // the thread's CPU time: the plain answer's, the robust one's

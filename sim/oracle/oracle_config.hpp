@@ -42,8 +42,8 @@ struct OracleConfig {
   // The decision rule's false-alarm rate per run: the probability that noise alone makes the
   // truth's path beat a rival by the threshold when the rival is the true place (docs/oracle.md).
   double alpha = 0.01;
-  // The test runs at every check_every-th keyframe back from the last (about a metre of walk),
-  // and at every keyframe between the last check that failed and the first that held.
+  // The test runs forwards at every check_every-th keyframe (about a metre of walk) and the
+  // last, then at every keyframe between the last check that failed and the first that held.
   int check_every = 4;
   // Also the robust answer: one site deviation allowed (one plan wall's points dropped).
   bool robust = true;
