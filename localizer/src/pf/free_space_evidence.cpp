@@ -132,12 +132,8 @@ std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::V
         if (std::find(tried.begin(), tried.end(), i) != tried.end()) continue;
         tried.push_back(i);
         const Face& f = faces_[i];
-        // o + t u = start + s direction.
-        const double denom = u.x() * f.direction.y() - u.y() * f.direction.x();
-        if (std::abs(denom) < 1e-9) continue;  // parallel: the ray runs along it
-        const Eigen::Vector2d w = f.start - o;
-        const double t = (w.x() * f.direction.y() - w.y() * f.direction.x()) / denom;
-        const double s = (w.x() * u.y() - w.y() * u.x()) / denom;
+        double t = 0, s = 0;
+        if (!f.meets(o, u, t, s)) continue;  // parallel: the ray runs along it
         if (!(t > 1e-6) || t > max_t || (best && t >= best->t)) continue;
         // Where along the face the ray crosses is known to the place's pose: its heading moves
         // the ray t sigma_yaw sideways, which is that over cos(incidence) along the face; its

@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -115,6 +116,16 @@ class FreeSpaceMap {
     double z_bottom = 0, z_top = 0;  // map heights; unbounded when unknown
     const std::vector<bim::FaceOpening>* openings = nullptr;
     int wall = -1;
+    // Where the ray o + t u meets the face's line start + s direction (t along the ray, s along
+    // the face); false when it runs parallel to it. firstCrossing's and openingPass' test.
+    bool meets(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double& t, double& s) const {
+      const double denom = u.x() * direction.y() - u.y() * direction.x();
+      if (std::abs(denom) < 1e-9) return false;
+      const Eigen::Vector2d w = start - o;
+      t = (w.x() * direction.y() - w.y() * direction.x()) / denom;
+      s = (w.x() * u.y() - w.y() * u.x()) / denom;
+      return true;
+    }
   };
   std::vector<Face> faces_;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();

@@ -43,11 +43,8 @@ std::optional<FreeSpaceMap::OpeningPass> FreeSpaceMap::openingPass(const Eigen::
         tried.push_back(i);
         const Face& f = faces_[i];
         if (!f.openings || f.openings->empty()) continue;
-        const double denom = u.x() * f.direction.y() - u.y() * f.direction.x();
-        if (std::abs(denom) < 1e-9) continue;
-        const Eigen::Vector2d w = f.start - o;
-        const double t = (w.x() * f.direction.y() - w.y() * f.direction.x()) / denom;
-        const double s = (w.x() * u.y() - w.y() * u.x()) / denom;
+        double t = 0, s = 0;
+        if (!f.meets(o, u, t, s)) continue;
         if (!(t > 1e-6) || std::abs(t - t_ref) > reach || (best && std::abs(t - t_ref) >= std::abs(best->t - t_ref))) continue;
         const double z = z0 + dz_per_m * t;
         for (const auto& hole : *f.openings) {
