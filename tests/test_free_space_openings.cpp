@@ -3,7 +3,8 @@
 // solid wall in Y. A ray that ended in X's doorway plane is, at Y, on Y's wall; X's shut leaf
 // explains it at the site's probability of a shut door, so it counts -log(0.2) against X, not
 // a face. A ray that ended in X's window is the pane: nothing. A ray through X's open doorway
-// and beyond is what tells the rooms apart, a face against Y, as before.
+// and beyond is what tells the rooms apart, a face against Y, as before. Without explained
+// rays (the default), a ray that ended at the frame of a place's own opening is no evidence.
 #include "sgraph_fixtures.hpp"
 
 #include "pf/free_space_evidence.hpp"
@@ -147,4 +148,35 @@ TEST(FreeSpaceOpenings, ARayThroughTheDoorwayAndBeyondStillCountsAFaceAgainstThe
   EXPECT_GT(against_y.rest, 0.9 * kFaceWorth);
   const FreeSpaceCost against_x = freeSpaceCostGiven({&at_x}, {&at_y}, params, {});
   EXPECT_NEAR(against_x.rest + against_x.doors, 0.0, 1e-9);
+}
+
+TEST(FreeSpaceOpenings, ARayEndingAtTheFrameOfThePlacesOwnOpeningIsNoEvidence) {
+  // Without explained rays (the default): a ray that ended in the east wall's own hole, inside
+  // the wall's body (x 4.9-5.1) and at a jamb (|y| 0.96-0.99 of the hole's 1: its reveal or
+  // frame, by the geometry built above), is no free space at the place: no hit, doorway or
+  // window alike, as a crossing there gets no verdict. A ray that ended in the middle of the
+  // hole (a leaf or a pane), one through the doorway that ended 0.5 m past the wall (beyond the
+  // gate) and one in the room's open still cost the open quarter face each.
+  pf::ParticleFilterConfig c;
+  ASSERT_FALSE(c.free_space_explained);
+  const FreeSpaceParams params = FreeSpaceParams::of(c, 0.0);
+  ASSERT_LT(params.gate_sigmas * params.sigma_m, 0.5);
+  const std::vector<Eigen::Vector2d> jambs{{5.05, 0.99}, {4.95, -0.99}, {5.0, 0.98}};
+  for (const double sill : {0.0, 0.9}) {
+    const bim::Storey with_hole = eastWall(sill);
+    const FreeSpaceMap map(with_hole);
+    EXPECT_TRUE(freeSpaceHits(map, params, Eigen::Vector3d::Zero(), 0.0, profileOf(jambs)).empty()) << "sill " << sill;
+    const auto open = freeSpaceHits(map, params, Eigen::Vector3d::Zero(), 0.0, profileOf({{5.0, 0.0}, {5.6, 0.0}, {3.0, 0.0}}));
+    ASSERT_EQ(open.size(), 3u) << "sill " << sill;
+    for (const auto& h : open) {
+      EXPECT_GE(h.key, kOpenKeyBase);
+      EXPECT_LT(h.key, kOnWallBase);
+      EXPECT_NEAR(h.cost, params.open_wall_faces * kFaceWorth, 1e-5);
+    }
+  }
+  // The solid twin: the jamb rays end in its wall's body, on it or just in it: never open.
+  const bim::Storey solid = eastWall(std::nullopt);
+  const FreeSpaceMap solid_map(solid);
+  for (const auto& h : freeSpaceHits(solid_map, params, Eigen::Vector3d::Zero(), 0.0, profileOf(jambs)))
+    EXPECT_LT(h.key, kOpenKeyBase) << "a ray in Y's solid wall is not in Y's open";
 }

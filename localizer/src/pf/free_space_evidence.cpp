@@ -198,16 +198,30 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
     const double dz = (z_base + e.z() - z0) / r;
     const auto x = map.firstCrossing(o, u, z0, dz, r + params.open_m, sigma_yaw, sigma_m, &tried);
     if (!x) {
-      // Nothing solid along the ray up to open_m past its end: it ended in the place's open.
-      hits.push_back({kOpenKeyBase + map.regionKey(end), static_cast<float>(params.open_wall_faces * params.face_worth), index});
-      // Unless it ended in one of the place's openings (within the gate, as a ray on a wall):
-      // a pane or a door leaf stopped it there, which another place's wall explains no better.
-      if (params.explained) {
-        const double reach = params.gate_sigmas * sigma_m / kFreeSpaceMinCos;
-        if (const auto pass = map.openingPass(o, u, z0, dz, r, reach, &tried))
-          if (std::abs(r - pass->t) <= params.gate_sigmas * sigma_m / std::max(kFreeSpaceMinCos, pass->cos_incidence))
-            hits.push_back({(pass->doorway ? kInDoorwayBase : kInWindowBase) + pass->wall, 0.0f, index});
+      // Nothing solid along the ray up to open_m past its end: it ended in the place's open ...
+      const double reach = params.gate_sigmas * sigma_m / kFreeSpaceMinCos;
+      const auto pass = map.openingPass(o, u, z0, dz, r, reach, &tried);
+      const bool in_opening =
+          pass && std::abs(r - pass->t) <= params.gate_sigmas * sigma_m / std::max(kFreeSpaceMinCos, pass->cos_incidence);
+      // ... unless it ended in one of the place's own openings at its frame: within the gate of
+      // the opening's face and, along it, within the margin of a jamb or of the head where a
+      // crossing gets no verdict (firstCrossing). There the plan has the wall's body, the
+      // opening's reveal and frame, which its two faces do not draw: no evidence. Counted as
+      // open, the true place paid a quarter face for each doorway whose jamb its rays grazed, up
+      // to the open term's whole face: on a corridor of doorways (random_residential_25546) the
+      // truth paid that face at every weighing, and its margin over its 180-degree twin stayed a
+      // hair under the bar. A ray that ended inside the hole (a leaf, a pane) stays open.
+      if (in_opening && !params.explained) {
+        const double along_sigma = std::hypot(sigma_yaw * pass->t, sigma_m) / std::max(kFreeSpaceMinCos, pass->cos_incidence);
+        const double frame_m = std::max(kFreeSpaceOpeningMarginM, 2.0 * along_sigma);
+        if (pass->edge_m <= frame_m || pass->head_m <= kFreeSpaceOpeningMarginM) continue;
       }
+      hits.push_back({kOpenKeyBase + map.regionKey(end), static_cast<float>(params.open_wall_faces * params.face_worth), index});
+      // With explained rays, a ray that ended in the place's opening is marked with it (within
+      // the gate, as a ray on a wall): a pane or a door leaf stopped it there, which another
+      // place's wall explains no better (freeSpaceCostGiven).
+      if (in_opening && params.explained)
+        hits.push_back({(pass->doorway ? kInDoorwayBase : kInWindowBase) + pass->wall, 0.0f, index});
       continue;
     }
     if (x->uncertain) continue;

@@ -105,6 +105,8 @@ class FreeSpaceMap {
     int wall = -1;
     double cos_incidence = 1;
     bool doorway = false;
+    double edge_m = 0;  // along the face, from the pass to the hole's nearer jamb
+    double head_m = 0;  // in height, from the pass to the hole's head
   };
   std::optional<OpeningPass> openingPass(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0, double dz_per_m, double t_ref,
                                          double reach, std::vector<std::uint32_t>* scratch = nullptr) const;

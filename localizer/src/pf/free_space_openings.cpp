@@ -53,6 +53,8 @@ std::optional<FreeSpaceMap::OpeningPass> FreeSpaceMap::openingPass(const Eigen::
           pass.t = t, pass.wall = f.wall, pass.cos_incidence = std::abs(u.dot(f.normal));
           // A wall of unknown height has no base to tell a doorway by: a window (no evidence).
           pass.doorway = std::isfinite(f.z_bottom) && hole.z_min_m <= f.z_bottom + kDoorwaySillM;
+          pass.edge_m = std::min(s - hole.along_min_m, hole.along_max_m - s);
+          pass.head_m = hole.z_max_m - z;
           best = pass;
           break;
         }
