@@ -62,20 +62,21 @@ std::vector<FreeSpaceHit> hitsOf(const bim::Storey& s, const std::vector<Eigen::
 
 }  // namespace
 
-TEST(FreeSpace, ThroughCostIsTheBeamModelWithAClutterFloor) {
-  const double sigma = 0.1, cap = kFaceWorth, w = std::exp(-cap);
+TEST(FreeSpace, ThroughCostIsTheBetterOfTheWallAndTheClutterFloor) {
+  const double sigma = 0.1, cap = kFaceWorth;
   EXPECT_DOUBLE_EQ(throughCost(0.0, sigma, cap), 0.0);
   EXPECT_DOUBLE_EQ(throughCost(-1.0, sigma, cap), 0.0);  // short: clutter's, never costed here
-  for (const double z : {0.5, 1.0, 2.0, 3.0, 5.0})
-    EXPECT_NEAR(throughCost(z * sigma, sigma, cap), -std::log((1 - w) * std::exp(-0.5 * z * z) + w), 1e-12) << z;
+  // -log max(exp(-z^2 / 2), exp(-cap)): the wall's Gaussian up to z = sqrt(2 cap), then the floor.
+  for (const double z : {0.5, 1.0, 2.0, 2.8})
+    EXPECT_NEAR(throughCost(z * sigma, sigma, cap), 0.5 * z * z, 1e-12) << z;
+  for (const double z : {2.9, 3.0, 3.1, 5.0, 1000.0}) EXPECT_DOUBLE_EQ(throughCost(z * sigma, sigma, cap), cap) << z;
   double last = 0;
   for (double e = 0.01; e < 5.0; e += 0.01) {
     const double c = throughCost(e, sigma, cap);
     EXPECT_GE(c, last - 1e-12);
-    EXPECT_LE(c, cap + 1e-12);
+    EXPECT_LE(c, cap);
     last = c;
   }
-  EXPECT_NEAR(throughCost(100.0, sigma, cap), cap, 1e-9);  // saturates at one face
 }
 
 TEST(FreeSpace, ARayThroughAWallCostsByHowFarBeyond) {
@@ -88,8 +89,8 @@ TEST(FreeSpace, ARayThroughAWallCostsByHowFarBeyond) {
   EXPECT_GT(through[0].cost, 0.99 * kFaceWorth);
   // Just beyond by less than the gate (3 sigma): noise, no cost.
   EXPECT_TRUE(hitsOf(oneWall(), {{4.9 + 2.5 * params.sigma_m, 0.0}}).empty());
-  // By 4 sigma: the cost of 4 sigma. (Head-on, the heading's gate moves the crossing at 4.9 m
-  // to 4.9 / cos(3.3 deg), 8 mm farther: sigma 0.0501 m, the cost 5e-4 lower.)
+  // By 4 sigma: the cost of 4 sigma, beyond the gate one face. (Head-on, the heading's gate moves
+  // the crossing at 4.9 m to 4.9 / cos(3.3 deg), 8 mm farther: sigma 0.0501 m.)
   const auto four = hitsOf(oneWall(), {{4.9 + 4.0 * params.sigma_m, 0.0}});
   ASSERT_EQ(four.size(), 1u);
   const double tilt = params.gate_sigmas * params.sigma_yaw_rad;
@@ -157,8 +158,7 @@ TEST(FreeSpace, EachWallCountsOnceAndAtMostOneFace) {
   }
   std::vector<const std::vector<FreeSpaceHit>*> window;
   for (const auto& s : scans) window.push_back(&s);
-  EXPECT_NEAR(freeSpacePenalty(window, params), kFaceWorth, 0.01 * kFaceWorth);
-  EXPECT_LE(freeSpacePenalty(window, params), kFaceWorth + 1e-5);  // (costs are floats)
+  EXPECT_DOUBLE_EQ(freeSpacePenalty(window, params), params.face_worth);  // exactly, though costs are floats
   // One ray alone counts a third (support_rays = 3): a stray return is not a wall's worth.
   const std::vector<FreeSpaceHit> one{{0, static_cast<float>(kFaceWorth)}};
   EXPECT_NEAR(freeSpacePenalty({&one}, params), kFaceWorth / 3.0, 1e-5);

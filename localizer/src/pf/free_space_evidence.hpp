@@ -9,10 +9,13 @@
 //     the scan saw something;
 //   - else it is consistent (ended on a wall, or short of one by clutter): no cost.
 // The model is a beam model with a uniform clutter floor (Thrun et al., Probabilistic Robotics
-// 6.3: p(r) = (1 - w) N(r; t, sigma) + w), restricted to rays that reach beyond t: such a reading
-// has no short-reading explanation, and its cost -log p(r) + log p(t) rises as the Gaussian's
-// and then saturates at -log w, which the floor w is chosen to make one face's worth (half the
-// planes' gate less its 3 dof, the unit of ParticleFilterConfig::evidenceMargin). Short rays
+// 6.3: the wall's N(r; t, sigma) or the floor w), restricted to rays that reach beyond t: such a
+// reading has no short-reading explanation. Its cost is that of the better explanation (a
+// generalized likelihood ratio), min(z^2 / 2, -log w): the Gaussian's, then exactly -log w, which
+// the floor w is chosen to make one face's worth (half the planes' gate less its 3 dof, the unit
+// of ParticleFilterConfig::evidenceMargin). Every ray beyond the 3-sigma gate costs it (4.5 >
+// 4.17). The sum of the two explanations only tended to it, so two walls never made the bar of
+// two faces (docs/results/2026-11-28-h28miss.md). Short rays
 // are what people, furniture and stacked material do: the open cost is a small constant per
 // ray, and bounded per region and in total.
 //
@@ -70,8 +73,9 @@ struct FreeSpaceParams {
 };
 
 // The cost of one ray ending `beyond_m` past the wall it crossed, range sigma `sigma_m`:
-// -log((1 - w) exp(-z^2 / 2) + w), z = beyond / sigma, with w = exp(-cap): 0 at the wall,
-// never more than cap.
+// min(z^2 / 2, cap), z = beyond / sigma: the wall's Gaussian or the clutter floor w = exp(-cap),
+// whichever explains the ray better. 0 at the wall, exactly cap from z = sqrt(2 cap) on (beyond
+// the 3-sigma gate at the default cap): a wall its rays went through is one face, no less.
 double throughCost(double beyond_m, double sigma_m, double cap);
 
 // The plan's wall faces in a grid, for rays: the first solid face a ray crosses.
