@@ -3,6 +3,8 @@
 // however small the sigmas get.
 #include "sim_fixtures.hpp"
 
+#include "sim/world/world.hpp"
+
 #include "pf/path_evidence.hpp"
 
 #include <bimloc/pf/particle_filter.hpp>
@@ -33,13 +35,14 @@ TEST(WindowDrift, TheModelsDriftIsThatOfThePathTheWindowCoversRoundedUpToAHalvin
     pf::detail::PathEvidence evidence(storey, config);
     const double window = config.evidence_window_m;
     EXPECT_DOUBLE_EQ(evidence.scanModel().sigma_d_m, sigmaD(config, of_window ? window / 16 : window));
-    // A straight walk, a scan every 0.3 m (the window's spacing), 20 m: past the window's length.
+    // A straight walk, a scan every 0.31 m (just over the window's spacing, 0.3 m, so that
+    // rounding never keeps a scan out), 20.8 m: past the window's length.
     for (int k = 1; k <= 67; ++k) {
-      const double walked = 0.3 * k;
+      const double walked = 0.31 * k;
       ASSERT_TRUE(evidence.addScan({walked, 0.0, 0.0}, 0.0, {}));
       // The path the model is for: the window's, or the smallest halving of it (at most four)
-      // that covers the path from the window's first scan (at 0.3 m) to this one.
-      const double covered = std::min(window, walked - 0.3);
+      // that covers the path from the window's first scan (at 0.31 m) to this one.
+      const double covered = std::min(window, walked - 0.31);
       double path = window;
       if (of_window)
         for (int halvings = 0; halvings < 4 && path / 2 >= covered; ++halvings) path /= 2;
