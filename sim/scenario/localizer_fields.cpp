@@ -60,6 +60,7 @@ std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
           {"evidence_drift_fraction", &c.evidence_drift_fraction, closed(0, 1)},
           {"evidence_yaw_drift_rad_per_m", &c.evidence_yaw_drift_rad_per_m, closed(0, 1)},
           {"evidence_plan_tolerance_m", &c.evidence_plan_tolerance_m, closed(0, 10)},
+          {"evidence_drift_of_window", &c.evidence_drift_of_window},
           {"evidence_injection_fraction", &c.evidence_injection_fraction, closed(0, 1)},
           {"free_space_evidence", &c.free_space_evidence},
           {"free_space_explained", &c.free_space_explained},

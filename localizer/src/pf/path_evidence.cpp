@@ -19,10 +19,10 @@ namespace {
 
 // The sigmas of the window's error model (beyond the scan's own): the scans are placed by
 // odometry, which drifts, and the transform fitted to the whole window splits that drift,
-// so each scan may be off by the drift over half the window; and a wall stands within its
-// as-built tolerance of the plan.
-ParticleFilterConfig windowModel(ParticleFilterConfig c) {
-  const double half = 0.5 * c.evidence_window_m;
+// so each scan may be off by the drift over half the window's path (`path_m`); and a wall
+// stands within its as-built tolerance of the plan.
+ParticleFilterConfig windowModel(ParticleFilterConfig c, double path_m) {
+  const double half = 0.5 * path_m;
   const double drift_m = c.evidence_drift_fraction * half, yaw_rad = c.evidence_yaw_drift_rad_per_m * half;
   c.sigma_d_m = std::sqrt(c.sigma_d_m * c.sigma_d_m + drift_m * drift_m +
                           c.evidence_plan_tolerance_m * c.evidence_plan_tolerance_m);
@@ -31,10 +31,23 @@ ParticleFilterConfig windowModel(ParticleFilterConfig c) {
   return c;
 }
 
+// The path the window's model is made for: the whole window, or with evidence_drift_of_window
+// the path the window covers, rounded up to window / 2^k (k <= 4: at least 0.94 m of a 15 m
+// window), so that a candidate's scores are remade only when the model's path doubles.
+double modelPath(const ParticleFilterConfig& c, double covered_m) {
+  double path = c.evidence_window_m;
+  if (!c.evidence_drift_of_window) return path;
+  for (int k = 0; k < 4 && 0.5 * path >= covered_m; ++k) path *= 0.5;
+  return path;
+}
+
 }  // namespace
 
 PathEvidence::PathEvidence(const bim::Storey& storey, const ParticleFilterConfig& config)
-    : rooms_(storey, /*use_rooms=*/false), config_(windowModel(config)) {
+    : rooms_(storey, /*use_rooms=*/false),
+      base_config_(config),
+      model_path_m_(modelPath(config, 0.0)),
+      config_(windowModel(config, model_path_m_)) {
   if (config.free_space_evidence) {
     free_space_map_ = std::make_shared<const FreeSpaceMap>(storey);
     // A ray's range is off by the scan's placement along the window (drift, as the planes'),
@@ -76,11 +89,20 @@ bool PathEvidence::addScan(const Pose2& odom, double z_base, const std::vector<O
   last_odom_ = odom;
   if (!wouldJoin(odom)) return false;
   scans_.push_back({odom, z_base, observations, travelled_m_, free_space_map_ && profile ? *profile : RangeProfile{}});
-  for (auto& c : candidates_) {
-    ScanScore s = scoreOn(c.T_map_odom, scans_.back(), true);
-    c.matched_sum += s.matched;
-    c.out_of_rooms += s.out_of_rooms ? 1 : 0;
-    c.per_scan.push_back(std::move(s));
+  const double path = modelPath(base_config_, std::min(base_config_.evidence_window_m, travelled_m_ - scans_.front().travelled_m));
+  if (path > model_path_m_) {
+    // The window now covers a longer path: its drift is larger, and every candidate is scored
+    // again under it (at most four times a run), the new scan with them.
+    model_path_m_ = path;
+    config_ = windowModel(base_config_, path);
+    for (auto& c : candidates_) c = scored(c.T_map_odom);
+  } else {
+    for (auto& c : candidates_) {
+      ScanScore s = scoreOn(c.T_map_odom, scans_.back(), true);
+      c.matched_sum += s.matched;
+      c.out_of_rooms += s.out_of_rooms ? 1 : 0;
+      c.per_scan.push_back(std::move(s));
+    }
   }
   dropOldScans();
   for (auto& c : candidates_) c.log_likelihood = total(c.matched_sum, c.out_of_rooms);

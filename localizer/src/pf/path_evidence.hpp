@@ -227,10 +227,12 @@ class PathEvidence {
   bool fixesPose(const Candidate& p) const;
 
   RoomIndex rooms_;
+  ParticleFilterConfig base_config_;  // as given, before the window's error model
+  double model_path_m_ = 0;           // the path config_'s drift is that of (evidence_drift_of_window)
+  ParticleFilterConfig config_;  // with the sigmas of the window's error model
   std::vector<Eigen::Vector2d> face_normals_;  // by Landmark::id: the floor-plane normal of each face
   const StartPrior* prior_ = nullptr;
   Pose2 odom_start_ = Pose2::Zero();
-  ParticleFilterConfig config_;  // with the sigmas of the window's error model
   std::shared_ptr<const FreeSpaceMap> free_space_map_;  // null without free-space evidence
   FreeSpaceParams free_space_;
   std::size_t free_space_walls_ = 0;  // the storey's walls (keys of explained rays)

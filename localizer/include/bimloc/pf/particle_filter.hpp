@@ -103,6 +103,13 @@ struct ParticleFilterConfig {
   double evidence_drift_fraction = 0.02;
   double evidence_yaw_drift_rad_per_m = 0.001;
   double evidence_plan_tolerance_m = 0.05;
+  // The drift in that model is the drift over half the path the window covers, not over half of
+  // evidence_window_m: until the robot has walked the window's length, its scans are placed by
+  // odometry over a shorter path, and odometry drifts with distance (reference.md: 0.1-2 % of
+  // the distance travelled). The path is rounded up to evidence_window_m / 2^k (k <= 4), so the
+  // candidates are scored again at most four times a run and never under a drift smaller than
+  // the path's. False: the whole window's drift from the first scan (session 27's model).
+  bool evidence_drift_of_window = false;
   double evidence_injection_fraction = 0.3;
   // Free-space evidence (beyond the paper; pf/free_space_evidence.hpp): what the scans rule
   // out. A ray of the scan's range profile that ends beyond a candidate place's wall is
