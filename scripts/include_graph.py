@@ -75,7 +75,8 @@ def folder_of(path, root):
         if len(inner) > 1:
             return "localizer/" + inner[0]
         stem = os.path.splitext(inner[0])[0]
-        return "localizer" if stem == "localizer" else "localizer/" + stem
+        # The entry point's own files (localizer.cpp, localizer_impl.hpp, localizer_guide.cpp, ...).
+        return "localizer" if stem == "localizer" or stem.startswith("localizer_") else "localizer/" + stem
     return None
 
 

@@ -66,7 +66,9 @@ TEST(FreeSpaceBar, TwoWallsEveryRayWentThroughAreTheBarAndOneIsNot) {
     // floor's cap until exp(-z^2 / 2) vanishes against w in double precision: at 5 sigma two walls
     // of it missed the bar (4.1698 of 4.17 a wall); only rays metres beyond made it.
     const double w = std::exp(-params.face_worth), z = beyond / params.sigma_m;
-    if (z < 6.0) EXPECT_LT(2.0 * -std::log((1.0 - w) * std::exp(-0.5 * z * z) + w), config.evidenceMargin()) << beyond;
+    if (z < 6.0) {
+      EXPECT_LT(2.0 * -std::log((1.0 - w) * std::exp(-0.5 * z * z) + w), config.evidenceMargin()) << beyond;
+    }
     // One wall alone (a wall of the place not built yet, every ray through it): one face, under
     // the bar, as the one-deviation rule asks.
     std::vector<FreeSpaceHit> one;
