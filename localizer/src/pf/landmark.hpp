@@ -15,10 +15,20 @@
 namespace bimloc::pf::detail {
 
 struct Landmark {
+  // What a match reads of every face it tries (the normal, d, the angles, the heights) comes
+  // first: 64 bytes, one or two cache lines of the 160 (measurement.cpp's loop over a room's
+  // faces waited on the heights' line). The order of the members changes no value.
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  // out of the wall, into the room
   double d = 0;            // n·p + d = 0, map frame
   double azimuth = 0;      // atan2(n_y, n_x)
   double elevation = 0;    // asin(n_z)
+  // The face's vertical extent in the map (the wall's body, base to top): an observed plane
+  // is this face only where its points lie at heights the wall has. A wall hung above the
+  // rooms' ceilings (a stair well's enclosure on the storey above, a bulkhead) is in the plan
+  // but never in a scan taken from the floor; matched, it pulls a pose onto furniture or a
+  // counter front that happens to stand a few decimetres off it (the Duplex: 0.4 m in y).
+  double z_bottom = -std::numeric_limits<double>::infinity();
+  double z_top = std::numeric_limits<double>::infinity();
   bim::WallAxis axis = bim::WallAxis::X;
   // The face's extent along the floor: an observed plane is this face only where its
   // points lie along it (a coplanar wall elsewhere in the building is another landmark).
@@ -29,13 +39,6 @@ struct Landmark {
   // must all lie along it, not only its centroid along the face. Unbounded: not known.
   double line_lo_m = -std::numeric_limits<double>::infinity();
   double line_hi_m = std::numeric_limits<double>::infinity();
-  // The face's vertical extent in the map (the wall's body, base to top): an observed plane
-  // is this face only where its points lie at heights the wall has. A wall hung above the
-  // rooms' ceilings (a stair well's enclosure on the storey above, a bulkhead) is in the plan
-  // but never in a scan taken from the floor; matched, it pulls a pose onto furniture or a
-  // counter front that happens to stand a few decimetres off it (the Duplex: 0.4 m in y).
-  double z_bottom = -std::numeric_limits<double>::infinity();
-  double z_top = std::numeric_limits<double>::infinity();
   // The face's holes (windows, doors, recesses; along from start, map z): used only where the
   // association is local (the converged pose's refinement, as the S-Graph), see measurement.hpp.
   const std::vector<bim::FaceOpening>* openings = nullptr;  // the storey's, which outlives it

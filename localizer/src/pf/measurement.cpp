@@ -76,6 +76,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   // gate's angle is under 45 deg, a face of the other side has e_az^2 > 4 gate, and m2_fill >=
   // e_az^2 (sums of non-negative terms, rounded upwards-monotone): it can never pass `best`
   // (<= gate), so leaving it out changes nothing; the lists keep the rest in their order.
+  const bool by_axis = !via_index && !rooms.seesEveryFace();  // the faces from a room's lists of one axis
   const bool by_side = std::sqrt(gate) * (c.sigma_azimuth_deg * M_PI / 180.0) < 0.25 * M_PI;
   // A point of the yaw-free base frame, in the map at the particle's pose.
   const auto inMap = [&](const Eigen::Vector2d& b) { return Eigen::Vector2d(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y()); };
@@ -118,7 +119,8 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     bool best_filling = false;
     const Landmark* best_landmark = nullptr;
     const auto consider = [&](const Landmark& l) __attribute__((always_inline)) {
-      if (l.axis != axis) return;  // the paper's semantic classes: x walls with x walls
+      // The paper's semantic classes: x walls with x walls (a room's lists hold one axis already).
+      if (!by_axis && l.axis != axis) return;
       if (!atFaceHeight(o, l, z_base)) return;  // a wall above (or below) what the scan saw of it
       // Paper Eq. (plane error): the squared Mahalanobis distance of the minimal planes, with
       // d taken at the particle (the landmark moved to a frame centred on it, axes of the map):
