@@ -18,9 +18,6 @@
 
 using namespace bimloc;
 using namespace bimloc::pf::detail;
-using bimloc::pf::Particle;
-using bimloc::test::observations;
-using bimloc::test::tiled;
 
 namespace {
 
@@ -74,7 +71,7 @@ TEST(WallSides, MatchBySideIsTheMatchOverEveryFaceOfTheAxis) {
   std::normal_distribution<double> noise(0.0, 1.0);
   int compared = 0, associated = 0;
   for (const double angle : {0.0, 0.6, 0.25 * M_PI, 2.0}) {
-    const bim::Storey big = turned(tiled(office, 2), angle);
+    const bim::Storey big = turned(test::tiled(office, 2), angle);
     const Eigen::Matrix2d R = Eigen::Rotation2Dd(angle).toRotationMatrix();
     for (const bool use_rooms : {true, false}) {
       const RoomIndex sided(big, use_rooms), brute(big, use_rooms, true, 0.5, /*index_faces=*/false);
@@ -83,12 +80,12 @@ TEST(WallSides, MatchBySideIsTheMatchOverEveryFaceOfTheAxis) {
       for (const char* name : {"R101", "R106", "C100", "S100"}) {
         const bim::Room* room = office.findRoom(name);
         ASSERT_NE(room, nullptr);
-        const auto obs = observations(test::wallsSeenFrom(test::pose(room->centre.x(), room->centre.y(), 0.3), mount), mount);
+        const auto obs = test::observations(test::wallsSeenFrom(test::pose(room->centre.x(), room->centre.y(), 0.3), mount), mount);
         for (int k = 0; k < 24; ++k) {
           // Near the true pose of a tile (matches), farther, and turned every way.
           const Eigen::Vector2d at = R * Eigen::Vector2d(room->centre.x() + 30.0 * (k % 2), room->centre.y() + 20.0 * ((k / 2) % 2));
           const double spread = k < 12 ? 0.2 : 2.0;
-          Particle p;
+          pf::Particle p;
           p.x = at.x() + spread * noise(rng), p.y = at.y() + spread * noise(rng);
           p.yaw = 0.3 + angle + (k < 12 ? 0.05 : 1.5) * noise(rng);
           p.room = sided.roomAt(p.x, p.y);
