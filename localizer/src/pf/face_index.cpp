@@ -6,7 +6,10 @@
 
 namespace bimloc::pf::detail {
 
-FaceIndex::FaceIndex(std::vector<Landmark> faces, double cell_m) : faces_(std::move(faces)), cell_m_(cell_m), per_cell_(cell_m) {
+FaceIndex::FaceIndex(std::vector<Landmark> faces, double cell_m) : FaceIndex(std::move(faces), cell_m, std::vector<bool>()) {}
+
+FaceIndex::FaceIndex(std::vector<Landmark> faces, double cell_m, const std::vector<bool>& keep)
+    : faces_(std::move(faces)), cell_m_(cell_m), per_cell_(cell_m) {
   if (faces_.empty()) return;
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   for (const auto& f : faces_) {
@@ -22,6 +25,7 @@ FaceIndex::FaceIndex(std::vector<Landmark> faces, double cell_m) : faces_(std::m
   // of the cells it crosses): then "cell centre within r + half diagonal" never misses it.
   const double reach = 0.7072 * cell_m_;
   for (std::uint32_t i = 0; i < faces_.size(); ++i) {
+    if (!keep.empty() && !keep[i]) continue;
     const auto& f = faces_[i];
     const Eigen::Vector2d end = f.start + f.length_m * f.direction;
     const Eigen::Vector2d a = f.start.cwiseMin(end), b = f.start.cwiseMax(end);

@@ -20,6 +20,9 @@ namespace bimloc::pf::detail {
 class FaceIndex {
  public:
   explicit FaceIndex(std::vector<Landmark> faces, double cell_m = 1.0);
+  // The same faces() (the same positions), but only those with keep[i] in the cells: a query
+  // visits the kept faces forEachNear of the whole index would visit, in the same order.
+  FaceIndex(std::vector<Landmark> faces, double cell_m, const std::vector<bool>& keep);
 
   const std::vector<Landmark>& faces() const { return faces_; }
   bool empty() const { return faces_.empty(); }

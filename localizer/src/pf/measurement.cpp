@@ -72,7 +72,12 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
   // The local search also matches a plane behind a face, in its openings (below): as far as
   // the deepest wall with openings.
   const double behind_m = opening_margin_m >= 0.0 ? rooms.fillingDepth() : 0.0;
-  const auto faceAt = [&](const Landmark& l) { return static_cast<std::uint32_t>(&l - index->faces().data()); };
+  // Opposite sides of one axis are at least 90 deg apart (wallSide, landmark.hpp). Where the
+  // gate's angle is under 45 deg, a face of the other side has e_az^2 > 4 gate, and m2_fill >=
+  // e_az^2 (sums of non-negative terms, rounded upwards-monotone): it can never pass `best`
+  // (<= gate), so leaving it out changes nothing; the lists keep the rest in their order.
+  const bool by_axis = !via_index && !rooms.seesEveryFace();  // the faces from a room's lists of one axis
+  const bool by_side = std::sqrt(gate) * (c.sigma_azimuth_deg * M_PI / 180.0) < 0.25 * M_PI;
   // A point of the yaw-free base frame, in the map at the particle's pose.
   const auto inMap = [&](const Eigen::Vector2d& b) { return Eigen::Vector2d(p.x + cy * b.x() - sy * b.y(), p.y + sy * b.x() + cy * b.y()); };
   // The local search's pieces (see below): azimuth and d in the scan's frame, cost, support.
@@ -93,6 +98,10 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     const double nx = cy * o.normal_base.x() - sy * o.normal_base.y(), ny = sy * o.normal_base.x() + cy * o.normal_base.y();
     const double azimuth = o.azimuth_base + p.yaw, elevation = o.elevation;
     const bim::WallAxis axis = std::abs(nx) >= std::abs(ny) ? bim::WallAxis::X : bim::WallAxis::Y;
+    const int side = by_side ? wallSide(nx, ny) : -1;
+    // The index asked: one side's faces where the side is known (the same positions in faces()).
+    const FaceIndex* query = side >= 0 && index && rooms.sideIndex(side) && !shortlist ? rooms.sideIndex(side) : index;
+    const auto faceAt = [&](const Landmark& l) { return static_cast<std::uint32_t>(&l - query->faces().data()); };
     const Eigen::Vector2d centroid = inMap(o.centroid_base);
     // Where the plane stands (its standing span, else centroid -+ half its extent): for the
     // wall-line rule (when on), the openings rule and the through-wall check.
@@ -110,7 +119,8 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     bool best_filling = false;
     const Landmark* best_landmark = nullptr;
     const auto consider = [&](const Landmark& l) __attribute__((always_inline)) {
-      if (l.axis != axis) return;  // the paper's semantic classes: x walls with x walls
+      // The paper's semantic classes: x walls with x walls (a room's lists hold one axis already).
+      if (!by_axis && l.axis != axis) return;
       if (!atFaceHeight(o, l, z_base)) return;  // a wall above (or below) what the scan saw of it
       // Paper Eq. (plane error): the squared Mahalanobis distance of the minimal planes, with
       // d taken at the particle (the landmark moved to a frame centred on it, axes of the map):
@@ -166,9 +176,9 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     if (indexed && shortlist)
       for (const Landmark* l : shortlist->match[k]) consider(*l);
     else if (indexed)
-      index->forEachNear(centroid, radius, consider);
-    else if (!via_index)  // a room's faces: those of the plane's axis, the others would be passed over
-      for (const auto& l : rooms.landmarks(outside ? 0 : p.room, axis)) consider(l);
+      query->forEachNear(centroid, radius, consider);
+    else if (!via_index)  // a room's faces: those of the plane's axis and side, the others would be passed over
+      for (const auto& l : rooms.landmarks(outside ? 0 : p.room, axis, side)) consider(l);
     else
       for (const auto& l : landmarks) consider(l);
     // The local search (the converged pose's refinement) also knows what no face can explain:

@@ -86,6 +86,11 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
   if (index_faces) {
     all_faces_ = std::make_shared<const FaceIndex>(every_face, 2.0);
     fine_faces_ = std::make_shared<const FaceIndex>(every_face, 1.0);
+    for (int side = 0; side < 4; ++side) {
+      std::vector<bool> keep;
+      for (const Landmark& l : every_face) keep.push_back(onSide(l, side));
+      side_faces_[static_cast<std::size_t>(side)] = std::make_shared<const FaceIndex>(every_face, 2.0, keep);
+    }
   }
   if (!use_rooms && !index_faces) landmarks_.push_back(every_face);  // one list for every room
   for (const auto& room : storey.rooms) {
@@ -104,6 +109,13 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
     std::array<std::vector<Landmark>, 2> split;
     for (const Landmark& l : faces) split[l.axis == bim::WallAxis::X ? 0 : 1].push_back(l);
     by_axis_.push_back(std::move(split));
+    if (index_faces) {
+      std::array<std::vector<Landmark>, 4> sides;
+      for (const Landmark& l : faces)
+        for (int side = 0; side < 4; ++side)
+          if (onSide(l, side)) sides[static_cast<std::size_t>(side)].push_back(l);
+      by_side_.push_back(std::move(sides));
+    }
     landmarks_.push_back(std::move(faces));
     for (const auto& p : room.footprint) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   }

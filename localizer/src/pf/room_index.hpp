@@ -46,6 +46,16 @@ class RoomIndex {
     if (!use_rooms_) return landmarks(room);
     return by_axis_[static_cast<std::size_t>(room)][axis == bim::WallAxis::X ? 0 : 1];
   }
+  // The same faces of one side of the axis (wallSide, landmark.hpp), in the same order; side -1:
+  // both sides, landmarks(room, axis). Built only with index_faces (the tests' brute force keeps
+  // the axis lists).
+  const std::vector<Landmark>& landmarks(int room, bim::WallAxis axis, int side) const {
+    if (!use_rooms_ || side < 0 || by_side_.empty()) return landmarks(room, axis);
+    return by_side_[static_cast<std::size_t>(room)][static_cast<std::size_t>(side)];
+  }
+  // faceIndex() with only one side's faces in its cells (its faces() the same list, the same
+  // positions); null where faceIndex() is.
+  const FaceIndex* sideIndex(int side) const { return side_faces_[static_cast<std::size_t>(side)].get(); }
   // Every face of the storey by where it is, so that a match costs the faces near the
   // observation, not the building: without the room factor, and for a pose outside every
   // room. Null only when built with index_faces = false (the tests' brute-force oracle).
@@ -68,7 +78,9 @@ class RoomIndex {
   std::vector<const bim::Room*> rooms_;
   std::vector<std::vector<Landmark>> landmarks_;
   std::vector<std::array<std::vector<Landmark>, 2>> by_axis_;  // landmarks_ split by axis (x, y), in order
+  std::vector<std::array<std::vector<Landmark>, 4>> by_side_;  // landmarks_ split by side (wallSide), in order
   std::shared_ptr<const FaceIndex> all_faces_;  // shared: copies of the index share it
+  std::array<std::shared_ptr<const FaceIndex>, 4> side_faces_;  // all_faces_'s by side (wallSide)
   std::shared_ptr<const FaceIndex> fine_faces_;
   double filling_depth_m_ = 0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
