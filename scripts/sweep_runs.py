@@ -4,6 +4,12 @@
     scripts/sweep_runs.py DIR_OR_FILES...                  # one row per style, and all
     scripts/sweep_runs.py A_DIR --against B_DIR            # B against A: gained / lost / sooner / later
     scripts/sweep_runs.py ... --list-false --list-changed  # name the runs
+    scripts/sweep_runs.py DIR --oracle-from ORACLE_DIR     # lag and ratio against the oracle's limits
+
+The oracle (`bimloc sweep --oracle`) depends on the starts and the scans, not on the localizer: its
+decidable times from one sweep serve every binary's sweep of the same starts (--oracle-from), and
+give issue 28's points: decidable starts localized, the median and p90 of the lag (convergence
+minus decidable_at_s) and of the ratio (convergence / max(decidable_at_s, 1 s)), plain and robust.
 
 A run is keyed by plan file name, storey, start room, seed and site, so two sweeps of the same
 floors pair up whatever their order. "Localized" is the sweep's own: converged and not false.
@@ -69,6 +75,32 @@ def summary(runs, by_style):
     return rows
 
 
+def oracle_rows(runs, oracle, by_style):
+    """Issue 28's oracle points over the runs the oracle answered, plain and robust."""
+    groups = {}
+    for k, s in runs.items():
+        o = oracle.get(k)
+        if o is None or "decidable_at_s" not in o:
+            continue
+        groups.setdefault(style(k) if by_style else "all", []).append((s, o))
+    if by_style and len(groups) > 1:
+        groups["all"] = [x for v in groups.values() for x in v]
+    rows = []
+    for g, pairs in groups.items():
+        row = {"group": g, "runs": len(pairs)}
+        for suffix in ("", "_robust"):
+            dec = [(s, o["decidable" + suffix + "_at_s"]) for s, o in pairs if o.get("decidable" + suffix + "_at_s") is not None]
+            loc = [(s, d) for s, d in dec if localized(s)]
+            lags = [s["convergence_time_s"] - d for s, d in loc]
+            ratios = [s["convergence_time_s"] / max(d, 1.0) for s, d in loc]
+            name = suffix.strip("_") or "plain"
+            row[name] = {"decidable": len(dec), "decidable_localized": len(loc),
+                         "median_lag_s": statistics.median(lags) if lags else None, "p90_lag_s": pct(lags, 0.9),
+                         "median_ratio": statistics.median(ratios) if ratios else None, "p90_ratio": pct(ratios, 0.9)}
+        rows.append(row)
+    return rows
+
+
 def compare(a, b):
     paired = sorted(set(a) & set(b))
     out = {"paired": len(paired), "only_a": len(set(a) - set(b)), "only_b": len(set(b) - set(a)),
@@ -103,6 +135,7 @@ def main():
     ap.add_argument("--by-style", action="store_true", help="a row per generated style")
     ap.add_argument("--list-false", action="store_true")
     ap.add_argument("--list-changed", action="store_true")
+    ap.add_argument("--oracle-from", nargs="+", help="a `sweep --oracle` of the same starts (default: the runs' own oracle fields)")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args()
     a = load(args.paths)
@@ -111,6 +144,9 @@ def main():
         b = load(args.against)
         result["against"] = summary(b, args.by_style)
         result["compare"] = compare(a, b)
+    oracle = load(args.oracle_from) if args.oracle_from else {k: s for k, s in a.items() if "oracle" in s}
+    if oracle:
+        result["oracle"] = oracle_rows(a, oracle, args.by_style)
     if args.json:
         print(json.dumps(result, default=list, indent=1))
         return 0
@@ -119,6 +155,15 @@ def main():
         for r in rows:
             print(f"{label + r['group']:<20} {r['runs']:>6} {r['localized']:>10} {r['false']:>6} "
                   f"{fmt(r['median_s']):>11} {fmt(r['p90_s']):>8}")
+    if oracle:
+        print(f"\noracle: {'group':<16} {'runs':>5} {'decidable':>10} {'localized':>10} {'lag med':>8} {'lag p90':>8} "
+              f"{'ratio med':>9} {'ratio p90':>9}")
+        for r in result["oracle"]:
+            for name in ("plain", "robust"):
+                o = r[name]
+                share = f"{o['decidable_localized']} ({100.0 * o['decidable_localized'] / o['decidable']:.1f}%)" if o["decidable"] else "-"
+                print(f"{name:<7} {r['group']:<16} {r['runs']:>5} {o['decidable']:>10} {share:>10} {fmt(o['median_lag_s']):>8} "
+                      f"{fmt(o['p90_lag_s']):>8} {fmt(o['median_ratio']):>9} {fmt(o['p90_ratio']):>9}")
     falses = [k for k, s in a.items() if s["false_convergence"]]
     if args.list_false:
         for k in falses:
