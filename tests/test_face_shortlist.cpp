@@ -5,6 +5,7 @@
 #include "face_index_fixtures.hpp"
 #include "sim_fixtures.hpp"
 
+#include "pf/path_evidence.hpp"
 #include "pf/pose_refinement.hpp"
 #include "pf/room_index.hpp"
 #include "sim/lidar/vlp16_config.hpp"
@@ -14,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -40,16 +42,15 @@ std::vector<Observation> observationsWithSpans(const std::vector<planes::Observe
   return out;
 }
 
-}  // namespace
 
-TEST(FaceShortlist, EveryPoseOfTheRegionMatchesAsThroughTheIndex) {
-  const auto& office = test::officeWorld().building().storeys[0];
-  const bim::Storey big = test::tiled(office, 4);
+// At poses of regions around six offices' truths (in their tile, in a look-alike tile, and a
+// metre off), the match through each region's shortlist against the match through the index,
+// under the error model `model`, for each opening margin of `margins`.
+void compareShortlistWithIndex(const bim::Storey& office, const bim::Storey& big, const pf::ParticleFilterConfig& model,
+                               const std::vector<double>& margins) {
   const RoomIndex every_face(big, /*use_rooms=*/false);
   ASSERT_NE(every_face.faceIndex(), nullptr);
   const Eigen::Isometry3d mount = sim::Vlp16Config{}.T_base_lidar;
-  const pf::ParticleFilterConfig filter;
-  const pf::ParticleFilterConfig model = refinementModel(filter);
   std::mt19937_64 rng(28);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   int compared = 0, shortlisted = 0, associated = 0, hidden_checked = 0;
@@ -64,7 +65,7 @@ TEST(FaceShortlist, EveryPoseOfTheRegionMatchesAsThroughTheIndex) {
     for (const Eigen::Vector3d& centre : {Eigen::Vector3d(room->centre.x(), room->centre.y(), yaw),
                                           Eigen::Vector3d(room->centre.x() + 60.0, room->centre.y() + 20.0, yaw + 0.02),
                                           Eigen::Vector3d(room->centre.x() + 1.0, room->centre.y() - 0.7, yaw - 0.05)}) {
-      for (const double margin : {0.15, -1.0}) {
+      for (const double margin : margins) {
         const double xy_radius = 0.6, yaw_radius = kShortlistYawRad;
         const FaceShortlist list = shortlistFaces(centre, xy_radius, yaw_radius, 0.5, obs, every_face, model, margin);
         ASSERT_EQ(list.match.size(), obs.size());
@@ -96,10 +97,33 @@ TEST(FaceShortlist, EveryPoseOfTheRegionMatchesAsThroughTheIndex) {
       }
     }
   }
-  EXPECT_GT(compared, 4000);
+  EXPECT_GT(compared, 2000 * static_cast<int>(margins.size()));
   EXPECT_GT(associated, compared);  // matches, not empty comparisons (7496 in 4680 poses)
-  EXPECT_GT(hidden_checked, 0);         // some planes behind a solid face, through the shortlist too
+  const bool local = std::any_of(margins.begin(), margins.end(), [](double m) { return m >= 0.0; });
+  if (local) EXPECT_GT(hidden_checked, 0);  // some planes behind a solid face, through the shortlist too
   EXPECT_GT(shortlisted, 0);
+}
+
+}  // namespace
+
+TEST(FaceShortlist, EveryPoseOfTheRegionMatchesAsThroughTheIndex) {
+  const auto& office = test::officeWorld().building().storeys[0];
+  compareShortlistWithIndex(office, test::tiled(office, 4), refinementModel(pf::ParticleFilterConfig{}), {0.15, -1.0});
+}
+
+// The path evidence's refine (PathEvidence::shortlists) matches under the window's error model
+// (sigmas grown by the drift over the window: wider match radii and angles) and no opening
+// margin: the same bits through the shortlist there too, for the whole window's drift and a short path's.
+TEST(FaceShortlist, ThePathEvidencesWindowModelMatchesAsThroughTheIndex) {
+  const auto& office = test::officeWorld().building().storeys[0];
+  const bim::Storey big = test::tiled(office, 4);
+  const pf::ParticleFilterConfig filter;
+  const PathEvidence evidence(big, filter);
+  compareShortlistWithIndex(office, big, evidence.scanModel(), {-1.0});
+  // The window's model at its start, with the drift of the path it covers (the narrowest).
+  pf::ParticleFilterConfig short_path = filter;
+  short_path.evidence_drift_of_window = true;
+  compareShortlistWithIndex(office, big, PathEvidence(big, short_path).scanModel(), {-1.0});
 }
 
 // The refinement's scans each get a shortlist around the search's centre; a pose beyond it

@@ -65,16 +65,33 @@ PathEvidence::ScanScore PathEvidence::scoreOn(const Pose2& T_map_odom, const Sca
   return scoreOn(T_map_odom, std::cos(T_map_odom.z()), std::sin(T_map_odom.z()), scan, detailed);
 }
 
-PathEvidence::ScanScore PathEvidence::scoreOn(const Pose2& T_map_odom, double c, double s_yaw, const Scan& scan, bool detailed) const {
+PathEvidence::ScanScore PathEvidence::scoreOn(const Pose2& T_map_odom, double c, double s_yaw, const Scan& scan, bool detailed,
+                                              const FaceShortlist* shortlist) const {
   const Pose2 pose = compose(T_map_odom, c, s_yaw, scan.odom);
   Particle p;
   p.x = pose.x(), p.y = pose.y(), p.yaw = pose.z(), p.room = rooms_.roomAt(pose.x(), pose.y());
+  // A list that does not hold this pose is not asked (the index is): the same match either way.
+  if (shortlist && !shortlist->holds(p)) shortlist = nullptr;
   ScanScore s;
   s.out_of_rooms = p.room < 0;
   s.matched = matchObservations(p, scan.z_base, scan.observations, rooms_, config_, detailed ? &s.per_observation : nullptr,
-                                /*out_of_rooms_penalised=*/false)
+                                /*out_of_rooms_penalised=*/false, -std::numeric_limits<double>::infinity(), -1.0, shortlist)
                   .log_likelihood;
   return s;
+}
+
+std::vector<FaceShortlist> PathEvidence::shortlists(const Pose2& pose_now, const Pose2& odom) const {
+  std::vector<FaceShortlist> lists;
+  lists.reserve(scans_.size());
+  const Pose2 T_map_odom = compose(pose_now, inverse(odom));
+  for (const auto& scan : scans_) {
+    // The scan's base moves with the pose now, and turns about it: by its offset times the turn.
+    const Pose2 rel = compose(inverse(odom), scan.odom);
+    const double xy_radius = kRefineShortlistM + rel.head<2>().norm() * kShortlistYawRad + 0.01;
+    lists.push_back(shortlistFaces(compose(T_map_odom, scan.odom), xy_radius, kShortlistYawRad, scan.z_base, scan.observations, rooms_,
+                                   config_, /*opening_margin_m=*/-1.0));
+  }
+  return lists;
 }
 
 double PathEvidence::total(double matched_sum, int out_of_rooms) const {
@@ -130,17 +147,19 @@ void PathEvidence::dropOldScans() {
   }
 }
 
-PathEvidence::Candidate PathEvidence::scored(const Pose2& T_map_odom, bool detailed) const {
-  return *scoredAbove(T_map_odom, detailed, -std::numeric_limits<double>::infinity(), false);
+PathEvidence::Candidate PathEvidence::scored(const Pose2& T_map_odom, bool detailed, const std::vector<FaceShortlist>* shortlists) const {
+  return *scoredAbove(T_map_odom, detailed, -std::numeric_limits<double>::infinity(), false, shortlists);
 }
 
-std::optional<PathEvidence::Candidate> PathEvidence::scoredAbove(const Pose2& T_map_odom, bool detailed, double floor,
-                                                                 bool or_equal) const {
+std::optional<PathEvidence::Candidate> PathEvidence::scoredAbove(const Pose2& T_map_odom, bool detailed, double floor, bool or_equal,
+                                                                 const std::vector<FaceShortlist>* shortlists) const {
   Candidate c;
   c.T_map_odom = T_map_odom;
   const double cos_yaw = std::cos(T_map_odom.z()), sin_yaw = std::sin(T_map_odom.z());  // one transform, every scan
-  for (const auto& scan : scans_) {
-    ScanScore s = scoreOn(T_map_odom, cos_yaw, sin_yaw, scan, detailed);
+  if (shortlists && shortlists->size() != scans_.size()) shortlists = nullptr;
+  for (std::size_t k = 0; k < scans_.size(); ++k) {
+    const Scan& scan = scans_[k];
+    ScanScore s = scoreOn(T_map_odom, cos_yaw, sin_yaw, scan, detailed, shortlists ? &(*shortlists)[k] : nullptr);
     c.matched_sum += s.matched;
     c.out_of_rooms += s.out_of_rooms ? 1 : 0;
     if (detailed) c.per_scan.push_back(std::move(s));
@@ -188,6 +207,9 @@ void PathEvidence::refine(Candidate& c, const Pose2& odom) const {
   Pose2 pose = compose(c.T_map_odom, odom);
   double best = c.log_likelihood;
   bool moved_at_all = false;
+  // Each scan's faces near the pose, found once for the search's region: a trial there is
+  // matched from the lists, one beyond through the index, with the same result (FaceShortlist).
+  const std::vector<FaceShortlist> lists = shortlists(pose, odom);
   double step_m = 0.08, step_rad = 1.0 * M_PI / 180.0;
   for (int level = 0; level < 3; ++level, step_m *= 0.5, step_rad *= 0.5) {
     for (bool improved = true; improved;) {
@@ -197,7 +219,7 @@ void PathEvidence::refine(Candidate& c, const Pose2& odom) const {
         const Pose2 moved = pose + delta;
         const Pose2 T_map_odom = compose(moved, inverse(odom));
         if (!admitted(T_map_odom)) continue;
-        const auto trial = scoredAbove(T_map_odom, false, best + 1e-9, /*or_equal=*/true);
+        const auto trial = scoredAbove(T_map_odom, false, best + 1e-9, /*or_equal=*/true, &lists);
         if (trial && trial->log_likelihood > best + 1e-9) {
           best = trial->log_likelihood;
           pose = moved;
@@ -206,7 +228,7 @@ void PathEvidence::refine(Candidate& c, const Pose2& odom) const {
       }
     }
   }
-  if (moved_at_all) c = scored(compose(pose, inverse(odom)));
+  if (moved_at_all) c = scored(compose(pose, inverse(odom)), true, &lists);
 }
 
 double PathEvidence::logLikelihoodOf(const Pose2& map_pose, const Pose2& odom) const {

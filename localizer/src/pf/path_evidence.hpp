@@ -35,6 +35,10 @@ constexpr double kOtherPlaceRad = 10.0 * M_PI / 180.0;
 // Closer than this to a candidate, a proposal is that candidate.
 constexpr double kSamePlaceM = 0.2;
 constexpr double kSamePlaceRad = 3.0 * M_PI / 180.0;
+// How far refine's pattern search is expected to move a candidate (three of its first steps,
+// 0.08 m each): the region its faces are listed for (PathEvidence::shortlists). Speed only: a
+// trial beyond it is matched through the face index, with the same result.
+constexpr double kRefineShortlistM = 0.25;
 // Within `metres` and `radians` of each other.
 bool near(const Pose2& a, const Pose2& b, double metres, double radians);
 // An observation of an earlier scan, seen from the base's frame now: `rel` is that scan's base
@@ -187,16 +191,24 @@ class PathEvidence {
     std::deque<ScanScore> per_scan;  // aligned with scans_
   };
   ScanScore scoreOn(const Pose2& T_map_odom, const Scan& scan, bool detailed) const;
-  // The same with the cosine and sine of T_map_odom's heading given (the same numbers).
-  ScanScore scoreOn(const Pose2& T_map_odom, double cos_yaw, double sin_yaw, const Scan& scan, bool detailed) const;
-  Candidate scored(const Pose2& T_map_odom, bool detailed = true) const;
+  // The same with the cosine and sine of T_map_odom's heading given (the same numbers), and
+  // optionally the scan's faces near the pose (FaceShortlist, used where it holds the scan's
+  // pose: the same match, without a query of the face index).
+  ScanScore scoreOn(const Pose2& T_map_odom, double cos_yaw, double sin_yaw, const Scan& scan, bool detailed,
+                    const FaceShortlist* shortlist = nullptr) const;
+  // Per scan of the window, its faces for every pose now within kRefineShortlistM and
+  // kShortlistYawRad of `pose_now` (refine's pattern search: many poses, one region).
+  std::vector<FaceShortlist> shortlists(const Pose2& pose_now, const Pose2& odom) const;
+  Candidate scored(const Pose2& T_map_odom, bool detailed = true, const std::vector<FaceShortlist>* shortlists = nullptr) const;
   // The same, or nothing as soon as the scans scored so far prove the total below `floor`
   // (with `or_equal`: at or below it). Each scan adds a term <= 0 and the room prior only
   // grows, so in floating point the total is at most any partial one: a candidate returned is
   // scored() to the bit, and one refused is one scored() would have shown on the wrong side of
   // the floor. Most proposals are of places the pool already holds, fitted: they lose in a few
   // scans.
-  std::optional<Candidate> scoredAbove(const Pose2& T_map_odom, bool detailed, double floor, bool or_equal) const;
+  // With `shortlists` (one per scan of the window, shortlists()), each scan's faces from its list.
+  std::optional<Candidate> scoredAbove(const Pose2& T_map_odom, bool detailed, double floor, bool or_equal,
+                                       const std::vector<FaceShortlist>* shortlists = nullptr) const;
   double total(double matched_sum, int out_of_rooms) const;
   void refine(Candidate& c, const Pose2& odom) const;
   void dropOldScans();
