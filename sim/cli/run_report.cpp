@@ -93,6 +93,8 @@ nlohmann::json scenarioJson(const sim::ScenarioResult& r) {
           {"storey_changes_searching", r.storey_changes_searching}, {"storey_follow_lags_s", r.storey_follow_lags_s}, {"path_length_m", r.path_length_m}, {"wall_deviations", wallsJson(r.wall_deviations)}, {"site", r.site},
           {"wall_offset_error_m", valueOrNull(r.wall_offset_error_m)},
           {"false_convergence", r.false_convergence}, {"convergence_margin", valueOrNull(r.convergence_margin)},
+          {"verdicts_bound_held", r.verdicts_bound_held}, {"verdicts_fit_lowered", r.verdicts_fit_lowered},
+          {"first_bound_held_s", valueOrNull(r.first_bound_held_s)}, {"first_fit_lowered_s", valueOrNull(r.first_fit_lowered_s)},
           {"hypotheses", placesJson(r.hypotheses)}, {"storey_auto", r.storey_auto},
           {"found_storey", valueOrNull(r.found_storey)}, {"storey_margin", valueOrNull(r.storey_margin)},
           {"storey_candidates", storeysJson(r.storey_candidates)}, {"passed", r.passed}, {"failures", r.failures},

@@ -113,6 +113,9 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
     if (r_.storey_auto && bank.decided && !(last_bank_ && last_bank_->decided)) r_.storey_margin = bank.storey_margin;
     last_bank_ = bank;
     const pf::UpdateReport& report = bank.filter;
+    r_.verdicts_bound_held += report.path_bound_held, r_.verdicts_fit_lowered += report.path_fit_lowered;
+    if (report.path_bound_held > 0 && !r_.first_bound_held_s) r_.first_bound_held_s = t;
+    if (report.path_fit_lowered > 0 && !r_.first_fit_lowered_s) r_.first_fit_lowered_s = t;
     if (trace && report.weighed)
       trace->push_back({t, planarPose(truth), planarPose(step.T_map_base), report,
                         r_.storey_auto ? building.storeys[bank.leader].name : std::string(), bank.storey_margin,

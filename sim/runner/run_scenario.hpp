@@ -82,6 +82,12 @@ struct ScenarioResult {
   bool false_convergence = false;         // converged while > 0.5 m or > 10 deg off, at any time after
   // The path evidence's margin at the update that declared convergence (per distinct face).
   std::optional<double> convergence_margin;
+  // The path verdicts the evidence's fitting loop left under the bar while the lowest rival's
+  // full margin, fitted, was at or above it (UpdateReport::path_bound_held: a lower bound or an
+  // unfitted rival held them before session 29), the reverse (path_fit_lowered), and the time
+  // of the first of each.
+  int verdicts_bound_held = 0, verdicts_fit_lowered = 0;
+  std::optional<double> first_bound_held_s, first_fit_lowered_s;
   // Not converged: the distinct places the path still fits (best first), each with the room
   // it is in and its weight relative to the others (exp of minus the margin, normalised).
   struct Place {

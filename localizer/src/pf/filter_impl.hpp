@@ -108,6 +108,8 @@ struct ParticleFilter::Impl {
   double weigh(const std::vector<detail::Observation>& observations, double z, bool& annealing);
   detail::PathVerdict askThePath(const std::vector<detail::Observation>& observations,
                                  const std::vector<detail::Hypothesis>& hyps, double z, UpdateReport& report);
+  // The verdict's settling of its lowest rival, counted in the report (path_bound_held).
+  void countSettled(const detail::PathVerdict& path, UpdateReport& report) const;
   void resetFromTheScan(const std::vector<detail::Hypothesis>& hyps, double best_raw, bool annealing,
                         const detail::PathVerdict& path, bool decisive, UpdateReport& report);
   void followThePath(const detail::PathVerdict& path, UpdateReport& report);

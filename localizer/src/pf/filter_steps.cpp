@@ -59,11 +59,18 @@ detail::PathVerdict ParticleFilter::Impl::askThePath(const std::vector<detail::O
   const Particle& top = particles[heaviest()];
   evidence.propose({top.x, top.y, top.yaw}, now);
   detail::PathVerdict path = evidence.verdict(now);
+  countSettled(path, report);
   report.path_margin = path.margin;
   if (path.has_best) report.path_best = path.best;
   report.path_candidates = path.candidates;
   report.path_rivals = path.rivals;
   return path;
+}
+
+void ParticleFilter::Impl::countSettled(const detail::PathVerdict& path, UpdateReport& report) const {
+  const double bar = config.evidenceMargin();
+  report.path_bound_held += path.loop_margin < bar && path.margin >= bar ? 1 : 0;
+  report.path_fit_lowered += path.loop_margin >= bar && path.margin < bar ? 1 : 0;
 }
 
 void ParticleFilter::Impl::resetFromTheScan(const std::vector<detail::Hypothesis>& hyps, double best_raw, bool annealing,
@@ -138,6 +145,7 @@ bool ParticleFilter::Impl::checkConvergence(const std::vector<detail::Observatio
     const detail::Pose2 now = planarPose(odom);
     searched = evidence.proposeEveryFit(observations, z, now, path.best);
     path = evidence.verdict(now);
+    countSettled(path, report);
     report.path_margin = path.margin, report.path_best = path.best, report.path_candidates = path.candidates;
     report.path_rivals = path.rivals;
     agrees = searched && path.pose_fixed && path.margin >= config.evidenceMargin() &&

@@ -87,6 +87,10 @@ struct PathVerdict {
   // away), counted once per wall face (see PathEvidence::distinctMargin): +inf when no other
   // place fits at all.
   double margin = 0;
+  // The lowest margin as the fitting loop left it, before the lowest was made a fitted rival's
+  // full margin (PathEvidence::settleLowest): where it was below the bar and `margin` is not, a
+  // lower bound or an unfitted rival held the verdict (issue 28's lag; what main reported).
+  double loop_margin = 0;
   // Whether the window's walls fix the best pose at all: matched faces at angles that pin the
   // position in every direction (see PathEvidence::fixesPose). Walls all parallel (a corridor,
   // an attic between two gables) leave a line of equally good poses, and the candidates, which
@@ -160,6 +164,12 @@ class PathEvidence {
   // by the window's drift and the plan's tolerance), and the candidates' poses now (map <-
   // base at odometry pose `odom`): what a test checks the searches against.
   const ParticleFilterConfig& scanModel() const { return config_; }
+  // The margin, planes and free space in full, of the base at map pose `p` over the base at
+  // `q` (now, at odometry pose `odom`), each scored afresh on the window: the brute force a
+  // test checks the verdict's margin against, rival by rival.
+  double marginBetween(const Pose2& p, const Pose2& q, const Pose2& odom) const {
+    return margin(scored(compose(p, inverse(odom))), scored(compose(q, inverse(odom))));
+  }
   std::vector<Pose2> candidatePoses(const Pose2& odom) const {
     std::vector<Pose2> out;
     for (const auto& c : candidates_) out.push_back(compose(c.T_map_odom, odom));
@@ -232,7 +242,13 @@ class PathEvidence {
   double margin(const Candidate& p, const Candidate& q) const;
   // The rivals' margins (index into candidates_): the planes' for all, then the free space's
   // added to the closest ones, until no rival left could come below the lowest found.
-  void addFreeSpace(const Candidate& best, std::vector<std::pair<double, std::size_t>>& rivals) const;
+  // `bound` (by candidate): whose margin is that lower bound.
+  void addFreeSpace(const Candidate& best, std::vector<std::pair<double, std::size_t>>& rivals, std::vector<char>& bound) const;
+  // After the fitting loop: the lowest rival's margin made a full margin of a fitted rival (the
+  // verdict's margin; see path_verdict.cpp). `fitted`: by candidate, refined in this verdict.
+  void settleLowest(std::size_t best, const Pose2& odom, std::vector<std::pair<double, std::size_t>>& rivals,
+                    std::vector<char>& bound, const std::vector<char>& fitted,
+                    const std::vector<std::size_t>& left_by_free_space, bool& outfitted);
   // Whether the distinct faces P matches over the window fix its position: each face, counted
   // once as in distinctMargin, pins the position along its normal to the window's sigma_d;
   // fixed when the weakest direction is pinned to within the convergence radius.

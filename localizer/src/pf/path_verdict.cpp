@@ -102,18 +102,22 @@ double PathEvidence::margin(const Candidate& p, const Candidate& q) const {
   return planes + freeSpaceMargin(p, q, &per_face);
 }
 
-void PathEvidence::addFreeSpace(const Candidate& best, std::vector<std::pair<double, std::size_t>>& rivals) const {
+void PathEvidence::addFreeSpace(const Candidate& best, std::vector<std::pair<double, std::size_t>>& rivals,
+                                std::vector<char>& bound) const {
+  bound.assign(candidates_.size(), 0);
   if (!free_space_map_ || rivals.empty()) return;
   // The free space can lower a margin by at most the penalty of the best, and never raises the
   // lowest above what its rival's full margin is: in order of the planes' margin, each rival's
   // full margin, until the planes' margin less the best's penalty is no lower than the lowest
-  // full margin found. The rest keep that lower bound (a margin never overstated).
+  // full margin found. The rest keep that lower bound (a margin never overstated), marked in
+  // `bound`: the verdict computes a bound in full wherever it comes to be the lowest.
   std::sort(rivals.begin(), rivals.end());
   const double against_best = freeSpacePenalty(best);
   double lowest = std::numeric_limits<double>::infinity();
   for (auto& [m, i] : rivals) {
     if (m - against_best >= lowest) {
       m -= against_best;
+      bound[i] = 1;
       continue;
     }
     // The planes' margin again with its per-face terms where the free space needs them.
@@ -140,6 +144,51 @@ bool PathEvidence::fixesPose(const Candidate& p) const {
   return weakest >= ratio * ratio;
 }
 
+void PathEvidence::settleLowest(std::size_t best, const Pose2& odom, std::vector<std::pair<double, std::size_t>>& rivals,
+                                std::vector<char>& bound, const std::vector<char>& fitted_before,
+                                const std::vector<std::size_t>& left_by_free_space, bool& outfitted) {
+  // The verdict's margin is the lowest of the rivals': it decides, so it must be the margin of
+  // the place it names, not addFreeSpace's lower bound (a rival the fitting loop never reached:
+  // office_25615 R001 read -2.27 = planes 10.24 less the best's penalty 12.51, where both places
+  // pay 12.51 and the margin is 10.24), nor that of a rival left unfitted (an unfitted rival
+  // scores worse than it should: its margin is overstated). So, as addFreeSpace does before the
+  // loop: the lowest, while it is a bound, computed in full; while it is unfitted, fitted (and
+  // dropped when fitting moves it onto the best place, as in the loop). Each step settles one
+  // rival for good, so this ends. A bound left standing is no lower than the lowest full margin
+  // (a bound is never above its margin): it cannot be the minimum. A rival left unfitted stands
+  // above the lowest fitted one, and above the closest three, which the loop fitted: the rule
+  // the verdict has always kept for the rest. Candidates are fits already (a scan's pose fits,
+  // the particles' best), and a fit is kept (refine moves the candidate itself), so most were
+  // fitted at an earlier verdict; fitting every rival at every verdict is the cost it saves.
+  std::vector<char> refined = fitted_before;
+  const Pose2 here = compose(candidates_[best].T_map_odom, odom);
+  // Once a fitted rival is below the bar, the verdict is undecided whatever the others: a
+  // bound under it is still computed (the margin reported is a margin), no more fitting.
+  bool below = false;
+  for (const auto& [m, i] : rivals) below |= refined[i] && !bound[i] && m < config_.evidenceMargin();
+  while (!rivals.empty()) {
+    const auto lowest = std::min_element(rivals.begin(), rivals.end());
+    const std::size_t i = lowest->second;
+    if (bound[i]) {
+      lowest->first = margin(candidates_[best], candidates_[i]);
+      bound[i] = 0;
+      continue;
+    }
+    if (refined[i] || below) break;
+    Candidate& rival = candidates_[i];
+    refine(rival, odom);
+    refined[i] = 1;
+    if (near(compose(rival.T_map_odom, odom), here, kOtherPlaceM, kOtherPlaceRad)) {
+      rivals.erase(lowest);  // the same place, as in the loop
+      continue;
+    }
+    const bool left = std::find(left_by_free_space.begin(), left_by_free_space.end(), i) != left_by_free_space.end();
+    outfitted |= rival.log_likelihood > candidates_[best].log_likelihood && !left;
+    lowest->first = margin(candidates_[best], rival);
+    below = lowest->first < config_.evidenceMargin();
+  }
+}
+
 PathVerdict PathEvidence::verdict(const Pose2& odom) {
   PathVerdict v;
   v.candidates = static_cast<int>(candidates_.size());
@@ -155,6 +204,11 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
   std::vector<std::pair<double, std::size_t>> rivals;
   std::vector<std::size_t> same_place;
   std::vector<std::size_t> left_by_free_space;  // bests the free space swapped away from: no way back
+  std::vector<char> bound;                        // by candidate: its margin is addFreeSpace's lower bound
+  std::vector<char> refined(candidates_.size(), 0);  // by candidate: fitted in this verdict
+  const auto left = [&](std::size_t i) {
+    return std::find(left_by_free_space.begin(), left_by_free_space.end(), i) != left_by_free_space.end();
+  };
   // Three rounds may swap the best; a swap in the third leaves margins computed for the best it
   // swapped away from, so a fourth round, which swaps nothing, computes the margins of the best
   // the verdict names (session 25 reported such a verdict undecided, margin 0: Jesse.1 Level 1
@@ -169,7 +223,7 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
       if (!near(compose(candidates_[i].T_map_odom, odom), here, kOtherPlaceM, kOtherPlaceRad))
         rivals.emplace_back(distinctMargin(candidates_[best], candidates_[i]), i);
     std::sort(rivals.begin(), rivals.end());
-    addFreeSpace(candidates_[best], rivals);
+    addFreeSpace(candidates_[best], rivals, bound);
     // The closest rivals fitted, in margin order, until three other places are fitted or one is
     // below the bar (fitting the others could only lower the margin further). A candidate that
     // fitting moves onto the best place (it was proposed 0.5 m off the same walls, along a wall
@@ -181,8 +235,8 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
     for (std::size_t r = 0; r < rivals.size() && fitted < 3; ++r) {
       Candidate& rival = candidates_[rivals[r].second];
       refine(rival, odom);
-      const bool left = std::find(left_by_free_space.begin(), left_by_free_space.end(), rivals[r].second) != left_by_free_space.end();
-      const bool fits_better = rival.log_likelihood > candidates_[best].log_likelihood && !left;
+      refined[rivals[r].second] = 1;
+      const bool fits_better = rival.log_likelihood > candidates_[best].log_likelihood && !left(rivals[r].second);
       if (fits_better && may_swap) {
         best = rivals[r].second;
         swapped = true;
@@ -195,6 +249,7 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
       outfitted |= fits_better;
       ++fitted;
       rivals[r].first = margin(candidates_[best], rival);
+      bound[rivals[r].second] = 0;
       // The free space may say the rival is the better place where the planes could not tell
       // (two offices alike but for their doors): the roles swap, as for a better fit. Only
       // while the round allows another (the last keeps its best, whatever its margin).
@@ -213,6 +268,9 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
                                 return std::find(same_place.begin(), same_place.end(), r.second) != same_place.end();
                               }),
                rivals.end());
+  v.loop_margin = rivals.empty() ? std::numeric_limits<double>::infinity() : std::min_element(rivals.begin(), rivals.end())->first;
+  const bool outfitted_in_loop = outfitted;
+  settleLowest(best, odom, rivals, bound, refined, left_by_free_space, outfitted);
   std::sort(rivals.begin(), rivals.end());
   v.has_best = true;
   v.best = compose(candidates_[best].T_map_odom, odom);
@@ -223,6 +281,7 @@ PathVerdict PathEvidence::verdict(const Pose2& odom) {
   // it names (its margin, counted per face, can be positive all the same): a best that is not
   // the best fit is not decided, whatever its margins.
   if (outfitted) v.margin = std::min(v.margin, 0.0);
+  if (outfitted_in_loop) v.loop_margin = std::min(v.loop_margin, 0.0);
   // The distinct places within the margin: what the plan cannot tell apart (yet).
   for (const auto& [margin, i] : rivals) {
     if (margin >= config_.evidenceMargin() || v.rivals.size() >= 8) break;

@@ -205,6 +205,11 @@ struct UpdateReport {
   std::optional<Eigen::Vector3d> path_best;
   double path_margin = 0;
   int path_candidates = 0;
+  // The path verdicts of this update (one, or two when convergence was asked) whose margin the
+  // evidence's fitting loop left below the bar while the lowest rival's full margin, fitted, is
+  // at or above it: held only by a lower bound or an unfitted rival before session 29 (issue
+  // 28's lag); and the reverse, an unfitted lowest rival that fitting put below the bar.
+  int path_bound_held = 0, path_fit_lowered = 0;
   // The other places the path fits nearly as well (map x, y, yaw now, and the margin of the
   // best over each), best first: the ambiguity left, when the plan cannot decide (yet).
   std::vector<std::pair<Eigen::Vector3d, double>> path_rivals;
