@@ -8,6 +8,7 @@
 #include "sim/runner/run_scenario.hpp"
 #include "sim/world/world.hpp"
 
+#include "face_observation.hpp"
 #include "pf/path_evidence.hpp"
 #include "pf/room_index.hpp"
 #include "pf/start_prior.hpp"
@@ -220,23 +221,10 @@ namespace {
 std::vector<pf::detail::Observation> roomFacesSeenFrom(const bim::Storey& storey, const bim::Room& room,
                                                        const pf::detail::Pose2& base) {
   std::vector<pf::detail::Observation> seen;
-  const double c = std::cos(base.z()), s = std::sin(base.z());
-  Eigen::Matrix2d R;
-  R << c, -s, s, c;
   for (const auto& ref : room.walls) {
     const bim::Wall* wall = storey.findWall(ref.wall_id);
     if (!wall || ref.face < 0) continue;
-    const bim::WallFace& face = wall->faces[static_cast<std::size_t>(ref.face)];
-    const Eigen::Vector2d n_map = face.plane.n.head<2>().normalized();
-    if (n_map.dot(base.head<2>()) + face.plane.d <= 0.0) continue;  // seen from behind
-    pf::detail::Observation o;
-    const Eigen::Vector2d n = R.transpose() * n_map;
-    o.normal_base = Eigen::Vector3d(n.x(), n.y(), 0.0);
-    o.azimuth_base = std::atan2(n.y(), n.x());
-    o.d_offset = face.plane.d + n_map.dot(base.head<2>());
-    o.centroid_base = R.transpose() * (0.5 * (face.start + face.end).head<2>() - base.head<2>());
-    o.range_m = std::hypot(o.centroid_base.norm(), 1.0);
-    seen.push_back(o);
+    if (const auto o = test::observeFace(wall->faces[static_cast<std::size_t>(ref.face)], base)) seen.push_back(*o);
   }
   return seen;
 }

@@ -7,6 +7,7 @@
 // afresh (PathEvidence::marginBetween).
 #include "sgraph_fixtures.hpp"
 
+#include "face_observation.hpp"
 #include "pf/path_evidence.hpp"
 
 #include <bimloc/pf/particle_filter.hpp>
@@ -48,21 +49,8 @@ bim::Storey fiveRooms() {
 // matchObservations' model), its centroid at the face's middle.
 pf::detail::Observation faceSeenFrom(const bim::Storey& storey, std::size_t w, const Pose2& base) {
   const bim::Wall& wall = storey.walls.at(w);
-  const double c = std::cos(base.z()), s = std::sin(base.z());
-  Eigen::Matrix2d R;
-  R << c, -s, s, c;
-  for (const bim::WallFace& face : wall.faces) {
-    const Eigen::Vector2d n_map = face.plane.n.head<2>().normalized();
-    if (n_map.dot(base.head<2>()) + face.plane.d <= 0.0) continue;  // seen from behind
-    pf::detail::Observation o;
-    const Eigen::Vector2d n = R.transpose() * n_map;
-    o.normal_base = Eigen::Vector3d(n.x(), n.y(), 0.0);
-    o.azimuth_base = std::atan2(n.y(), n.x());
-    o.d_offset = face.plane.d + n_map.dot(base.head<2>());
-    o.centroid_base = R.transpose() * (0.5 * (face.start + face.end).head<2>() - base.head<2>());
-    o.range_m = std::hypot(o.centroid_base.norm(), 1.0);
-    return o;
-  }
+  for (const bim::WallFace& face : wall.faces)
+    if (const auto o = test::observeFace(face, base)) return *o;
   ADD_FAILURE() << "wall " << w << " not seen";
   return {};
 }
