@@ -36,6 +36,24 @@ std::uint32_t attemptSeed(std::uint64_t seed, int attempt) {
   return static_cast<std::uint32_t>((z ^ (z >> 31)) >> 32);
 }
 
+// The voxels a surface needs at horizontal range `range_m` (PlaneExtractionConfig::
+// ring_spacing_deg): min_inliers near the sensor, the same area farther.
+double ringGap(const PlaneExtractionConfig& c, double range_m) {
+  return c.ring_spacing_deg > 0 ? range_m * std::tan(c.ring_spacing_deg * M_PI / 180.0) : 0.0;
+}
+std::size_t requiredSupport(const PlaneExtractionConfig& c, double range_m) {
+  const double n = std::max(c.min_inliers, 3);
+  const double gap = ringGap(c, range_m);
+  const double scale = gap > c.voxel_size_m && c.voxel_size_m > 0 ? c.voxel_size_m / gap : 1.0;
+  return std::max<std::size_t>(3, static_cast<std::size_t>(std::ceil(n * scale)));
+}
+double horizontalRange(const detail::Cloud& cloud, const detail::Indices& voxels) {
+  if (voxels.empty()) return 0.0;
+  double x = 0, y = 0;
+  for (const int i : voxels) x += cloud[i].x(), y += cloud[i].y();
+  return std::hypot(x, y) / double(voxels.size());
+}
+
 detail::Indices without(const detail::Indices& pool, const detail::Indices& removed) {
   detail::Indices rest;
   rest.reserve(pool.size());
@@ -105,6 +123,7 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
   const detail::PackedCloud raw_packed(raw);  // every candidate's band test reads every return
 
   const std::size_t min_inliers = std::size_t(std::max(config.min_inliers, 3));
+  const std::size_t fewest = requiredSupport(config, config.max_range_m);  // a plane's support at the farthest range
   const double sin_vertical = std::sin(config.vertical_tolerance_deg * M_PI / 180.0);
   const double cos_horizontal = std::cos(config.horizontal_tolerance_deg * M_PI / 180.0);
   const double voxel_m = std::max(config.voxel_size_m, config.distance_threshold_m);
@@ -132,7 +151,12 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
     plane.vertical = nz < sin_vertical;
     const bool horizontal = nz > cos_horizontal;
     const bool surface = plane.d >= kMinPlaneDistance_m && ((plane.vertical && walls_allowed) || horizontal);
-    const bool large = support.voxels.size() >= min_inliers && plane.extent_m >= config.min_extent_m;
+    // A wall's support judged by its area at its range; fewer voxels than min_inliers only
+    // where they span two rings.
+    const double range_m = horizontalRange(cloud, support.voxels);
+    const std::size_t needed = requiredSupport(config, range_m);
+    const bool two_rings = needed >= min_inliers || plane.height_extent_m >= 0.5 * ringGap(config, range_m);
+    const bool large = support.voxels.size() >= needed && two_rings && plane.extent_m >= config.min_extent_m;
     if (surface && large) {
       (plane.vertical ? result.walls : result.horizontals).push_back(plane);
       ++accepted;
@@ -159,22 +183,24 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
     detail::Indices standing = detail::standingVoxels(cloud, raw, voxel_m, config.standing_height_m);
     const double radius_m = std::max(config.min_extent_m, 2 * voxel_m);
     for (int attempt = 0; accepted < config.max_planes && attempt < kAttemptsPerPlane * config.max_planes &&
-                          standing.size() >= min_inliers;
+                          standing.size() >= fewest;
          ++attempt) {
       const auto candidate = detail::ransacVerticalPlane(cloud, standing, config.ransac_iterations,
                                                          config.distance_threshold_m, radius_m,
                                                          attemptSeed(config.seed ^ kStandingSeed, attempt));
-      if (!candidate || candidate->inliers.size() < min_inliers) break;
+      if (!candidate || candidate->inliers.size() < fewest) break;
       take(*candidate, standing, &pool, true);
     }
   }
   const detail::RansacCloud ransac_cloud(cloud);
   for (int attempt = 0; accepted < config.max_planes && attempt < kAttemptsPerPlane * config.max_planes &&
-                        pool.size() >= min_inliers;
+                        pool.size() >= fewest;
        ++attempt) {
     const auto candidate = detail::ransacPlane(ransac_cloud, pool, config.ransac_iterations, config.distance_threshold_m,
                                                attemptSeed(config.seed, attempt));
-    if (!candidate || candidate->inliers.size() < min_inliers) break;  // no plane left worth having
+    // No plane left worth having: the largest RANSAC found is too small at any range. One too
+    // small at its own range (near clutter) leaves the pool (take), and a far wall may follow.
+    if (!candidate || candidate->inliers.size() < fewest) break;
     take(*candidate, pool, nullptr, !standing_stage);
   }
   return result;

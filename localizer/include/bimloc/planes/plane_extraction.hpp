@@ -26,7 +26,16 @@ struct PlaneExtractionConfig {
   double max_range_m = 30.0;
   int ransac_iterations = 500;          // S-Graphs default
   double distance_threshold_m = 0.04;   // inlier band (S-Graphs uses 0.01 on clean data; simulated and real data need more)
-  int min_inliers = 60;                 // after downsampling
+  int min_inliers = 60;                 // after downsampling, near the sensor (below)
+  // The lidar's angle between neighbouring rings (VLP-16: 2 deg). min_inliers voxels is a
+  // surface's support where the rings are closer than a voxel; farther, each ring gives one
+  // row of voxels, and the same surface fewer: the count asked of a plane is scaled by
+  // voxel / (range tan(ring_spacing)), so that a wall is judged by its area whatever its range
+  // (an end wall 18 m down a corridor of look-alike offices: about 40 voxels, dropped at 60,
+  // and with it what tells the offices apart; docs/results/2026-11-29-session30.md). Such a
+  // plane must still span two rings (one ring is a line) and min_extent_m. 0: min_inliers at
+  // every range.
+  double ring_spacing_deg = 2.0;
   double min_extent_m = 1.0;            // a plane must span at least this much (walls: horizontally)
   double vertical_tolerance_deg = 10;   // |n_z| < sin(tol) -> vertical (wall candidate)
   double horizontal_tolerance_deg = 10; // |n_z| > cos(tol) -> horizontal (floor/ceiling), reported apart
