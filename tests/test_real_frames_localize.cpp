@@ -78,7 +78,7 @@ TEST(RealFramesLocalize, AStandingRobotGetsTheRectanglesTwoPlaces) {
   // The extractor's settings of the plane tests (tests/real_frames.hpp), as a user would give them.
   const std::string work = test::tempDir("real-frames-localize");
   const std::string config = work + "/real_frames.yaml";
-  std::ofstream(config) << "planes: {ransac_iterations: 5000, min_inliers: 20, max_planes: 60, standing_height_m: 0.3}\n";
+  std::ofstream(config) << "planes: {ransac_iterations: 5000, min_inliers: 20, ring_spacing_deg: 0, max_planes: 60, standing_height_m: 0.3}\n";
   for (const test::RealFrame& frame : *frames) {
     SCOPED_TRACE(frame.sensor);
     const std::string dir = work + "/" + frame.sensor;

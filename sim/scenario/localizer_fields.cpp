@@ -17,6 +17,7 @@ std::vector<Field> planeFields(planes::PlaneExtractionConfig& c) {
           {"ransac_iterations", &c.ransac_iterations, closed(1, 1e6)},
           {"distance_threshold_m", &c.distance_threshold_m, positive(1)},
           {"min_inliers", &c.min_inliers, closed(3, 1e7)},
+          {"ring_spacing_deg", &c.ring_spacing_deg, closed(0, 45)},
           {"min_extent_m", &c.min_extent_m, closed(0, 100)},
           {"vertical_tolerance_deg", &c.vertical_tolerance_deg, closed(0, 45)},
           {"horizontal_tolerance_deg", &c.horizontal_tolerance_deg, closed(0, 45)},

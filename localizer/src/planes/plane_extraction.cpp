@@ -21,6 +21,8 @@ constexpr double kSupportGapVoxels = 5.0;
 // lidar's own scan lines (the +-1 degree rings on nearby walls make a "plane" at sensor
 // height), not a surface.
 constexpr double kMinPlaneDistance_m = 0.1;
+// Two planes within this angle (and the RANSAC band in d) are one plane.
+const double kSamePlaneCos = std::cos(2.0 * M_PI / 180.0);
 // RANSAC attempts per accepted plane: rejected candidates (slanted, too short, fragments) cost
 // an attempt each, and this bounds the work on scans full of them.
 constexpr int kAttemptsPerPlane = 3;
@@ -157,7 +159,17 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
     const std::size_t needed = requiredSupport(config, range_m);
     const bool two_rings = needed >= min_inliers || plane.height_extent_m >= 0.5 * ringGap(config, range_m);
     const bool large = support.voxels.size() >= needed && two_rings && plane.extent_m >= config.min_extent_m;
-    if (surface && large) {
+    // What the area rule is for: walls the scan shows that a count would drop. A small far
+    // piece in the plane of a wall already found (a corridor's side wall beyond a doorway) is
+    // not such a wall: it leaves the pool, as a too small run does, and costs the filter no
+    // observation (each is matched by every particle, and paired for the seeds).
+    const bool by_area_only = support.voxels.size() < min_inliers;
+    const bool piece_of_found = by_area_only && plane.vertical &&
+                                std::any_of(result.walls.begin(), result.walls.end(), [&](const ObservedPlane& w) {
+                                  return w.normal.dot(plane.normal) > kSamePlaneCos &&
+                                         std::abs(w.d - plane.d) < config.distance_threshold_m;
+                                });
+    if (surface && large && !piece_of_found) {
       (plane.vertical ? result.walls : result.horizontals).push_back(plane);
       ++accepted;
       // The run's voxels in the full band of the final plane are this plane's; the other
@@ -166,7 +178,7 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
       search = without(search, band);
       if (also) *also = without(*also, band);
     } else if (surface) {
-      // Too small a run: the band's other runs may still be walls (a wall close by, of few
+      // Too small a run (or a piece of a wall found): the band's other runs may still be walls (a wall close by, of few
       // voxels, beside a farther piece of more), so only this run leaves the pool.
       search = without(search, support.run);
     } else {
