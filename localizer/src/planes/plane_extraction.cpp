@@ -153,17 +153,17 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
     plane.vertical = nz < sin_vertical;
     const bool horizontal = nz > cos_horizontal;
     const bool surface = plane.d >= kMinPlaneDistance_m && ((plane.vertical && walls_allowed) || horizontal);
-    // A wall's support judged by its area at its range; fewer voxels than min_inliers only
-    // where they span two rings.
+    // A wall's support judged by its area at its range: fewer voxels than min_inliers where
+    // the rings are apart, spanning two of them (floors and ceilings keep the count).
     const double range_m = horizontalRange(cloud, support.voxels);
-    const std::size_t needed = requiredSupport(config, range_m);
-    const bool two_rings = needed >= min_inliers || plane.height_extent_m >= 0.5 * ringGap(config, range_m);
-    const bool large = support.voxels.size() >= needed && two_rings && plane.extent_m >= config.min_extent_m;
+    const bool by_area_only = support.voxels.size() < min_inliers;
+    const bool enough = !by_area_only || (plane.vertical && support.voxels.size() >= requiredSupport(config, range_m) &&
+                                          plane.height_extent_m >= 0.5 * ringGap(config, range_m));
+    const bool large = enough && plane.extent_m >= config.min_extent_m;
     // What the area rule is for: walls the scan shows that a count would drop. A small far
     // piece in the plane of a wall already found (a corridor's side wall beyond a doorway) is
     // not such a wall: it leaves the pool, as a too small run does, and costs the filter no
     // observation (each is matched by every particle, and paired for the seeds).
-    const bool by_area_only = support.voxels.size() < min_inliers;
     const bool piece_of_found = by_area_only && plane.vertical &&
                                 std::any_of(result.walls.begin(), result.walls.end(), [&](const ObservedPlane& w) {
                                   return w.normal.dot(plane.normal) > kSamePlaneCos &&
