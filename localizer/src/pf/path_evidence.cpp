@@ -81,17 +81,15 @@ PathEvidence::ScanScore PathEvidence::scoreOn(const Pose2& T_map_odom, double c,
 }
 
 std::vector<FaceShortlist> PathEvidence::shortlists(const Pose2& pose_now, const Pose2& odom) const {
-  std::vector<FaceShortlist> lists;
-  lists.reserve(scans_.size());
-  const Pose2 T_map_odom = compose(pose_now, inverse(odom));
-  for (const auto& scan : scans_) {
-    // The scan's base moves with the pose now, and turns about it: by its offset times the turn.
-    const Pose2 rel = compose(inverse(odom), scan.odom);
-    const double xy_radius = kRefineShortlistM + rel.head<2>().norm() * kShortlistYawRad + 0.01;
-    lists.push_back(shortlistFaces(compose(T_map_odom, scan.odom), xy_radius, kShortlistYawRad, scan.z_base, scan.observations, rooms_,
-                                   config_, /*opening_margin_m=*/-1.0));
-  }
-  return lists;
+  // The refinement's lists (windowShortlists) over the whole window, kRefineShortlistM about
+  // the pose, every face at its faces (no openings: the path evidence's association).
+  std::vector<RefinementScan> window;
+  window.reserve(scans_.size());
+  for (const auto& scan : scans_) window.push_back({scan.odom, scan.z_base, &scan.observations});
+  PoseRefinementConfig around;
+  around.search_m = kRefineShortlistM;
+  around.opening_margin_m = -1.0;
+  return windowShortlists(pose_now, odom, window, rooms_, config_, around);
 }
 
 double PathEvidence::total(double matched_sum, int out_of_rooms) const {

@@ -155,10 +155,12 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
     const bool surface = plane.d >= kMinPlaneDistance_m && ((plane.vertical && walls_allowed) || horizontal);
     // A wall's support judged by its area at its range: fewer voxels than min_inliers where
     // the rings are apart, spanning two of them (floors and ceilings keep the count).
-    const double range_m = horizontalRange(cloud, support.voxels);
     const bool by_area_only = support.voxels.size() < min_inliers;
-    const bool enough = !by_area_only || (plane.vertical && support.voxels.size() >= requiredSupport(config, range_m) &&
-                                          plane.height_extent_m >= 0.5 * ringGap(config, range_m));
+    const auto byArea = [&] {  // its range only where the count is short of min_inliers
+      const double range_m = horizontalRange(cloud, support.voxels);
+      return support.voxels.size() >= requiredSupport(config, range_m) && plane.height_extent_m >= 0.5 * ringGap(config, range_m);
+    };
+    const bool enough = !by_area_only || (plane.vertical && byArea());
     const bool large = enough && plane.extent_m >= config.min_extent_m;
     // What the area rule is for: walls the scan shows that a count would drop. A small far
     // piece in the plane of a wall already found (a corridor's side wall beyond a doorway) is
