@@ -48,7 +48,8 @@ Observation seenFrom(const Observation& o, const Pose2& rel);
 // The margin of a place P over a place Q, counted once per distinct wall face (the rule of
 // PathEvidence::distinctMargin, shared by the storey bank's cross-storey margin): the
 // observations P explains differently from Q are grouped by the face they match at P (where P
-// matches none, by the face at Q, keyed from kRivalKeys on), each face contributes the mean
+// matches none, by the face P matched where both explained that face of Q, else by the face at
+// Q, keyed from kRivalKeys on), each face contributes the mean
 // difference of its observations, the faces add up, and the room prior is worth at most one
 // clutter plane over the window.
 class FaceMargin {
@@ -75,7 +76,13 @@ class FaceMargin {
   double total(double gate, double scans, std::vector<std::pair<int, double>>* per_face = nullptr);
 
  private:
-  std::vector<std::pair<int, double>> deltas_;
+  void fileMissesUnderP();
+  struct Delta {
+    int key = 0;     // P's face (or kRivalKeys + Q's)
+    int q_key = -1;  // Q's face where both matched
+    double delta = 0;
+  };
+  std::vector<Delta> deltas_;
   double out_of_rooms_ = 0;
 };
 
