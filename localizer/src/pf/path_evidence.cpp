@@ -82,7 +82,7 @@ PathEvidence::ScanScore PathEvidence::scoreOn(const Pose2& T_map_odom, double c,
 
 std::vector<FaceShortlist> PathEvidence::shortlists(const Pose2& pose_now, const Pose2& odom) const {
   // The refinement's lists (windowShortlists) over the whole window, kRefineShortlistM about
-  // the pose, every face at its faces (no openings: the path evidence's association).
+  // the pose, the faces whole (opening margin -1: the path evidence's association ignores holes).
   std::vector<RefinementScan> window;
   window.reserve(scans_.size());
   for (const auto& scan : scans_) window.push_back({scan.odom, scan.z_base, &scan.observations});
