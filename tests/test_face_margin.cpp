@@ -34,7 +34,7 @@ double marginOf(const std::vector<Look>& looks, double gate, bool swapped) {
 }  // namespace
 
 TEST(FaceMargin, AMissOfEitherPlaceWeighsTheSameOverManyGeneratedWindows) {
-  // Twins: P's face f is Q's face 100 + 3 f. Each look matches both (m2 drawn), or one place
+  // Twins: P's face 2 f is Q's face 100 + 6 f. Each look matches both (m2 drawn), or one place
   // misses (m2 = gate), after the face has been matched by both at least once. P over Q must
   // be minus Q over P; before misses of P were filed under Q's face, one miss of the best in
   // twenty looks counted in full (random_hall_26215 R001: the truth 5.6 under its twin).

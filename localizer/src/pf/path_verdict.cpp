@@ -39,19 +39,18 @@ void FaceMargin::fileMissesUnderP() {
   // under the face P matched where both explained it (in the most such observations; ties: the
   // lower key), both misses count alike. (Observations both explained equally, delta 0, are
   // not kept, and not counted here.)
-  std::vector<std::pair<int, int>> pairs;  // (Q's key, P's key) where both matched, for Q's keys P missed
+  std::vector<int> missed;  // Q's keys of the observations P missed
   for (const Delta& d : deltas_)
-    if (d.key & kRivalKeys) pairs.emplace_back(d.key & ~kRivalKeys, -1);
-  if (pairs.empty()) return;  // P missed nothing Q explains: nothing to file
+    if (d.key & kRivalKeys) missed.push_back(d.key & ~kRivalKeys);
+  if (missed.empty()) return;  // P missed nothing Q explains: nothing to file
+  std::sort(missed.begin(), missed.end());
+  missed.erase(std::unique(missed.begin(), missed.end()), missed.end());
+  std::vector<std::pair<int, int>> pairs;  // (Q's key, P's key) where both matched, for those keys
+  for (const Delta& d : deltas_)
+    if (d.q_key >= 0 && std::binary_search(missed.begin(), missed.end(), d.q_key)) pairs.emplace_back(d.q_key, d.key);
   std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  const std::size_t missed = pairs.size();  // the (Q key, -1) entries, sorted: looked up below
-  for (const Delta& d : deltas_)
-    if (d.q_key >= 0 && std::binary_search(pairs.begin(), pairs.begin() + static_cast<std::ptrdiff_t>(missed), std::make_pair(d.q_key, -1)))
-      pairs.emplace_back(d.q_key, d.key);
-  std::sort(pairs.begin() + static_cast<std::ptrdiff_t>(missed), pairs.end());
   std::vector<std::pair<int, int>> to_p;  // Q's key -> P's key
-  for (std::size_t i = missed; i < pairs.size();) {
+  for (std::size_t i = 0; i < pairs.size();) {
     std::size_t best_count = 0, j = i;
     int best_key = -1;
     while (j < pairs.size() && pairs[j].first == pairs[i].first) {
