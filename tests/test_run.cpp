@@ -156,3 +156,15 @@ TEST(Run, TheSGraphEstimatesAWallBuiltOffItsPlan) {
   ASSERT_FALSE(s["wall_offset_error_m"].is_null());
   EXPECT_LT(s["wall_offset_error_m"].get<double>(), 0.04);
 }
+
+// A storey with walls and no room (Jesse.1's 'T.O. level 1 floor': 7 walls, no IfcSpace, none closed
+// enough to infer one) has nowhere to start: the error names the plan, the storey and why, not
+// "give --plan --all-rooms", which the user did. Exit 2, nothing run.
+TEST(Run, AStoreyWithoutRoomsIsNamedNotReportedAsNothingGiven) {
+  BIMLOC_REQUIRE_SHARED(plan, "Jesse.1.ifc");
+  const auto r = runBimloc("run --plan '" + plan + "' --all-rooms --storey 3 --duration 5");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("Jesse.1.ifc: storey 3 'T.O. level 1 floor' has no rooms"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("nothing to run"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}

@@ -55,7 +55,17 @@ void run(const RunArgs& args) {
     RoomScenarioOptions o;
     o.plan = args.plan, o.storey = args.storey, o.seeds = args.seeds, o.method = args.method, o.duration_s = args.duration_s;
     o.starts = args.starts;
-    auto generated = roomScenarios(worlds.get(args.plan), o);
+    const World& world = worlds.get(args.plan);
+    auto generated = roomScenarios(world, o);
+    if (generated.empty()) {
+      // A storey without rooms (or, with --storey auto, a plan without a storey of rooms and
+      // walls): say which, not that no plan was given.
+      if (args.storey == "auto") throw std::runtime_error(args.plan + ": no storey has both rooms and walls (`bimloc extract` lists them)");
+      const std::size_t s = world.storeyIndex(args.storey);
+      throw std::runtime_error(args.plan + ": storey " + std::to_string(s) + " '" + world.building().storeys[s].name +
+                               "' has no rooms (no IfcSpace, and its walls close none to infer): nothing to start in "
+                               "(`bimloc extract` lists each storey's rooms; --storey chooses another)");
+    }
     bimloc::cli::keepStartRooms(generated, args.rooms);
     scenarios.insert(scenarios.end(), generated.begin(), generated.end());
   }

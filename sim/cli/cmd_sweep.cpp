@@ -89,7 +89,14 @@ void run(const SweepArgs& args) {
       }
     }
   }
-  if (scenarios.empty()) throw std::runtime_error("no storey with rooms and walls in the given plans");
+  if (scenarios.empty()) {
+    // Name what was read and why nothing of it can be run (a bridge, a library of types, a plan
+    // of walls with no room and none closed enough to infer one).
+    std::string plans;
+    for (const auto& plan : args.plans) plans += (plans.empty() ? "" : ", ") + plan;
+    throw std::runtime_error(plans + ": no storey has both rooms and walls (`bimloc extract PLAN` lists each storey's rooms and walls; "
+                                     "rooms are inferred only where walls close them)");
+  }
   bimloc::cli::applyPrior(scenarios, args.prior_rooms, args.prior_pose);
   if (!args.config.empty()) bimloc::cli::applyConfig(scenarios, args.config);
   for (auto& s : scenarios) {
