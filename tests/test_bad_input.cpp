@@ -13,6 +13,7 @@
 #include <random>
 #include <regex>
 #include <sstream>
+#include <tuple>
 
 namespace fs = std::filesystem;
 using bimloc::test::runBimloc;
@@ -146,6 +147,31 @@ TEST(BadInput, APlanLeftWithNoUsableWallIsAnError) {
                                          "#27=IFCGEOMETRICREPRESENTATIONCONTEXT($,'Model',3,1.E-009," +
                                              firstOf(text, "IFCSPACE") + ",$);"));
   expectCleanFailure(path, "no usable wall");
+}
+
+// A spatial structure that loops (the storey's list of elements naming its own site, as one
+// damaged reference did; a building aggregating itself) sent IFC++'s converter into endless
+// recursion: a stack overflow, a segfault in every command (scripts/damage_probe.py, seed 32022).
+// The link that closes the loop is ignored and named; the plan reads as without it.
+TEST(BadInput, ACycleInTheSpatialStructureIsCutAndNamedNotACrash) {
+  const std::string text = slurp(std::string(BIMLOC_WORLDS_DIR) + "/site_office.ifc");
+  const auto dir = tempDir("spatial-cycle");
+  const auto clean = extractJson(writeFile(dir, "clean.ifc", text));
+  // #636 holds the storey #22's elements, #811-#813 aggregate project #14 > site #16 > building #18 > storey #22.
+  const std::string contained = mutated(text, "#636=IFCRELCONTAINEDINSPATIALSTRUCTURE('07MfnLdcHkzJWAfc_VcTl8',$,$,$,(#36,",
+                                        "#636=IFCRELCONTAINEDINSPATIALSTRUCTURE('07MfnLdcHkzJWAfc_VcTl8',$,$,$,(#16,#36,");
+  const std::string self = mutated(text, "#812=IFCRELAGGREGATES('1upaIZdd1AYmvsR8lW_g6_',$,$,$,#16,(#18));",
+                                   "#812=IFCRELAGGREGATES('1upaIZdd1AYmvsR8lW_g6_',$,$,$,#16,(#18,#16));");
+  for (const auto& [name, plan, rel, looped] :
+       {std::tuple{"contained.ifc", contained, "#636", "#16 IfcSite"}, std::tuple{"self.ifc", self, "#812", "#16 IfcSite"}}) {
+    const auto doc = extractJson(writeFile(dir, name, plan));
+    EXPECT_TRUE(anyWarningHas(doc, std::string(rel) + " relates " + looped, "a cycle in the spatial structure")) << name << ": " << doc.value("warnings", nlohmann::json::array()).dump();
+    ASSERT_EQ(doc["storeys"].size(), clean["storeys"].size()) << name;
+    EXPECT_EQ(doc["storeys"][0]["walls"], clean["storeys"][0]["walls"]) << name;
+    EXPECT_EQ(doc["storeys"][0]["rooms"], clean["storeys"][0]["rooms"]) << name;
+  }
+  // The clean plan has no such warning.
+  EXPECT_FALSE(anyWarningHas(clean, "cycle in the spatial structure", ""));
 }
 
 TEST(StepReferences, CountsTheReferencesOfEachInstanceOutsideStringsAndComments) {

@@ -33,6 +33,7 @@
 
 #include "ifc_profile.hpp"
 #include "ifc_references.hpp"
+#include "spatial_cycles.hpp"
 
 #include <carve/triangulator.hpp>
 
@@ -261,6 +262,8 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
   const ReferenceCheck references(*model, scanStep(plan.text));
   raw.warnings = references.warnings();
   const std::map<int, GeometryDrop> drops = dropUnreadableGeometry(*model, references);
+  // A cycle in the spatial structure would send the converter into endless recursion.
+  for (auto& w : breakSpatialCycles(*model)) raw.warnings.push_back(std::move(w));
   GeometryConverter converter(model);
   converter.setMessageCallBack(&sink, &MessageSink::collect);
   // Colours and layers are not needed, and are reached through inverse links the check skips.
