@@ -8,6 +8,7 @@
 #include "fuzz_mutator.hpp"
 #include "test_support.hpp"
 
+#include "sim/common/printable.hpp"
 #include "sim/ros2/mcap_writer.hpp"
 #include "sim/ros2/messages.hpp"
 #include "sim/ros2/rosbag2_reader.hpp"
@@ -331,4 +332,27 @@ TEST(Ros2Fuzz, TheBinaryRefusesDamagedRos2BagsByName) {
     EXPECT_NE(r.err.find(path), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out)) << "output left";
   }
+}
+
+// A byte that is not UTF-8 inside a topic's name in metadata.yaml (the recorder's count then
+// names a topic the storage has not): the warning quotes the name, escaped, never the raw byte
+// (scripts/damage_probe.py seed 32022 flagged the raw one on stderr).
+TEST(Ros2Fuzz, ANameOfBytesThatAreNotUtf8InMetadataPrintsEscaped) {
+  const std::string root = simulated();
+  const std::string clean = root + "/mcap/rosbag2";
+  const std::string dir = root + "/badname";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(clean + "/rosbag2_0.mcap", dir + "/rosbag2_0.mcap");
+  std::string yaml = slurp(clean + "/metadata.yaml");
+  const auto at = yaml.find("name: /velodyne_points");
+  ASSERT_NE(at, std::string::npos);
+  yaml.insert(at + std::strlen("name: /velodyne_p"), "\xff\xfe");
+  spit(dir + "/metadata.yaml", yaml);
+  const auto r = test::runBimloc("localize '" + dir + "' --plan '" + BIMLOC_WORLDS_DIR + "/site_office.ifc' --json", 120);
+  EXPECT_FALSE(r.timed_out);
+  EXPECT_EQ(r.signal, 0);
+  EXPECT_TRUE(sim::isValidUtf8(r.err)) << r.err;
+  EXPECT_TRUE(sim::isValidUtf8(r.out));
+  EXPECT_NE(r.err.find("/velodyne_p\\xFF\\xFE"), std::string::npos) << r.err;
 }

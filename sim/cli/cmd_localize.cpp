@@ -136,7 +136,7 @@ Recording openBag(const std::string& path, const BagInputOptions& options) {
   rec.input_bag = path;
   rec.deskewed = bag.timed() && options.deskew;
   const auto warnings = bag.warnings();
-  for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
+  for (const auto& w : warnings) std::cerr << "warning: " << printable(w) << "\n";  // names read from the bag: any bytes
   rec.bag_warnings_said = warnings.size();
   rec.notes = {"odometry: " + bag.odometrySource(), "mount: " + bag.mountSource(),
                deskewNote(bag, options)};
@@ -221,8 +221,9 @@ void run(const LocalizeArgs& args) {
     const auto found = rec.bag->warnings();
     dropped.insert(dropped.end(), found.begin() + static_cast<std::ptrdiff_t>(std::min(rec.bag_warnings_said, found.size())), found.end());
   }
+  for (auto& w : dropped) w = printable(w);  // for the JSON too: names read from the recording may be any bytes
   r.warnings.insert(r.warnings.begin(), dropped.begin(), dropped.end());
-  for (const auto& w : dropped) std::cerr << "bimloc localize: warning: " << args.input << ": " << printable(w) << "\n";
+  for (const auto& w : dropped) std::cerr << "bimloc localize: warning: " << args.input << ": " << w << "\n";
   const auto& last = recording.last;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto report = bimloc::cli::runReport({r}, r.wall_seconds);
