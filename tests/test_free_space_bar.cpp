@@ -59,15 +59,18 @@ TEST(FreeSpaceBar, TwoWallsEveryRayWentThroughAreTheBarAndOneIsNot) {
     }
     ASSERT_EQ(through_e, 9) << beyond;
     ASSERT_EQ(through_n, 9) << beyond;
-    // Every ray beyond the gate costs the floor, one face; each wall counts once.
-    EXPECT_DOUBLE_EQ(freeSpacePenalty({&hits}, params), config.evidenceMargin()) << beyond;
+    // Every ray beyond the gate costs the floor, one face; each wall counts once: two faces'
+    // worth exactly, which passes the bar (evidence_faces less its tolerance).
+    const double two_faces = config.evidence_faces * params.face_worth;
+    EXPECT_DOUBLE_EQ(freeSpacePenalty({&hits}, params), two_faces) << beyond;
     EXPECT_GE(freeSpacePenalty({&hits}, params), config.evidenceMargin()) << beyond;
     // The sum of the ray's two explanations, -log((1 - w) exp(-z^2 / 2) + w), stays under the
     // floor's cap until exp(-z^2 / 2) vanishes against w in double precision: at 5 sigma two walls
-    // of it missed the bar (4.1698 of 4.17 a wall); only rays metres beyond made it.
+    // of it missed the bar (4.1698 of 4.17 a wall); only rays metres beyond made it. (Two faces,
+    // the bar before its tolerance: ParticleFilterConfig::evidence_bar_tolerance_faces.)
     const double w = std::exp(-params.face_worth), z = beyond / params.sigma_m;
     if (z < 6.0) {
-      EXPECT_LT(2.0 * -std::log((1.0 - w) * std::exp(-0.5 * z * z) + w), config.evidenceMargin()) << beyond;
+      EXPECT_LT(2.0 * -std::log((1.0 - w) * std::exp(-0.5 * z * z) + w), two_faces) << beyond;
     }
     // One wall alone (a wall of the place not built yet, every ray through it): one face, under
     // the bar, as the one-deviation rule asks.
@@ -79,4 +82,21 @@ TEST(FreeSpaceBar, TwoWallsEveryRayWentThroughAreTheBarAndOneIsNot) {
   }
   // Within the gate the ray is the wall's noise: no cost, whatever the floor.
   EXPECT_TRUE(freeSpaceHits(map, params, Eigen::Vector3d::Zero(), 0.0, raysThrough(2.0 * params.sigma_m)).empty());
+}
+
+// The bar is evidence_faces faces' worth less a hundredth of a face: two faces the rival cannot
+// explain pass it whatever the fits' noise on the faces both places explain adds (the margins of
+// random_office_26700 R001, held 12 s under an exact bar), and a face and a half, or one face,
+// do not.
+TEST(FreeSpaceBar, TwoFacesLessTheirNoisePassTheBarAndAFaceAndAHalfDoNot) {
+  const pf::ParticleFilterConfig config;
+  const double face = 0.5 * (config.gate_mahalanobis2 - 3.0);
+  EXPECT_DOUBLE_EQ(config.evidenceMargin(), (config.evidence_faces - config.evidence_bar_tolerance_faces) * face);
+  for (const double margin : {8.339999, 8.339168, 8.337542, 8.30})
+    EXPECT_GE(margin, config.evidenceMargin()) << margin;
+  for (const double margin : {7.989657, 1.5 * face, face, 2.0 * face - 0.02 * face}) EXPECT_LT(margin, config.evidenceMargin()) << margin;
+  pf::ParticleFilterConfig exact = config;  // the tolerance off: the bar of sessions up to 31
+  exact.evidence_bar_tolerance_faces = 0.0;
+  EXPECT_DOUBLE_EQ(exact.evidenceMargin(), 2.0 * face);
+  EXPECT_LT(8.339999, exact.evidenceMargin());
 }

@@ -52,6 +52,7 @@ std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
           {"max_hypotheses", &c.max_hypotheses, closed(1, 1e6)},
           {"seeds_on_window_scans", &c.seeds_on_window_scans},
           {"evidence_faces", &c.evidence_faces, closed(0, 100)},
+          {"evidence_bar_tolerance_faces", &c.evidence_bar_tolerance_faces, closed(0, 1)},
           {"evidence_window_m", &c.evidence_window_m, positive(1000)},
           {"evidence_max_scans", &c.evidence_max_scans, closed(1, 1e5)},
           {"evidence_spacing_m", &c.evidence_spacing_m, closed(0, 100)},
