@@ -34,19 +34,15 @@ inline std::vector<std::string> breakSpatialCycles(BuildingModel& model) {
     int child = 0;
   };
   std::map<int, std::vector<Link>> children;  // by relating object, in entity order
-  std::map<int, std::string> type_of;
-  const auto typeName = [](const shared_ptr<BuildingEntity>& e) { return std::string(e->className()); };
   for (const auto& [id, entity] : model.getMapIfcEntities()) {
     if (auto agg = dynamic_pointer_cast<IfcRelAggregates>(entity); agg && agg->m_RelatingObject) {
-      const int parent = agg->m_RelatingObject->m_entity_id;
-      type_of[parent] = typeName(agg->m_RelatingObject);
+      auto& links = children[agg->m_RelatingObject->m_entity_id];
       for (std::size_t k = 0; k < agg->m_RelatedObjects.size(); ++k)
-        if (const auto& c = agg->m_RelatedObjects[k]) children[parent].push_back({id, k, c->m_entity_id}), type_of[c->m_entity_id] = typeName(c);
+        if (const auto& c = agg->m_RelatedObjects[k]) links.push_back({id, k, c->m_entity_id});
     } else if (auto rel = dynamic_pointer_cast<IfcRelContainedInSpatialStructure>(entity); rel && rel->m_RelatingStructure) {
-      const int parent = rel->m_RelatingStructure->m_entity_id;
-      type_of[parent] = typeName(rel->m_RelatingStructure);
+      auto& links = children[rel->m_RelatingStructure->m_entity_id];
       for (std::size_t k = 0; k < rel->m_RelatedElements.size(); ++k)
-        if (const auto& c = rel->m_RelatedElements[k]) children[parent].push_back({id, k, c->m_entity_id}), type_of[c->m_entity_id] = typeName(c);
+        if (const auto& c = rel->m_RelatedElements[k]) links.push_back({id, k, c->m_entity_id});
     }
   }
   // Depth-first, iterative (a broken file may nest deeper than a stack allows): the projects
@@ -86,6 +82,11 @@ inline std::vector<std::string> breakSpatialCycles(BuildingModel& model) {
   // Removed from the back of each list, so that the places of the others stay valid.
   std::sort(cut.begin(), cut.end(), [](const Link& a, const Link& b) { return a.rel != b.rel ? a.rel < b.rel : a.at > b.at; });
   const auto& entities = model.getMapIfcEntities();
+  // The class names only for the warnings, which are rare: looked up here, not kept for every object.
+  const auto named = [&](int id) {
+    const auto it = entities.find(id);
+    return "#" + std::to_string(id) + (it != entities.end() && it->second ? std::string(" ") + it->second->className() : std::string());
+  };
   for (const Link& link : cut) {
     const auto& entity = entities.at(link.rel);
     int parent = 0;
@@ -96,9 +97,9 @@ inline std::vector<std::string> breakSpatialCycles(BuildingModel& model) {
       parent = rel->m_RelatingStructure->m_entity_id;
       rel->m_RelatedElements.erase(rel->m_RelatedElements.begin() + static_cast<std::ptrdiff_t>(link.at));
     }
-    warnings.push_back(typeName(entity) + " #" + std::to_string(link.rel) + " relates #" + std::to_string(link.child) + " " +
-                       type_of[link.child] + ", which contains or aggregates its relating #" + std::to_string(parent) + " " +
-                       type_of[parent] + ": that link is ignored (a cycle in the spatial structure)");
+    warnings.push_back(std::string(entity->className()) + " #" + std::to_string(link.rel) + " relates " + named(link.child) +
+                       ", which contains or aggregates its relating " + named(parent) +
+                       ": that link is ignored (a cycle in the spatial structure)");
   }
   return warnings;
 }
