@@ -13,7 +13,7 @@ for each damaged copy runs the command that reads it and flags:
 Usage: scripts/damage_probe.py BIMLOC WORKDIR [--seed S] [--cases N] [--kinds k1,k2] [--verbose]
 Kinds: ros1 mcap sqlite3 (bags, clouds and packets topics), packets (VLP-16 fields out of
 range), tum (bimloc eval), config (--config YAML), pcd (a dataset folder's cloud), ifc
-(bimloc extract), meta (a rosbag2 metadata.yaml), report (bimloc report merge shards).
+(bimloc extract), ifc43 (the same plan written as IFC 4.3 writes it), meta (a rosbag2 metadata.yaml), report (bimloc report merge shards).
 Exit status: 0 nothing flagged, 1 something flagged (listed), 2 bad arguments.
 """
 import argparse, os, random, re, shutil, subprocess, sys
@@ -26,7 +26,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument('bimloc'); ap.add_argument('workdir')
     ap.add_argument('--seed', type=int, default=1); ap.add_argument('--cases', type=int, default=10)
-    ap.add_argument('--kinds', default='ros1,mcap,sqlite3,packets,tum,config,pcd,ifc,meta,report')
+    ap.add_argument('--kinds', default='ros1,mcap,sqlite3,packets,tum,config,pcd,ifc,ifc43,meta,report')
     ap.add_argument('--verbose', action='store_true')
     a = ap.parse_args()
     B, W, rng = os.path.abspath(a.bimloc), os.path.abspath(a.workdir), random.Random(a.seed)
@@ -146,6 +146,15 @@ def main():
             d, how = damage(open(PLAN, 'rb').read())
             f = os.path.join(W, 'damaged.ifc'); open(f, 'wb').write(d)
             check(f'ifc {how}', [B, 'extract', f], f, error_status=1)
+    if 'ifc43' in kinds:
+        # The plan as IFC 4.3 writes it: its FILE_SCHEMA, and a TagList on every point list
+        # (what the reader rewrites to IFC4's attributes, localizer/src/bim/ifc4x3.hpp).
+        text = open(PLAN, 'rb').read().replace(b"FILE_SCHEMA(('IFC4'))", b"FILE_SCHEMA(('IFC4X3_ADD2'))")
+        text = re.sub(rb'(IFCCARTESIANPOINTLIST[23]D\((?:[^;]*?))\);', rb'\1,$);', text)
+        for _ in range(a.cases):
+            d, how = damage(text)
+            f = os.path.join(W, 'damaged43.ifc'); open(f, 'wb').write(d)
+            check(f'ifc43 {how}', [B, 'extract', f], f, error_status=1)
     if 'meta' in kinds:
         meta = os.path.join(W, 'clean_mcap', 'rosbag2', 'metadata.yaml')
         for _ in range(a.cases):

@@ -85,7 +85,7 @@ void addExtractCommand(CLI::App& app) {
   auto args = std::make_shared<ExtractArgs>();
   CLI::App* cmd = app.add_subcommand(
       "extract",
-      "Read an IFC plan (IFC2X3 or IFC4) and extract its storeys, rooms (IfcSpace) and walls as double-sided\n"
+      "Read an IFC plan (IFC2X3, IFC4 or IFC4X3) and extract its storeys, rooms (IfcSpace) and walls as double-sided\n"
       "planes with the room<->wall topology: the top two layers of a Situational Graph.\n"
       "With --out DIR it writes building.json (the whole model), walls.csv (one row per wall face:\n"
       "id, start point, normal, length, thickness, d) and one binary PLY mesh per storey for the simulator\n"

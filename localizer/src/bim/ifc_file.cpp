@@ -1,5 +1,7 @@
 #include "ifc_file.hpp"
 
+#include "ifc4x3.hpp"
+
 #include <bimloc/bim/ifc_reader.hpp>
 
 #include <algorithm>
@@ -45,12 +47,14 @@ std::string fileSchema(const std::string& path, const std::string& text) {
   std::string schema = text.substr(open + 1, close - open - 1);
   std::transform(schema.begin(), schema.end(), schema.begin(), ::toupper);
   if (schema.rfind("IFC2X3", 0) == 0) return "IFC2X3";
-  // IFC4X1, IFC4X2, IFC4X3 (IFC 4.3, ISO 16739-1:2024) are schemas of their own: the IFC++ that
-  // Debian ships knows none of them and read not one entity ("Unsupported IFC version: ").
+  // IFC 4.3 (ISO 16739-1:2024) is read through IFC4 (ifc4x3.hpp). IFC4X1 and IFC4X2 were drafts
+  // for alignments and bridges, schemas of their own: the IFC++ that Debian ships knows none of
+  // them and read not one entity ("Unsupported IFC version: ").
+  if (schema.rfind("IFC4X3", 0) == 0) return schema;
   if (schema.rfind("IFC4X", 0) == 0)
-    fail(path, "unsupported schema '" + schema + "' (bimloc reads IFC2X3 and IFC4; IFC 4.x beyond IFC4: export the plan as IFC4)");
+    fail(path, "unsupported schema '" + schema + "' (bimloc reads IFC2X3, IFC4 and IFC4X3; export the plan as one of them)");
   if (schema.rfind("IFC4", 0) == 0) return "IFC4";
-  fail(path, "unsupported schema '" + schema + "' (bimloc reads IFC2X3 and IFC4)");
+  fail(path, "unsupported schema '" + schema + "' (bimloc reads IFC2X3, IFC4 and IFC4X3)");
 }
 
 }  // namespace
@@ -67,7 +71,9 @@ PlanText readPlanText(const std::string& path) {
   if (end == std::string::npos) fail(path, "truncated: no END-ISO-10303-21; at the end of the file");
   if (text.find("DATA;") == std::string::npos) fail(path, "not an IFC file: no DATA section");
   std::string schema = fileSchema(path, text);
-  return {std::move(text), std::move(schema)};
+  if (schema.rfind("IFC4X3", 0) != 0) return {std::move(text), std::move(schema), {}};
+  Ifc4x3AsIfc4 as_ifc4 = rewriteIfc4x3AsIfc4(text, schema);
+  return {std::move(as_ifc4.text), "IFC4X3", std::move(as_ifc4.warnings)};
 }
 
 }  // namespace bimloc::bim::detail

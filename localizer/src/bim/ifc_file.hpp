@@ -3,12 +3,14 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace bimloc::bim::detail {
 
 struct PlanText {
-  std::string text;
-  std::string schema;  // from FILE_SCHEMA: "IFC2X3" or "IFC4"
+  std::string text;    // an IFC 4.3 file's rewritten as IFC4 (ifc4x3.hpp)
+  std::string schema;  // from FILE_SCHEMA: "IFC2X3", "IFC4" or "IFC4X3"
+  std::vector<std::string> warnings;  // what reading it as it is read changed
 };
 
 // Throws BimError "PATH: problem" for a missing, unreadable, empty, binary, non-STEP,

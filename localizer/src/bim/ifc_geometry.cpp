@@ -260,7 +260,8 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
   const auto t_geometry = Clock::now();
   // References of the wrong type would crash the converter: drop what reaches them first.
   const ReferenceCheck references(*model, scanStep(plan.text));
-  raw.warnings = references.warnings();
+  raw.warnings = plan.warnings;
+  raw.warnings.insert(raw.warnings.end(), references.warnings().begin(), references.warnings().end());
   const std::map<int, GeometryDrop> drops = dropUnreadableGeometry(*model, references);
   // A cycle in the spatial structure would send the converter into endless recursion.
   for (auto& w : breakSpatialCycles(*model)) raw.warnings.push_back(std::move(w));
