@@ -1,5 +1,6 @@
-// The walls of an IFC plan as web-ifc (That Open Company's reader, an implementation of its own
-// with IFC2X3, IFC4 and IFC4X3 schemas) builds them: each IfcWall / IfcWallStandardCase's
+// The walls and spaces of an IFC plan as web-ifc (That Open Company's reader, an implementation of
+// its own with IFC2X3, IFC4 and IFC4X3 schemas) builds them: each IfcWall / IfcWallStandardCase's
+// (and IfcSpace's)
 // GlobalId, name, the bounding box of its mesh in the plan's frame, z up (web-ifc's meshes are
 // y up: x, y, z = x, -z, y), and its vertices' distinct x, y. Printed as one JSON object for
 // tests/npm/run_ifc_oracle.sh.
@@ -11,7 +12,8 @@ const api = new WebIFC.IfcAPI();
 await api.Init();
 const model = api.OpenModel(new Uint8Array(fs.readFileSync(process.argv[2])));
 const walls = [];
-for (const type of [WebIFC.IFCWALL, WebIFC.IFCWALLSTANDARDCASE]) {
+const spaces = [];
+for (const type of [WebIFC.IFCWALL, WebIFC.IFCWALLSTANDARDCASE, WebIFC.IFCSPACE]) {
   const ids = api.GetLineIDsWithType(model, type);
   for (let i = 0; i < ids.size(); i++) {
     const id = ids.get(i);
@@ -34,8 +36,9 @@ for (const type of [WebIFC.IFCWALL, WebIFC.IFCWALLSTANDARDCASE]) {
       }
       geometry.delete();
     }
-    if (Number.isFinite(lo[0])) walls.push({ id: line.GlobalId.value, name: line.Name ? line.Name.value : '', lo, hi, xy: [...xy.values()] });
+    if (Number.isFinite(lo[0]))
+      (type === WebIFC.IFCSPACE ? spaces : walls).push({ id: line.GlobalId.value, name: line.Name ? line.Name.value : '', lo, hi, xy: [...xy.values()] });
   }
 }
-console.log(JSON.stringify({ schema: api.GetModelSchema(model), walls }));
+console.log(JSON.stringify({ schema: api.GetModelSchema(model), walls, spaces }));
 api.CloseModel(model);

@@ -1,7 +1,8 @@
 #!/bin/sh
-# The walls bimloc extracts against web-ifc's (ctest ifc_npm_oracle): That Open Company's IFC
-# reader (web-ifc, an implementation of its own, with IFC2X3, IFC4 and IFC4X3 schemas) builds each
-# IfcWall's mesh (check_ifc.mjs) and compare_walls.py holds our wall boxes to it, for the project's
+# The walls and rooms bimloc extracts against web-ifc's (ctest ifc_npm_oracle): That Open
+# Company's IFC reader (web-ifc, an implementation of its own, with IFC2X3, IFC4 and IFC4X3
+# schemas) builds each IfcWall's and IfcSpace's mesh (check_ifc.mjs) and compare_plan.py holds
+# our wall boxes and room footprints to them, for the project's
 # plans (worlds/), the shared real plans where ../shared is present, and every IFC4 one of them
 # again as IFC 4.3 (its FILE_SCHEMA IFC4X3_ADD2: read by web-ifc as 4.3, by bimloc through IFC4).
 # Exit 77 (ctest SKIP_RETURN_CODE) where npm is missing or cannot reach its registry.
@@ -30,7 +31,7 @@ check() {  # check PLAN NAME
     echo "FAILED: web-ifc on $1:"; tail -3 "$WORK/web_$2.err"; failed=1; return
   fi
   printf '%s: ' "$2"
-  python3 "$HERE/compare_walls.py" "$WORK/out_$2/building.json" "$WORK/web_$2.json" || failed=1
+  python3 "$HERE/compare_plan.py" "$WORK/out_$2/building.json" "$WORK/web_$2.json" || failed=1
 }
 plans=$(ls "$WORLDS"/*.ifc)
 if [ -n "$SHARED" ] && [ -d "$SHARED" ]; then plans="$plans $(ls "$SHARED"/*.ifc)"; else echo "note: no shared plans ($SHARED): the project's plans only"; fi
@@ -42,5 +43,5 @@ for plan in $plans; do
     check "$WORK/${name}_ifc43.ifc" "${name}_ifc43"
   fi
 done
-[ $failed -eq 0 ] && echo "PASSED: every wall web-ifc builds is bimloc's, within 5 mm" || echo "FAILED"
+[ $failed -eq 0 ] && echo "PASSED: every wall and space web-ifc builds is bimloc's, within 5 mm" || echo "FAILED"
 exit $failed

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Our walls (bimloc extract's building.json) against web-ifc's (check_ifc.mjs), wall by wall.
+"""Our walls and rooms (bimloc extract's building.json) against web-ifc's (check_ifc.mjs).
 
 A wall is a box to bimloc: its axis from start to end, its thickness across, its height up. Every
 wall web-ifc builds must be one of ours (by GlobalId) or named in a warning; for each, the two
@@ -7,8 +7,10 @@ boxes' extents must agree within 5 mm across the wall (where its faces stand: wh
 matches) and in height, and along the wall within 5 mm or within the wall's thickness at a corner
 (the block where two walls meet belongs to one of them: web-ifc keeps it in the wall's mesh, the
 box may leave it to the other wall). Walls bimloc marks `approximated` (no box fits them) are
-counted, not compared.
-usage: compare_walls.py BUILDING_JSON WEBIFC_JSON   (exit 0 agree, 1 disagree)
+counted, not compared. Every IfcSpace web-ifc builds must be one of our rooms (by GlobalId) or
+named in a warning, its footprint's extents in x and y, its floor and its height within 5 mm of
+the space's mesh.
+usage: compare_plan.py BUILDING_JSON WEBIFC_JSON   (exit 0 agree, 1 disagree)
 """
 import json, math, sys
 
@@ -55,7 +57,23 @@ def main():
         worst = max(errors, key=errors.get)
         if errors[worst] > TOL_M:
             bad.append(f"{w['id']} '{w['name']}': {worst} off by {errors[worst]:.3f} m")
-    print(f"{len(web)} walls built by web-ifc: {compared} compared, {corners} of them differ by a corner block, "
+    rooms = {r['id']: r for s in ours['storeys'] for r in s['rooms']}
+    spaces = json.load(open(sys.argv[2])).get('spaces', [])
+    for sp in spaces:
+        r = rooms.get(sp['id'])
+        if r is None:
+            if sp['id'] not in warned:
+                bad.append(f"space {sp['id']} '{sp['name']}': web-ifc builds it, bimloc has no such room and no warning names it")
+            continue
+        xs = [p[0] for p in r['footprint']]
+        ys = [p[1] for p in r['footprint']]
+        errors = {'x': max(abs(min(xs) - sp['lo'][0]), abs(max(xs) - sp['hi'][0])),
+                  'y': max(abs(min(ys) - sp['lo'][1]), abs(max(ys) - sp['hi'][1])),
+                  'floor': abs(r['floor_z_m'] - sp['lo'][2]), 'height': abs(r['height_m'] - (sp['hi'][2] - sp['lo'][2]))}
+        worst = max(errors, key=errors.get)
+        if errors[worst] > TOL_M:
+            bad.append(f"space {sp['id']} '{sp['name']}': {worst} off by {errors[worst]:.3f} m")
+    print(f"{len(spaces)} spaces, {len(web)} walls built by web-ifc: {compared} compared, {corners} of them differ by a corner block, "
           f"{approximated} approximated by bimloc, {named} left out with a warning; {len(bad)} disagree")
     for b in bad:
         print('  ' + b)
