@@ -1,6 +1,7 @@
 #include "ifc4x3.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstddef>
 #include <map>
@@ -172,8 +173,15 @@ Ifc4x3AsIfc4 rewriteIfc4x3AsIfc4(const std::string& text, const std::string& sch
     const std::size_t type_begin = p;
     while (p < text.size() && isTypeChar(text[p])) ++p;
     const std::size_t type_end = p;
-    std::string type = text.substr(type_begin, p - type_begin);
-    std::transform(type.begin(), type.end(), type.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    // The type in upper case, without an allocation per instance: no rule's name is this long.
+    std::array<char, 40> upper{};
+    if (type_end - type_begin >= upper.size()) {
+      p = next;
+      continue;
+    }
+    for (std::size_t k = type_begin; k < type_end; ++k)
+      upper[k - type_begin] = static_cast<char>(std::toupper(static_cast<unsigned char>(text[k])));
+    const std::string_view type(upper.data(), type_end - type_begin);
     p = pastBlank(text, p);
     const auto rule = std::find_if(rules().begin(), rules().end(), [&](const Rule& r) { return r.type == type; });
     const bool triangulated = type == "IFCTRIANGULATEDFACESET";
@@ -210,6 +218,7 @@ Ifc4x3AsIfc4 rewriteIfc4x3AsIfc4(const std::string& text, const std::string& sch
     } else {
       kept = args;
     }
+    bool changed = rule != rules().end();
     // A draft of IFC 4.3 put Closed before Normals; IFC4 and IFC4X3_ADD2 put it after. The
     // normals are a list and Closed a logical: a logical second, or no value second and a list
     // third, is the draft's order.
@@ -218,10 +227,12 @@ Ifc4x3AsIfc4 rewriteIfc4x3AsIfc4(const std::string& text, const std::string& sch
       if (isLogical(second) || (second == "$" && !third.empty() && third.front() == '(')) {
         std::swap(kept[1], kept[2]);
         ++triangulated_reordered;
-      } else if (rule == rules().end()) {
-        p = next;
-        continue;  // already IFC4's order
+        changed = true;
       }
+    }
+    if (!changed) {  // already as IFC4 writes it
+      p = next;
+      continue;
     }
     o.append(text, copied, type_begin - copied);
     o += as;
