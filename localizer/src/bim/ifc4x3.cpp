@@ -8,7 +8,8 @@
 #include <string_view>
 
 namespace bimloc::bim::detail {
-// Named, not anonymous: the unity build puts this file beside others with a pastBlank of their own.
+// Named, not anonymous: the unity build compiles this file in one unit with others, whose
+// anonymous helpers could share these names.
 namespace ifc4x3_text {
 
 // Where IFC 4.3 (IFC4X3_ADD2) and IFC4 (ADD2 TC1) differ for an entity both have, or 4.3 has an
@@ -52,16 +53,20 @@ const std::vector<Rule>& rules() {
 bool isStepBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
 bool isTypeChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
-// Past blanks and /* comments */ from `p`.
+// Past the /* comment */ that starts at `p`; `p` itself where none does.
+std::size_t pastComment(const std::string& t, std::size_t p) {
+  if (p + 1 >= t.size() || t[p] != '/' || t[p + 1] != '*') return p;
+  const auto close = t.find("*/", p + 2);
+  return close == std::string::npos ? t.size() : close + 2;
+}
+
+// Past blanks and comments from `p`.
 std::size_t pastBlank(const std::string& t, std::size_t p) {
   for (;;) {
     while (p < t.size() && isStepBlank(t[p])) ++p;
-    if (p + 1 < t.size() && t[p] == '/' && t[p + 1] == '*') {
-      const auto close = t.find("*/", p + 2);
-      p = close == std::string::npos ? t.size() : close + 2;
-      continue;
-    }
-    return p;
+    const std::size_t after = pastComment(t, p);
+    if (after == p) return p;
+    p = after;
   }
 }
 
@@ -91,9 +96,8 @@ std::size_t splitArguments(const std::string& t, std::size_t open, std::vector<s
       p = pastString(t, p);
       continue;
     }
-    if (c == '/' && p + 1 < t.size() && t[p + 1] == '*') {
-      const auto close = t.find("*/", p + 2);
-      p = close == std::string::npos ? t.size() : close + 2;
+    if (const std::size_t after = pastComment(t, p); after != p) {
+      p = after;
       continue;
     }
     if (c == ';') return std::string::npos;  // a statement ends inside the list: not one to rewrite
@@ -122,9 +126,8 @@ std::size_t pastStatement(const std::string& t, std::size_t p) {
     const char c = t[p];
     if (c == '\'' || c == '"') {
       p = pastString(t, p);
-    } else if (c == '/' && p + 1 < t.size() && t[p + 1] == '*') {
-      const auto close = t.find("*/", p + 2);
-      p = close == std::string::npos ? t.size() : close + 2;
+    } else if (const std::size_t after = pastComment(t, p); after != p) {
+      p = after;
     } else if (c == ';') {
       return p + 1;
     } else {
@@ -139,7 +142,7 @@ std::size_t pastStatement(const std::string& t, std::size_t p) {
 Ifc4x3AsIfc4 rewriteIfc4x3AsIfc4(const std::string& text, const std::string& schema) {
   using namespace ifc4x3_text;
   Ifc4x3AsIfc4 out;
-  std::map<std::string, std::size_t> counts;  // rewrites, by "Name (what)"
+  std::vector<std::size_t> rewritten(rules().size(), 0);  // instances, by rule
   std::string& o = out.text;
   o.reserve(text.size());
   // FILE_SCHEMA's first name, as IFC4.
@@ -214,7 +217,7 @@ Ifc4x3AsIfc4 rewriteIfc4x3AsIfc4(const std::string& text, const std::string& sch
       }
       if (!rule->as.empty()) as = rule->as;
       append = rule->append;
-      ++counts[std::string(rule->name) + " (" + std::string(rule->what) + ")"];
+      ++rewritten[static_cast<std::size_t>(rule - rules().begin())];
     } else {
       kept = args;
     }
@@ -248,6 +251,10 @@ Ifc4x3AsIfc4 rewriteIfc4x3AsIfc4(const std::string& text, const std::string& sch
     p = next;
   }
   o.append(text, copied, std::string::npos);
+  // The warning's parts by name, as a sorted map of them would list them.
+  std::map<std::string, std::size_t> counts;
+  for (std::size_t k = 0; k < rules().size(); ++k)
+    if (rewritten[k] > 0) counts[std::string(rules()[k].name) + " (" + std::string(rules()[k].what) + ")"] = rewritten[k];
   if (triangulated_reordered > 0)
     counts["IfcTriangulatedFaceSet (Closed put after Normals, as IFC4 has it)"] += triangulated_reordered;
   std::string line = "FILE_SCHEMA '" + schema + "' read as IFC4 (the IFC++ bimloc links knows IFC2X3 and IFC4), ";
