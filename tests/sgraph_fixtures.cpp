@@ -166,6 +166,11 @@ std::vector<planes::ObservedPlane> syntheticWalls(const bim::Storey& truth, cons
       o.centroid = R.transpose() * (Eigen::Vector3d(centroid.x(), centroid.y(), t.z()) - t);
       o.rms_m = lidar.sigma_d_m;
       o.vertical = true;
+      if (lidar.spans) {
+        const Eigen::Vector2d middle = 0.5 * (seen[best_from] + seen[best_to - 1]);
+        o.wall_span_m = extent;
+        o.wall_span_middle = R.transpose() * (Eigen::Vector3d(middle.x(), middle.y(), t.z()) - t);
+      }
       out.push_back(o);
     }
   }

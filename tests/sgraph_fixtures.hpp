@@ -40,6 +40,7 @@ struct SyntheticLidar {
   double sigma_azimuth_deg = 0.3;
   double sigma_elevation_deg = 0.1;
   double sigma_d_m = 0.01;
+  bool spans = false;  // also each plane's standing span (wall_span_m, wall_span_middle): its visible run
 };
 
 // The wall faces a lidar at T_map_lidar sees (in front of it, within range, not hidden by

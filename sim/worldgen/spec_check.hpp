@@ -5,6 +5,7 @@
 
 #include "sim/worldgen/world_spec.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -150,7 +151,8 @@ inline void checkWorldSpec(const WorldSpec& spec) {
           if (room.walls[k] < 0 || room.walls[k] >= wall_count) fail(r, "wall index out of range");
           if (onWallFace(storey.walls[room.walls[k]], a, b)) bounded = used[k] = true;
         }
-        if (!bounded) fail(r, "footprint edge " + std::to_string(e) + " is on no face of its walls");
+        const bool open = std::find(room.open_edges.begin(), room.open_edges.end(), static_cast<int>(e)) != room.open_edges.end();
+        if (!bounded && !open) fail(r, "footprint edge " + std::to_string(e) + " is on no face of its walls");
       }
       for (std::size_t k = 0; k < room.walls.size(); ++k) {
         if (!used[k]) fail(r, "wall '" + storey.walls[room.walls[k]].name + "' bounds no edge");

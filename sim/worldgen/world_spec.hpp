@@ -36,9 +36,13 @@ struct RoomSpec {
   std::string name;       // IfcSpace Name, unique in the world, plain ASCII
   std::string long_name;  // IfcSpace LongName
   // The clear interior, counter-clockwise: every edge lies exactly on a face of one of
-  // `walls`. The IfcSpace body is this polygon extruded from the floor to the ceiling.
+  // `walls` (but the open ones). The IfcSpace body is this polygon extruded from the floor to
+  // the ceiling.
   std::vector<Eigen::Vector2d> footprint;
   std::vector<int> walls;  // indices into StoreySpec::walls of the walls bounding the room
+  // Edges (by index: footprint[e] to footprint[e + 1]) on no wall: the room open there, to
+  // another room or outside (a plan may draw a space so: open_house).
+  std::vector<int> open_edges;
 };
 
 // A straight flight of steps (IfcStairFlight): `risers` risers of riser_m and risers - 1 treads

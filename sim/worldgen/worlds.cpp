@@ -228,15 +228,45 @@ WorldSpec nebulaRoom() {
   return world;
 }
 
+// A house open at both ends: its walls all run along y, and its front and back are not walls
+// (the IFC 4.3 sample house of buildingSMART's Sample-Test-Files is drawn so: its gables are
+// no IfcWall). No wall plane fixes a position along y; only where the walls end does
+// (ParticleFilterConfig::match_wall_ends). A long side wall on the west, a shorter one on the
+// east with a step at y = 2.5, and a thin partition inside the back room; two rooms, no door
+// (the rooms meet in the open).
+WorldSpec openHouse() {
+  const double t = 0.2, clear = 2.6, slab = 0.2;
+  WorldSpec world;
+  world.name = "open_house";
+  world.description = "A house open at both ends: walls only along y, its front and back open (no wall fixes y)";
+  world.roof_thickness_m = slab;
+  world.space_boundaries = false;
+  StoreyBuilder b("Ground floor", 0.0, clear + slab, slab, clear);
+  b.outline(boxOutline(-t, 0.0, 5.6, 7.0));
+  b.wallY("W-WEST", -t / 2, 0.0, 7.0, t, true);
+  b.wallY("W-EAST-FRONT", 4.0 + t / 2, 0.0, 2.5, t, true);
+  b.wallY("W-EAST-BACK", 5.4 + t / 2, 2.5, 7.0, t, true);
+  b.wallY("W-PARTITION", 4.9, 3.0, 6.4, 0.05, false);
+  b.room("H01", "Entry hall", 0.0, 0.0, 4.0, 2.5, {"W-WEST", "W-EAST-FRONT"});
+  b.room("H02", "Living room", {{0.0, 2.5}, {4.875, 2.5}, {4.875, 3.0}, {4.875, 6.4}, {4.875, 7.0}, {0.0, 7.0}},
+         {"W-WEST", "W-PARTITION"});
+  StoreySpec storey = b.storey();
+  storey.rooms[0].open_edges = {0, 2};     // the front (y = 0) and the back room's side
+  storey.rooms[1].open_edges = {0, 1, 3, 4};  // the entry hall's side, beside the partition, the back
+  world.storeys.push_back(storey);
+  return world;
+}
+
 }  // namespace
 
-std::vector<std::string> worldNames() { return {"site_office", "apartment", "two_storey", "nebula_room"}; }
+std::vector<std::string> worldNames() { return {"site_office", "apartment", "two_storey", "nebula_room", "open_house"}; }
 
 WorldSpec makeWorld(const std::string& name) {
   if (name == "site_office") return siteOffice();
   if (name == "apartment") return apartment();
   if (name == "two_storey") return twoStorey();
   if (name == "nebula_room") return nebulaRoom();
+  if (name == "open_house") return openHouse();
   std::string valid;
   for (const std::string& n : worldNames()) valid += (valid.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown world '" + name + "' (valid: " + valid + ")");

@@ -107,6 +107,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
     // wall-line rule (when on), the openings rule and the through-wall check.
     const bool span_known = o.wall_span_m > 0.0 && o.span_middle_base.allFinite();
     const bool check_line = c.match_wall_lines && span_known;
+    const bool end_term = c.match_wall_ends && o.end_scored;
     const Eigen::Vector2d span_middle = span_known ? inMap(o.span_middle_base) : centroid;
     const double span_half = 0.5 * (span_known ? o.wall_span_m : o.extent_m);
     // Without the room factor, only the faces that pass near the plane's points can match it
@@ -145,13 +146,22 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       // The observed wall's points must lie along the face, not beside its end.
       const double u = (centroid - l.start).dot(l.direction);
       if (u < -margin_m || u > l.length_m + margin_m) return;
-      double m2_here = m2;
+      double m2_end = 0.0;
       bool filling = false;
       if (check_line || check_openings) {
         const double m = (span_middle - l.start).dot(l.direction);  // where the plane stands along the face
         // And all of its points must lie along its wall line (wall_lines.hpp): a plane that runs
         // on past the end of the line is another wall, whatever face its centroid falls on.
-        if (check_line && (m - span_half < l.line_lo_m - margin_m || m + span_half > l.line_hi_m + margin_m)) return;
+        if (check_line) {
+          const double overrun = std::max(l.line_lo_m - (m - span_half), (m + span_half) - l.line_hi_m);
+          if (overrun > margin_m) return;
+          // Short of the gate, a plane that runs past where its wall line ends is scored for it,
+          // in the plane's own noise (as its d): a wall's seen end fixes the pose along the wall
+          // as its plane does across it. Without, a pose 0.5 m along a wall whose end the scans
+          // saw fitted it as well as the truth (IFC 4.3 sample house: its walls all run along y).
+          const double past = overrun - c.wall_end_tolerance_m;
+          if (end_term && past > 0.0) m2_end = past * inv_d * past * inv_d;
+        }
         // Not the face where it stands in the face's openings (by where the plane stands, not
         // its centroid -+ half its extent: the centroid sits near the sensor, and a pane filling
         // its window "overflowed" it by 0.1 m, the Duplex), but what fills them. A pane seen
@@ -160,8 +170,9 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
         // solid wall (AC20-FZK-Haus, room 5: the settled pose waited 7 s for it).
         if (check_openings &&
             bim::insideOpening(*l.openings, m - span_half, m + span_half, z_base + o.z_low, z_base + o.z_high, opening_margin_m))
-          m2_here = m2_fill, filling = true;
+          filling = true;
       }
+      const double m2_here = (filling ? m2_fill : m2) + m2_end;
       // Of faces that fit exactly alike (collinear pieces of one wall), the one the search
       // reaches first: in the list, or in the 1 m cells' order (see RoomIndex::fineIndex).
       if (m2_here > best) return;
@@ -295,6 +306,16 @@ FaceShortlist shortlistFaces(const Eigen::Vector3d& centre, double xy_radius_m, 
     });
   }
   return s;
+}
+
+bool positionFixedByPlanes(const std::vector<Observation>& observations) {
+  constexpr double kMinAngle = 30.0 * M_PI / 180.0;
+  for (std::size_t i = 0; i < observations.size(); ++i)
+    for (std::size_t j = i + 1; j < observations.size(); ++j) {
+      const double turn = std::abs(wrapAngle(observations[j].azimuth_base - observations[i].azimuth_base));
+      if (turn >= kMinAngle && turn <= M_PI - kMinAngle) return true;
+    }
+  return false;
 }
 
 }  // namespace bimloc::pf::detail

@@ -34,7 +34,16 @@ struct Observation {
   // height -+ half the support's vertical extent; unbounded when the extraction gave none.
   double z_low = -std::numeric_limits<double>::infinity();
   double z_high = std::numeric_limits<double>::infinity();
+  // Whether a run of its span past the end of its wall line is scored (match_wall_ends): where
+  // no two planes of its scan are at an angle (positionFixedByPlanes), the walls' ends are all
+  // that fix the position along them. Where two are, the planes fix it; a span's end, placed by
+  // the window's drift and the extraction's 0.1 m bins, only adds noise to what they say.
+  bool end_scored = false;
 };
+
+// Whether two of a scan's planes are at an angle that fixes a position (30-150 degrees apart,
+// the pose hypotheses' pairs): when not, the planes all run one way.
+bool positionFixedByPlanes(const std::vector<Observation>& observations);
 
 // Whether the observed plane's points lie at heights the face has (within kVerticalMarginM),
 // for a base at map height z_base.

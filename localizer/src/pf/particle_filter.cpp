@@ -109,6 +109,8 @@ std::vector<detail::Observation> ParticleFilter::Impl::observe(const std::vector
       o.z_low = z_middle - 0.5 * w.height_extent_m, o.z_high = z_middle + 0.5 * w.height_extent_m;
     observations.push_back(o);
   }
+  if (!detail::positionFixedByPlanes(observations))
+    for (auto& o : observations) o.end_scored = true;
   return observations;
 }
 

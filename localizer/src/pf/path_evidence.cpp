@@ -56,8 +56,8 @@ PathEvidence::PathEvidence(const bim::Storey& storey, const ParticleFilterConfig
     free_space_ = FreeSpaceParams::of(config, config.evidence_drift_fraction * 0.5 * config.evidence_window_m);
   }
   for (const auto& l : rooms_.landmarks(0)) {
-    if (l.id >= static_cast<int>(face_normals_.size())) face_normals_.resize(static_cast<std::size_t>(l.id) + 1, Eigen::Vector2d::Zero());
-    face_normals_[static_cast<std::size_t>(l.id)] = l.normal.head<2>();
+    if (l.id >= static_cast<int>(faces_.size())) faces_.resize(static_cast<std::size_t>(l.id) + 1);
+    faces_[static_cast<std::size_t>(l.id)] = {l.normal.head<2>(), l.start, l.direction, l.line_lo_m, l.line_hi_m};
   }
 }
 

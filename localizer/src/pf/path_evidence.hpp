@@ -258,14 +258,22 @@ class PathEvidence {
                     const std::vector<std::size_t>& left_by_free_space, bool& outfitted);
   // Whether the distinct faces P matches over the window fix its position: each face, counted
   // once as in distinctMargin, pins the position along its normal to the window's sigma_d;
-  // fixed when the weakest direction is pinned to within the convergence radius.
+  // fixed when the weakest direction is pinned to within the convergence radius. Or, where the
+  // faces leave a direction free (walls all one way), when seen wall ends pin it from both
+  // sides (ParticleFilterConfig::match_wall_ends).
   bool fixesPose(const Candidate& p) const;
 
   RoomIndex rooms_;
   ParticleFilterConfig base_config_;  // as given, before the window's error model
   double model_path_m_ = 0;           // the path config_'s drift is that of (evidence_drift_of_window)
   ParticleFilterConfig config_;  // with the sigmas of the window's error model
-  std::vector<Eigen::Vector2d> face_normals_;  // by Landmark::id: the floor-plane normal of each face
+  // By Landmark::id: each face's floor-plane normal, and where along it its wall line ends
+  // (fixesPose: a seen end pins the pose along the face).
+  struct FaceLine {
+    Eigen::Vector2d normal = Eigen::Vector2d::Zero(), start = Eigen::Vector2d::Zero(), direction = Eigen::Vector2d::UnitX();
+    double lo_m = -std::numeric_limits<double>::infinity(), hi_m = std::numeric_limits<double>::infinity();
+  };
+  std::vector<FaceLine> faces_;
   const StartPrior* prior_ = nullptr;
   Pose2 odom_start_ = Pose2::Zero();
   std::shared_ptr<const FreeSpaceMap> free_space_map_;  // null without free-space evidence

@@ -188,11 +188,45 @@ bool PathEvidence::fixesPose(const Candidate& p) const {
   // The information on the position, one unit n n^T per distinct face (in units of sigma_d^-2).
   Eigen::Matrix2d information = Eigen::Matrix2d::Zero();
   for (int f : faces)
-    if (static_cast<std::size_t>(f) < face_normals_.size()) information += face_normals_[f] * face_normals_[f].transpose();
-  const double weakest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(information, Eigen::EigenvaluesOnly).eigenvalues()(0);
+    if (static_cast<std::size_t>(f) < faces_.size()) information += faces_[f].normal * faces_[f].normal.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(information);
+  const double weakest = eig.eigenvalues()(0);
   // sigma along the weakest direction = sigma_d / sqrt(weakest) <= converged_position_m.
   const double ratio = config_.sigma_d_m / config_.converged_position_m;
-  return weakest >= ratio * ratio;
+  const double need = ratio * ratio;
+  if (weakest >= need || !config_.match_wall_lines || !config_.match_wall_ends) return weakest >= need;
+  // Along the direction the faces leave free, a plane seen to its wall line's end pins the
+  // position on one side: a pose moved on past it runs the plane past the end, scored as its d
+  // is (match_wall_ends: one unit of (d . u)^2 on that side). Pinned on both sides, the
+  // position along u is held as a face holds it across. The end is seen when the plane's
+  // standing span reaches it within sigma_d (short of it by more, the plane may end where
+  // something hid the rest).
+  const Eigen::Vector2d u = eig.eigenvectors().col(0);
+  double plus = 0, minus = 0;
+  const auto pin = [&](const Eigen::Vector2d& towards_end) {
+    const double c = towards_end.dot(u);
+    (c > 0 ? plus : minus) = std::max(c > 0 ? plus : minus, c * c);
+  };
+  for (std::size_t k = 0; k < p.per_scan.size() && k < scans_.size(); ++k) {
+    const Pose2 base = compose(p.T_map_odom, scans_[k].odom);
+    const double c = std::cos(base.z()), s = std::sin(base.z());
+    const auto& matches = p.per_scan[k].per_observation;
+    const auto& observations = scans_[k].observations;
+    for (std::size_t j = 0; j < matches.size() && j < observations.size(); ++j) {
+      const Observation& o = observations[j];
+      const int f = matches[j].face;
+      if (!o.end_scored || f < 0 || static_cast<std::size_t>(f) >= faces_.size() || !(o.wall_span_m > 0.0) ||
+          !o.span_middle_base.allFinite())
+        continue;
+      const FaceLine& line = faces_[static_cast<std::size_t>(f)];
+      const Eigen::Vector2d middle(base.x() + c * o.span_middle_base.x() - s * o.span_middle_base.y(),
+                                   base.y() + s * o.span_middle_base.x() + c * o.span_middle_base.y());
+      const double along = (middle - line.start).dot(line.direction), half = 0.5 * o.wall_span_m;
+      if (line.hi_m - (along + half) <= config_.sigma_d_m) pin(line.direction);
+      if ((along - half) - line.lo_m <= config_.sigma_d_m) pin(-line.direction);
+    }
+  }
+  return weakest + std::min(plus, minus) >= need;
 }
 
 void PathEvidence::settleLowest(std::size_t best, const Pose2& odom, std::vector<std::pair<double, std::size_t>>& rivals,

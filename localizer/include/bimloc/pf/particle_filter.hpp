@@ -44,6 +44,16 @@ struct ParticleFilterConfig {
   // row is not the partition that ends where the next bay does (Jesse.1 Level -1). It decides
   // places sooner, also where the pose within the place is not yet settled: settle_pose.
   bool match_wall_lines = true;
+  // Within that margin, the run past the line's end is scored as the plane's d is, in sigma_d_m
+  // (a fourth term of the paper's Mahalanobis distance, one-sided): a wall's seen end fixes the
+  // pose along the wall as its plane fixes it across. Where the walls in view all run one way,
+  // their ends are all that fix the pose along them (PathEvidence::fixesPose counts them).
+  // False: the margin alone (before session 34).
+  bool match_wall_ends = true;
+  // A run past the end shorter than this is no evidence: the extraction places a plane's end to
+  // within its voxel and its standing bin (planes::PlaneExtractionConfig::voxel_size_m, 0.1 m
+  // each), so a plane that ends with its wall may run that far past it.
+  double wall_end_tolerance_m = 0.0;
   // The planes of one scan, and of consecutive scans, are not independent evidence: the
   // log-likelihood is tempered by this power, and the filter weighs only after the robot
   // moved (as AMCL's update_min_d / update_min_a), or every max_static_scans scans.
