@@ -34,7 +34,6 @@ constexpr int kMinAssociated = 3;
 // most poses solved over a storey put the planes beside their faces (two lines crossing
 // anywhere), and their number grows with the building: on a 100-room floor the global
 // search's and the seeds' scoring took half the time with it (docs/results/2026-11-26-h28speed2.md).
-constexpr int kAnywhere = -2;
 
 // The heading observation i on landmark a fixes, with its cosine and sine: one per (i, a),
 // shared by every (j, b) paired with them.
@@ -232,39 +231,6 @@ void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& i
     }
 }
 
-// Where the scan's planes all run one way (no pair fixes a position), a plane seen to its end
-// fixes it with its face: across by its offset, along by its standing span's end at the end of
-// the face's wall line (match_wall_ends scores a run past it). Every observation with a span,
-// on every face it may be at (the same heading and height tests as a pair's first plane), at
-// either end of the face's line: the poses every fit of such a scan starts from. A span whose
-// end is no wall's end (something hid the rest) gives poses the scoring turns down.
-void fromEnds(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room, const RoomIndex& rooms,
-              std::vector<Particle>& poses) {
-  for (const Observation& o : obs) {
-    if (!(o.wall_span_m > 0.0) || !o.span_middle_base.allFinite()) continue;
-    for (const Landmark& a : marks) {
-      if (!std::isfinite(a.line_lo_m) || !std::isfinite(a.line_hi_m) || !atFaceHeight(o, a, z)) continue;
-      const Heading h = headingOf(o, a);
-      const Eigen::Vector2d n = a.normal.head<2>();
-      if (!(n.norm() > 0.5)) continue;  // not a standing face
-      // n . xy = d_off - d - n_z z across (solveAt's line), and along the face the span's middle
-      // at (end -+ half the span) from the face's start.
-      const double across = (o.d_offset - a.d - a.normal.z() * z) / n.squaredNorm();
-      const Eigen::Vector2d middle(h.c * o.span_middle_base.x() - h.s * o.span_middle_base.y(),
-                                   h.s * o.span_middle_base.x() + h.c * o.span_middle_base.y());
-      for (const double end : {a.line_hi_m - 0.5 * o.wall_span_m, a.line_lo_m + 0.5 * o.wall_span_m}) {
-        const double t = end + a.start.dot(a.direction) - middle.dot(a.direction);
-        const Eigen::Vector2d xy = across * n + (t - across * n.dot(a.direction)) * a.direction;
-        if (room >= 0 && !rooms.mayBeIn(room, xy.x(), xy.y())) continue;
-        Particle p;
-        p.x = xy.x(), p.y = xy.y(), p.yaw = h.yaw, p.room = rooms.roomAt(xy.x(), xy.y());
-        if ((p.room < 0 && room != kAnywhere) || (room >= 0 && p.room != room)) continue;
-        poses.push_back(p);
-      }
-    }
-  }
-}
-
 }  // namespace
 
 std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observations, double z_base,
@@ -293,9 +259,9 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observati
   }
   if (config.match_wall_lines && config.match_wall_ends && !positionFixedByPlanes(observations)) {
     if (config.use_rooms)
-      for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r) fromEnds(observations, z_base, rooms.landmarks(r), r, rooms, poses);
+      for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r) posesFromEnds(observations, z_base, rooms.landmarks(r), r, rooms, along_m, poses);
     else
-      fromEnds(observations, z_base, rooms.landmarks(0), room, rooms, poses);
+      posesFromEnds(observations, z_base, rooms.landmarks(0), room, rooms, along_m, poses);
   }
   scorePoses(poses, observations, z_base, rooms, config, room != kAnywhere, bound, all);
   // Those below the floor are out before they are sorted: the ones the caller wants, best

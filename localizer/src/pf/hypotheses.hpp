@@ -26,6 +26,16 @@ struct Hypothesis {
 // same bits, and so are the merges among them; only some below it are missing. With
 // `outside_rooms`, also poses in no room (a search for rivals: rooms are a prior, and a
 // corridor the plan has no space for is a place too); the particles' seeds stay in rooms.
+// A pose's room: any room (-1), or anywhere, in a room or not (kAnywhere: the rival search).
+constexpr int kAnywhere = -2;
+
+// Where a scan's planes all run one way (positionFixedByPlanes is false), the poses at which one
+// of them lies on a face of `marks` with its standing span's end at an end of the face's wall
+// line (end_hypotheses.cpp), appended to `poses`; in `room` (>= 0), any room (-1) or anywhere
+// (kAnywhere).
+void posesFromEnds(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
+                   const RoomIndex& rooms, double margin_m, std::vector<Particle>& poses);
+
 std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observations, double z_base,
                                        const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count,
                                        double wanted_within = std::numeric_limits<double>::infinity(),
