@@ -207,7 +207,7 @@ PlanGrid::Result PlanGrid::build(const std::string& storey_name, double height_m
   }
   for (int k = 0; k < static_cast<int>(rooms_.size()); ++k) {
     const Boundary boundary = traceRegion(raster, walls, k, "room " + rooms_[k].name);
-    RoomSpec room{rooms_[k].name, rooms_[k].long_name, {}, {}};
+    RoomSpec room{rooms_[k].name, rooms_[k].long_name, {}, {}, {}};
     for (std::size_t e = 0; e < boundary.corners.size(); ++e) {
       room.footprint.emplace_back(metres(boundary.corners[e].first), metres(boundary.corners[e].second));
       if (std::find(room.walls.begin(), room.walls.end(), boundary.walls[e]) == room.walls.end()) {

@@ -54,7 +54,7 @@ class StoreyBuilder {
 
   void room(const std::string& name, const std::string& long_name,
             std::vector<Eigen::Vector2d> footprint, std::initializer_list<const char*> walls) {
-    RoomSpec r{name, long_name, std::move(footprint), {}};
+    RoomSpec r{name, long_name, std::move(footprint), {}, {}};
     for (const char* w : walls) r.walls.push_back(wallIndex(w));
     storey_.rooms.push_back(std::move(r));
   }
