@@ -93,6 +93,7 @@ TEST(WallEnds, PlanesThirtyToOneHundredFiftyDegreesApartFixAPositionParallelOnes
     for (double a : azimuths_deg) {
       Observation o;
       o.azimuth_base = a * M_PI / 180.0;
+      o.normal_base = Eigen::Vector3d(std::cos(o.azimuth_base), std::sin(o.azimuth_base), 0.0);
       obs.push_back(o);
     }
     return pf::detail::positionFixedByPlanes(obs);

@@ -39,7 +39,6 @@ std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
           {"segment_margin_m", &c.segment_margin_m, closed(0, 100)},
           {"match_wall_lines", &c.match_wall_lines},
           {"match_wall_ends", &c.match_wall_ends},
-          {"wall_end_tolerance_m", &c.wall_end_tolerance_m, closed(0, 10)},
           {"settle_pose", &c.settle_pose},
           {"likelihood_power", &c.likelihood_power, positive(1)},
           {"update_min_translation_m", &c.update_min_translation_m, closed(0, 100)},

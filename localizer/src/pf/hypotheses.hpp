@@ -19,13 +19,6 @@ struct Hypothesis {
   int associated = 0;
 };
 
-// Hypotheses over every room (best first, near-duplicates merged, at most max_count).
-// With a finite `wanted_within`, the caller only wants those within it of the best: a pose
-// whose scan already scores below the best found so far less that is not scored to the end
-// (matchObservations' floor). Every hypothesis within it of the best is still there, with the
-// same bits, and so are the merges among them; only some below it are missing. With
-// `outside_rooms`, also poses in no room (a search for rivals: rooms are a prior, and a
-// corridor the plan has no space for is a place too); the particles' seeds stay in rooms.
 // A pose's room: any room (-1), or anywhere, in a room or not (kAnywhere: the rival search).
 constexpr int kAnywhere = -2;
 
@@ -36,6 +29,13 @@ constexpr int kAnywhere = -2;
 void posesFromEnds(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
                    const RoomIndex& rooms, double margin_m, std::vector<Particle>& poses);
 
+// Hypotheses over every room (best first, near-duplicates merged, at most max_count).
+// With a finite `wanted_within`, the caller only wants those within it of the best: a pose
+// whose scan already scores below the best found so far less that is not scored to the end
+// (matchObservations' floor). Every hypothesis within it of the best is still there, with the
+// same bits, and so are the merges among them; only some below it are missing. With
+// `outside_rooms`, also poses in no room (a search for rivals: rooms are a prior, and a
+// corridor the plan has no space for is a place too); the particles' seeds stay in rooms.
 std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observations, double z_base,
                                        const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count,
                                        double wanted_within = std::numeric_limits<double>::infinity(),

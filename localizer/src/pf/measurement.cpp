@@ -159,8 +159,7 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
           // in the plane's own noise (as its d): a wall's seen end fixes the pose along the wall
           // as its plane does across it. Without, a pose 0.5 m along a wall whose end the scans
           // saw fitted it as well as the truth (IFC 4.3 sample house: its walls all run along y).
-          const double past = overrun - c.wall_end_tolerance_m;
-          if (end_term && past > 0.0) m2_end = past * inv_d * past * inv_d;
+          if (end_term && overrun > 0.0) m2_end = overrun * inv_d * overrun * inv_d;
         }
         // Not the face where it stands in the face's openings (by where the plane stands, not
         // its centroid -+ half its extent: the centroid sits near the sensor, and a pane filling

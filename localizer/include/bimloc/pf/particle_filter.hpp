@@ -50,10 +50,6 @@ struct ParticleFilterConfig {
   // their ends are all that fix the pose along them (PathEvidence::fixesPose counts them).
   // False: the margin alone (before session 34).
   bool match_wall_ends = true;
-  // A run past the end shorter than this is no evidence: the extraction places a plane's end to
-  // within its voxel and its standing bin (planes::PlaneExtractionConfig::voxel_size_m, 0.1 m
-  // each), so a plane that ends with its wall may run that far past it.
-  double wall_end_tolerance_m = 0.0;
   // The planes of one scan, and of consecutive scans, are not independent evidence: the
   // log-likelihood is tempered by this power, and the filter weighs only after the robot
   // moved (as AMCL's update_min_d / update_min_a), or every max_static_scans scans.
