@@ -13,7 +13,6 @@ namespace bimloc::pf::detail {
 namespace {
 
 constexpr double kAngleTolerance = 5.0 * M_PI / 180.0;
-constexpr double kMinPairAngle = 30.0 * M_PI / 180.0;  // nearly parallel planes fix no position
 
 // The best log-likelihood of the hypotheses kept so far, and how far below it the caller
 // still wants them (infinite: all).
@@ -116,11 +115,7 @@ void mostAgreedFirst(std::vector<Particle>& poses) {
   poses.swap(sorted);
 }
 
-bool pairable(const std::vector<Observation>& obs, std::size_t i, std::size_t j) {
-  if (i == j) return false;
-  const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
-  return std::abs(turn) >= kMinPairAngle && std::abs(turn) <= M_PI - kMinPairAngle;
-}
+bool pairable(const std::vector<Observation>& obs, std::size_t i, std::size_t j) { return i != j && atPairAngle(obs[i], obs[j]); }
 
 // The same pose solved from several pairs (collinear pieces of one wall fix the same lines;
 // one pair of faces matched by several pairs of observations along them) is scored once: the

@@ -307,13 +307,16 @@ FaceShortlist shortlistFaces(const Eigen::Vector3d& centre, double xy_radius_m, 
   return s;
 }
 
+bool atPairAngle(const Observation& a, const Observation& b) {
+  constexpr double kMinPairAngle = 30.0 * M_PI / 180.0;
+  const double turn = std::abs(wrapAngle(b.azimuth_base - a.azimuth_base));
+  return turn >= kMinPairAngle && turn <= M_PI - kMinPairAngle;
+}
+
 bool positionFixedByPlanes(const std::vector<Observation>& observations) {
-  constexpr double kMinAngle = 30.0 * M_PI / 180.0;
   for (std::size_t i = 0; i < observations.size(); ++i)
-    for (std::size_t j = i + 1; j < observations.size(); ++j) {
-      const double turn = std::abs(wrapAngle(observations[j].azimuth_base - observations[i].azimuth_base));
-      if (turn >= kMinAngle && turn <= M_PI - kMinAngle) return true;
-    }
+    for (std::size_t j = i + 1; j < observations.size(); ++j)
+      if (atPairAngle(observations[i], observations[j])) return true;
   return false;
 }
 

@@ -41,8 +41,10 @@ struct Observation {
   bool end_scored = false;
 };
 
-// Whether two of a scan's planes are at an angle that fixes a position (30-150 degrees apart,
-// the pose hypotheses' pairs): when not, the planes all run one way.
+// Whether two planes are at an angle that fixes a position: 30-150 degrees apart (nearly
+// parallel planes fix none). The pose hypotheses' pairs (hypotheses.cpp) and the test below.
+bool atPairAngle(const Observation& a, const Observation& b);
+// Whether two of a scan's planes are at such an angle: when not, the planes all run one way.
 bool positionFixedByPlanes(const std::vector<Observation>& observations);
 
 // Whether the observed plane's points lie at heights the face has (within kVerticalMarginM),
