@@ -13,7 +13,7 @@ for each damaged copy runs the command that reads it and flags:
 Usage: scripts/damage_probe.py BIMLOC WORKDIR [--seed S] [--cases N] [--kinds k1,k2] [--verbose]
 Kinds: ros1 mcap sqlite3 (bags, clouds and packets topics), packets (VLP-16 fields out of
 range), tum (bimloc eval), config (--config YAML), pcd (a dataset folder's cloud), ifc
-(bimloc extract), ifc43 (the same plan written as IFC 4.3 writes it), meta (a rosbag2 metadata.yaml), report (bimloc report merge shards).
+(bimloc extract), ifcnum (one number made extreme: extract and a 2 s run), ifc43 (the same plan written as IFC 4.3 writes it), meta (a rosbag2 metadata.yaml), report (bimloc report merge shards).
 Exit status: 0 nothing flagged, 1 something flagged (listed), 2 bad arguments.
 """
 import argparse, os, random, re, shutil, subprocess, sys
@@ -26,7 +26,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument('bimloc'); ap.add_argument('workdir')
     ap.add_argument('--seed', type=int, default=1); ap.add_argument('--cases', type=int, default=10)
-    ap.add_argument('--kinds', default='ros1,mcap,sqlite3,packets,tum,config,pcd,ifc,ifc43,meta,report')
+    ap.add_argument('--kinds', default='ros1,mcap,sqlite3,packets,tum,config,pcd,ifc,ifcnum,ifc43,meta,report')
     ap.add_argument('--verbose', action='store_true')
     a = ap.parse_args()
     B, W, rng = os.path.abspath(a.bimloc), os.path.abspath(a.workdir), random.Random(a.seed)
@@ -146,6 +146,20 @@ def main():
             d, how = damage(open(PLAN, 'rb').read())
             f = os.path.join(W, 'damaged.ifc'); open(f, 'wb').write(d)
             check(f'ifc {how}', [B, 'extract', f], f, error_status=1)
+    if 'ifcnum' in kinds:
+        # One number of the plan (a coordinate, a length, a storey's Elevation) made extreme, as a
+        # unit slip or a damaged export writes it, then extracted and run for 2 s: the byte
+        # damage above rarely leaves a parsable number far out (a storey at -1e300 aborted the
+        # ray caster; a wall 1e9 m long overflowed the path grid's count).
+        text = open(PLAN, 'rb').read()
+        numbers = [m.span() for m in re.finditer(rb'(?<=[(,])-?\d+\.\d*(?:E[-+]?\d+)?(?=[,)])', text)]
+        extremes = [b'1.E9', b'-1.E9', b'1.E15', b'1.E300', b'-1.E300', b'0.', b'1.E-12', b'-0.', b'1.E30', b'123456.']
+        for _ in range(a.cases):
+            (s0, s1), v = rng.choice(numbers), rng.choice(extremes)
+            f = os.path.join(W, 'extreme.ifc'); open(f, 'wb').write(text[:s0] + v + text[s1:])
+            how = f'{v.decode()} at byte {s0}'
+            check(f'ifcnum extract {how}', [B, 'extract', f], f, error_status=1)
+            check(f'ifcnum run {how}', [B, 'run', '--plan', f, '--all-rooms', '--rooms', 'R101', '--duration', '2', '--jobs', '1'], f)
     if 'ifc43' in kinds:
         # The plan as IFC 4.3 writes it: its FILE_SCHEMA, and a TagList on every point list
         # (what the reader rewrites to IFC4's attributes, localizer/src/bim/ifc4x3.hpp).

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <queue>
 #include <stdexcept>
@@ -120,12 +121,17 @@ void FreeSpace::makeGrid(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   lo.array() -= kGridPad_m, hi.array() += kGridPad_m;
   // Cell centres on multiples of the cell size, so grids of one storey always coincide.
   grid_.origin = (lo / kCell_m).array().floor() * kCell_m;
-  grid_.nx = static_cast<int>(std::ceil((hi.x() - grid_.origin.x()) / kCell_m)) + 1;
-  grid_.ny = static_cast<int>(std::ceil((hi.y() - grid_.origin.y()) / kCell_m)) + 1;
+  // Counted in double before any cast: a plan with a wall a million kilometres long (damage)
+  // overflowed the int, and the message read 18446743431611941163 cells.
+  const double nx = std::ceil((hi.x() - grid_.origin.x()) / kCell_m) + 1, ny = std::ceil((hi.y() - grid_.origin.y()) / kCell_m) + 1;
+  if (!(nx * ny <= static_cast<double>(kMaxCells))) {
+    char size[96];
+    std::snprintf(size, sizeof size, "%.6g m x %.6g m", hi.x() - lo.x(), hi.y() - lo.y());
+    throw std::runtime_error(world_.building().file + ": storey '" + storey.name + "' spans " + size + " (its rooms and walls): too large for the path grid (at most " +
+                             std::to_string(kMaxCells) + " cells of " + std::to_string(kCell_m).substr(0, 4) + " m)");
+  }
+  grid_.nx = static_cast<int>(nx), grid_.ny = static_cast<int>(ny);
   const std::size_t cells = static_cast<std::size_t>(grid_.nx) * static_cast<std::size_t>(grid_.ny);
-  if (cells > kMaxCells)
-    throw std::runtime_error("the storey is too large for the path grid (" + std::to_string(cells) + " cells of " +
-                             std::to_string(kCell_m) + " m)");
   grid_.edges.assign(cells, 0);
 }
 

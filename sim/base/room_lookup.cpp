@@ -55,7 +55,9 @@ RoomGrid::RoomGrid(const bim::Storey& storey) : storey_(&storey) {
   if (lo.x() > hi.x()) return;  // no room: every lookup is nullptr
   origin_ = lo - Eigen::Vector2d(1.0, 1.0);
   const Eigen::Vector2d span = hi - origin_ + Eigen::Vector2d(1.0, 1.0);
-  cell_m_ = std::max(1.0, std::sqrt(span.x() * span.y() / kMaxLookupCells));
+  // Bounded in area and along each side: a room written 1e30 m long (one damaged vertex) on a
+  // storey 15 m wide asked for 3e17 cells in a row, which overflowed the int.
+  cell_m_ = std::max({1.0, std::sqrt(span.x() * span.y() / kMaxLookupCells), std::max(span.x(), span.y()) / kMaxLookupCells});
   nx_ = static_cast<int>(std::ceil(span.x() / cell_m_)) + 1;
   ny_ = static_cast<int>(std::ceil(span.y() / cell_m_)) + 1;
   cells_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), {});

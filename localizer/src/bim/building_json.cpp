@@ -1,5 +1,7 @@
 #include <bimloc/bim/building_json.hpp>
 
+#include "extraction.hpp"
+
 #include <stdexcept>
 
 namespace bimloc::bim {
@@ -15,14 +17,25 @@ const json& field(const json& j, const char* key, const std::string& where) {
   return j.at(key);
 }
 
+// A point of the plan (or a unit normal), as the extraction keeps them: finite, within
+// kFarthestElementM of the map's origin (extraction.hpp: a coordinate beyond overflowed the
+// grids sized by a storey's extent).
+template <typename V>
+V inPlan(const V& v, const std::string& where) {
+  if (!v.allFinite() || v.cwiseAbs().maxCoeff() > detail::kFarthestElementM)
+    throw std::runtime_error(where + ": a coordinate that is not a number or lies beyond " +
+                             std::to_string(static_cast<int>(detail::kFarthestElementM / 1000.0)) + " km of the map's origin");
+  return v;
+}
+
 Eigen::Vector3d vec3(const json& j, const std::string& where) {
   if (!j.is_array() || j.size() != 3) throw std::runtime_error(where + ": expected [x, y, z]");
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+  return inPlan(Eigen::Vector3d(j[0].get<double>(), j[1].get<double>(), j[2].get<double>()), where);
 }
 
 Eigen::Vector2d vec2(const json& j, const std::string& where) {
   if (!j.is_array() || j.size() != 2) throw std::runtime_error(where + ": expected [x, y]");
-  return {j[0].get<double>(), j[1].get<double>()};
+  return inPlan(Eigen::Vector2d(j[0].get<double>(), j[1].get<double>()), where);
 }
 
 json faceJson(const WallFace& f) {
@@ -149,9 +162,15 @@ nlohmann::json toJson(const Building& building) {
   }
   json stairs = json::array();
   for (const auto& f : building.stairs) stairs.push_back(flightJson(f));
-  return {{"format", "bimloc.building"}, {"version", kBuildingJsonVersion}, {"units", "m"},
-          {"frame", "map (the plan's world frame, z up)"}, {"file", building.file}, {"schema", building.schema},
-          {"storeys", storeys}, {"stairs", stairs}, {"warnings", building.warnings}};
+  json doc = {{"format", "bimloc.building"}, {"version", kBuildingJsonVersion}, {"units", "m"},
+              {"frame", "map (the plan's world frame, z up)"}, {"file", building.file}, {"schema", building.schema},
+              {"storeys", storeys}, {"stairs", stairs}, {"warnings", building.warnings}};
+  // Only where the plan was moved near the origin (map_origin.hpp): every other document stays as it was.
+  if (!building.map_origin_in_plan_m.isZero()) {
+    doc["frame"] = "map (the plan's world frame less map_origin_in_plan_m, z up)";
+    doc["map_origin_in_plan_m"] = {building.map_origin_in_plan_m.x(), building.map_origin_in_plan_m.y()};
+  }
+  return doc;
 }
 
 Building buildingFromJson(const nlohmann::json& doc) {
@@ -165,6 +184,12 @@ Building buildingFromJson(const nlohmann::json& doc) {
   b.file = doc.value("file", "");
   b.schema = doc.value("schema", "");
   b.warnings = doc.value("warnings", std::vector<std::string>{});
+  if (const auto origin = doc.find("map_origin_in_plan_m"); origin != doc.end()) {
+    if (!origin->is_array() || origin->size() != 2 || !(*origin)[0].is_number() || !(*origin)[1].is_number())
+      throw std::runtime_error("building.map_origin_in_plan_m: expected [x, y] in metres");
+    b.map_origin_in_plan_m = Eigen::Vector2d((*origin)[0].get<double>(), (*origin)[1].get<double>());
+    if (!b.map_origin_in_plan_m.allFinite()) throw std::runtime_error("building.map_origin_in_plan_m: not finite");
+  }
   const json& storeys = field(doc, "storeys", "building");
   for (std::size_t i = 0; i < storeys.size(); ++i) {
     const std::string where = "storeys[" + std::to_string(i) + "]";

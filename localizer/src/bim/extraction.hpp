@@ -12,6 +12,23 @@
 
 namespace bimloc::bim::detail {
 
+// Each raw storey's floor height in the geometry's frame, in raw.storeys' order, and where it
+// came from ("placement", "Elevation", or "none": 0 m, named in `warnings`); storey_levels.cpp.
+struct StoreyLevel {
+  double elevation_m = 0.0;
+  std::string source;
+};
+std::vector<StoreyLevel> storeyLevels(const RawModel& raw, std::vector<std::string>& warnings);
+
+// No wall or room of a plan lies farther than this from the map frame's origin, in metres: a
+// georeferenced site is moved within 8 km of it (map_origin.hpp) and no building is more than
+// a few kilometres long. A coordinate beyond is damage: one room vertex written 1e30 m out
+// overflowed every grid sized by a storey's extent (the simulator's room lookup, the filter's
+// room index: a segfault). Such an element is skipped and named, as one without geometry.
+constexpr double kFarthestElementM = 1e5;
+// Why the points put an element out of the plan ("" when none is farther than that).
+std::string farFromMap(const std::vector<Eigen::Vector2d>& xy, double z_min, double z_max);
+
 // A wall as a straight box: axis, thickness, height and its two faces (paper Eq. 1 and 2).
 // Returns nothing and says why in `problem` when the product has no usable geometry.
 std::optional<Wall> wallFromGeometry(const RawProduct& product, std::string& problem);

@@ -33,6 +33,7 @@
 
 #include "ifc_profile.hpp"
 #include "ifc_references.hpp"
+#include "map_origin.hpp"
 #include "spatial_cycles.hpp"
 
 #include <carve/triangulator.hpp>
@@ -265,6 +266,8 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
   const std::map<int, GeometryDrop> drops = dropUnreadableGeometry(*model, references);
   // A cycle in the spatial structure would send the converter into endless recursion.
   for (auto& w : breakSpatialCycles(*model)) raw.warnings.push_back(std::move(w));
+  // A georeferenced site, far from the origin, moved near it (map_origin.hpp).
+  raw.map_origin_in_plan_m = moveRootsNearOrigin(*model, raw.length_unit_m, raw.warnings);
   GeometryConverter converter(model);
   converter.setMessageCallBack(&sink, &MessageSink::collect);
   // Colours and layers are not needed, and are reached through inverse links the check skips.

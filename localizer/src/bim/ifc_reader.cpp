@@ -144,14 +144,13 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
   building.file = path;
   building.schema = raw.schema;
   building.warnings = raw.warnings;
+  building.map_origin_in_plan_m = raw.map_origin_in_plan_m;
 
   // Storeys in height order (paper: floor information extraction).
   std::vector<int> order(raw.storeys.size());
   std::iota(order.begin(), order.end(), 0);
-  const auto elevation = [&](int i) {
-    const auto& s = raw.storeys[static_cast<std::size_t>(i)];
-    return s.elevation_m ? *s.elevation_m : s.placement_z_m;
-  };
+  const std::vector<detail::StoreyLevel> levels = detail::storeyLevels(raw, building.warnings);
+  const auto elevation = [&](int i) { return levels[static_cast<std::size_t>(i)].elevation_m; };
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return elevation(a) < elevation(b); });
   std::vector<int> new_index(raw.storeys.size());
   for (std::size_t k = 0; k < order.size(); ++k) {
@@ -161,7 +160,7 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     storey.id = s.global_id;
     storey.name = s.name;
     storey.elevation_m = elevation(order[k]);
-    storey.elevation_source = s.elevation_m ? "Elevation" : "placement";
+    storey.elevation_source = levels[static_cast<std::size_t>(order[k])].source;
     building.storeys.push_back(storey);
   }
 

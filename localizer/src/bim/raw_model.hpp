@@ -85,6 +85,7 @@ struct SpaceBoundary {
 struct RawModel {
   std::string schema;
   double length_unit_m = 1.0;
+  Eigen::Vector2d map_origin_in_plan_m = Eigen::Vector2d::Zero();  // map_origin.hpp
   std::vector<RawStorey> storeys;
   std::vector<RawProduct> walls;     // IfcWall and subtypes (curtain walls excluded)
   std::vector<RawProduct> spaces;    // IfcSpace

@@ -3,6 +3,7 @@
 #include <bimloc/bim/geometry2d.hpp>
 
 #include <cmath>
+#include <cstdio>
 
 namespace bimloc::bim::detail {
 namespace {
@@ -46,6 +47,7 @@ std::optional<Wall> wallFromGeometry(const RawProduct& product, std::string& pro
       problem = "non-finite coordinates in its geometry";
       return std::nullopt;
     }
+  if (problem = farFromMap(xy, z_min, z_max); !problem.empty()) return std::nullopt;
   const Polygon2 hull = convexHull(xy);
   const Rectangle2 box = minAreaRectangle(hull);
   if (hull.size() < 3 || box.width < 1e-3 || box.length < 1e-3 || z_max - z_min < 1e-3) {
@@ -77,6 +79,16 @@ std::optional<Wall> wallFromGeometry(const RawProduct& product, std::string& pro
   wall.faces[0] = makeFace(left, s + half * left, e + half * left, z_min);
   wall.faces[1] = makeFace(-left, e - half * left, s - half * left, z_min);
   return wall;
+}
+
+std::string farFromMap(const std::vector<Eigen::Vector2d>& xy, double z_min, double z_max) {
+  double farthest = std::max(std::abs(z_min), std::abs(z_max));
+  for (const auto& p : xy) farthest = std::max(farthest, p.cwiseAbs().maxCoeff());
+  if (!(farthest > kFarthestElementM)) return "";
+  char text[120];
+  std::snprintf(text, sizeof text, "a coordinate %.3g m from the map's origin (no plan reaches %.0f km: damage?)", farthest,
+                kFarthestElementM / 1000.0);
+  return text;
 }
 
 }  // namespace bimloc::bim::detail

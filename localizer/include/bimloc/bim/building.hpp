@@ -176,6 +176,11 @@ struct Building {
   std::vector<StairFlight> stairs;  // flights and ramps, in file order (empty: none read)
   std::vector<std::string> warnings;
   ExtractionTimes times;
+  // Where the map frame's origin lies in the plan's own coordinates (x y, metres): zero, but
+  // for a georeferenced plan whose site lies far from its origin, which bimloc moves near it
+  // so that floats hold millimetres (the meshes, the ray caster). A pose in the map frame is
+  // at map_origin_in_plan_m + (x, y) in the plan's (REP 105: earth -> map).
+  Eigen::Vector2d map_origin_in_plan_m = Eigen::Vector2d::Zero();
 
   const Storey* findStorey(const std::string& name_or_index) const;
 };
