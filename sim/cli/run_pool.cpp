@@ -125,7 +125,16 @@ void keepStartRooms(std::vector<Scenario>& scenarios, const std::vector<std::str
     bool found = false;
     for (const auto& s : scenarios)
       if (s.start.room == name) kept.push_back(s), found = true;
-    if (!found) throw std::invalid_argument("--rooms: no start room '" + name + "' on this storey");
+    if (!found) {
+      // Name the plan and what it has: a room the extraction skipped (damaged geometry) is in
+      // its warnings, and a typo is seen in the list.
+      std::string have;
+      for (std::size_t k = 0; k < scenarios.size() && k < 12; ++k) have += (k ? ", " : "") + scenarios[k].start.room;
+      if (scenarios.size() > 12) have += ", ...";
+      const std::string plan = scenarios.empty() ? std::string("the plan") : scenarios.front().world;
+      throw std::invalid_argument("--rooms: " + plan + " has no start room '" + name + "' on this storey (its rooms: " +
+                                  (have.empty() ? std::string("none") : have) + "; `bimloc extract` names any it skipped)");
+    }
   }
   scenarios = std::move(kept);
 }

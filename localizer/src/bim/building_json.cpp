@@ -17,14 +17,10 @@ const json& field(const json& j, const char* key, const std::string& where) {
   return j.at(key);
 }
 
-// A point of the plan (or a unit normal), as the extraction keeps them: finite, within
-// kFarthestElementM of the map's origin (extraction.hpp: a coordinate beyond overflowed the
-// grids sized by a storey's extent).
+// A point of the plan (or a unit normal): a number (how far is checked per element, below).
 template <typename V>
 V inPlan(const V& v, const std::string& where) {
-  if (!v.allFinite() || v.cwiseAbs().maxCoeff() > detail::kFarthestElementM)
-    throw std::runtime_error(where + ": a coordinate that is not a number or lies beyond " +
-                             std::to_string(static_cast<int>(detail::kFarthestElementM / 1000.0)) + " km of the map's origin");
+  if (!v.allFinite()) throw std::runtime_error(where + ": a coordinate that is not a number");
   return v;
 }
 
@@ -206,6 +202,26 @@ Building buildingFromJson(const nlohmann::json& doc) {
     for (std::size_t k = 0; k < rooms.size(); ++k)
       s.rooms.push_back(roomFromJson(rooms[k], where + ".rooms[" + std::to_string(k) + "]"));
     b.storeys.push_back(std::move(s));
+  }
+  // Every wall and room within kFarthestElementM of the middle of the walls, as the extraction
+  // keeps them (extraction.hpp): one beyond overflowed the grids sized by a storey's extent.
+  std::vector<Eigen::Vector2d> wall_points;
+  for (const auto& storey : b.storeys)
+    for (const auto& w : storey.walls) wall_points.push_back(w.start.head<2>());
+  const Eigen::Vector2d middle = detail::planMiddle(wall_points);
+  for (std::size_t i = 0; i < b.storeys.size(); ++i) {
+    const std::string where = "storeys[" + std::to_string(i) + "]";
+    for (std::size_t k = 0; k < b.storeys[i].walls.size(); ++k) {
+      const Wall& w = b.storeys[i].walls[k];
+      if (const auto far = detail::farFromPlan({w.start.head<2>(), w.end.head<2>()}, w.start.z(), w.start.z() + w.height_m, middle);
+          !far.empty())
+        throw std::runtime_error(where + ".walls[" + std::to_string(k) + "]: " + far);
+    }
+    for (std::size_t k = 0; k < b.storeys[i].rooms.size(); ++k) {
+      const Room& r = b.storeys[i].rooms[k];
+      if (const auto far = detail::farFromPlan(r.footprint, r.floor_z, r.floor_z + r.height_m, middle); !far.empty())
+        throw std::runtime_error(where + ".rooms[" + std::to_string(k) + "]: " + far);
+    }
   }
   if (version >= 2) {  // version 1 had no stairs
     const json& stairs = field(doc, "stairs", "building");

@@ -20,14 +20,18 @@ struct StoreyLevel {
 };
 std::vector<StoreyLevel> storeyLevels(const RawModel& raw, std::vector<std::string>& warnings);
 
-// No wall or room of a plan lies farther than this from the map frame's origin, in metres: a
-// georeferenced site is moved within 8 km of it (map_origin.hpp) and no building is more than
-// a few kilometres long. A coordinate beyond is damage: one room vertex written 1e30 m out
-// overflowed every grid sized by a storey's extent (the simulator's room lookup, the filter's
-// room index: a segfault). Such an element is skipped and named, as one without geometry.
+// No building is this long, in metres (the longest are about a kilometre): a wall or room this
+// far from the middle of the plan's walls, or this high or deep, is damage. One room vertex
+// written 1e30 m out overflowed every grid sized by a storey's extent (the simulator's room
+// lookup, the filter's room index: a segfault). Such an element is skipped and named, as one
+// without geometry, and building.json refuses it. Measured from the walls' middle, not the
+// origin: a plan whose vertices carry surveyed coordinates is still read.
 constexpr double kFarthestElementM = 1e5;
-// Why the points put an element out of the plan ("" when none is farther than that).
-std::string farFromMap(const std::vector<Eigen::Vector2d>& xy, double z_min, double z_max);
+// The middle of the plan: the median x and y of the points (the walls' ends), robust to the few
+// a damaged file throws far out; zero when there is none.
+Eigen::Vector2d planMiddle(std::vector<Eigen::Vector2d> points);
+// Why the points put an element out of the plan ("" when none is that far from `middle`).
+std::string farFromPlan(const std::vector<Eigen::Vector2d>& xy, double z_min, double z_max, const Eigen::Vector2d& middle);
 
 // A wall as a straight box: axis, thickness, height and its two faces (paper Eq. 1 and 2).
 // Returns nothing and says why in `problem` when the product has no usable geometry.

@@ -166,9 +166,19 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
 
   const auto rebuilt = detail::rebuiltBodies(raw, building.warnings);  // bodies read from extrusions, openings cut
   WallShapes shapes;  // the exact footprints of the walls that are not boxes, for room inference
+  std::vector<Eigen::Vector2d> wall_points;
+  for (const auto& p : raw.walls)
+    if (!p.mesh.empty()) wall_points.emplace_back(p.mesh.vertices.front().x(), p.mesh.vertices.front().y());
+    else if (p.extrusion && !p.extrusion->corners.empty()) wall_points.push_back(p.extrusion->corners.front().head<2>());
+  const Eigen::Vector2d middle = detail::planMiddle(wall_points);
   for (const auto& p : raw.walls) {
     std::string problem;
     auto wall = detail::wallFromGeometry(p, problem);
+    if (wall)
+      if (std::string far = detail::farFromPlan({wall->start.head<2>(), wall->end.head<2>()}, wall->start.z(),
+                                                 wall->start.z() + wall->height_m, middle);
+          !far.empty())
+        wall.reset(), problem = far;
     const int s = storeyFor(p, new_index, building.storeys);
     if (!wall || s < 0) {
       building.warnings.push_back(describeProduct(p) + ": wall skipped: " + (problem.empty() ? "no storey" : problem));
@@ -186,6 +196,9 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
   for (const auto& p : raw.spaces) {
     std::string problem;
     auto room = detail::roomFromGeometry(p, problem);
+    if (room)
+      if (std::string far = detail::farFromPlan(room->footprint, room->floor_z, room->floor_z + room->height_m, middle); !far.empty())
+        room.reset(), problem = far;
     const int s = storeyFor(p, new_index, building.storeys);
     if (!room || s < 0) {
       building.warnings.push_back(describeProduct(p) + ": room skipped: " + (problem.empty() ? "no storey" : problem));

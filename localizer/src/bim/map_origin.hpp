@@ -120,7 +120,7 @@ inline Eigen::Vector2d moveRootsNearOrigin(BuildingModel& model, double length_u
   }
   char text[200];
   std::snprintf(text, sizeof text,
-                "the plan's site lies %.1f km from its origin: the map frame is the plan's moved by (%.0f, %.0f) m "
+                "the plan's building lies %.1f km from its origin: the map frame is the plan's moved by (%.0f, %.0f) m "
                 "(building.json: map_origin_in_plan_m)",
                 offset_m.norm() / 1000.0, -offset_m.x(), -offset_m.y());
   warnings.emplace_back(text);

@@ -97,7 +97,6 @@ std::optional<Room> roomFromGeometry(const RawProduct& space, std::string& probl
                   : "no floor outline in its geometry";
     return std::nullopt;
   }
-  if (problem = farFromMap(outline, room.floor_z, room.floor_z + room.height_m); !problem.empty()) return std::nullopt;
   room.footprint = outline;
   room.area_m2 = signedArea(outline);
   room.centre = areaCentroid(outline);

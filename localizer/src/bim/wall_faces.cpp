@@ -2,6 +2,7 @@
 
 #include <bimloc/bim/geometry2d.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -47,7 +48,6 @@ std::optional<Wall> wallFromGeometry(const RawProduct& product, std::string& pro
       problem = "non-finite coordinates in its geometry";
       return std::nullopt;
     }
-  if (problem = farFromMap(xy, z_min, z_max); !problem.empty()) return std::nullopt;
   const Polygon2 hull = convexHull(xy);
   const Rectangle2 box = minAreaRectangle(hull);
   if (hull.size() < 3 || box.width < 1e-3 || box.length < 1e-3 || z_max - z_min < 1e-3) {
@@ -81,13 +81,25 @@ std::optional<Wall> wallFromGeometry(const RawProduct& product, std::string& pro
   return wall;
 }
 
-std::string farFromMap(const std::vector<Eigen::Vector2d>& xy, double z_min, double z_max) {
+Eigen::Vector2d planMiddle(std::vector<Eigen::Vector2d> points) {
+  points.erase(std::remove_if(points.begin(), points.end(), [](const Eigen::Vector2d& p) { return !p.allFinite(); }), points.end());
+  if (points.empty()) return Eigen::Vector2d::Zero();
+  const auto median = [&](int axis) {
+    std::vector<double> v;
+    for (const auto& p : points) v.push_back(p[axis]);
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  return {median(0), median(1)};
+}
+
+std::string farFromPlan(const std::vector<Eigen::Vector2d>& xy, double z_min, double z_max, const Eigen::Vector2d& middle) {
   double farthest = std::max(std::abs(z_min), std::abs(z_max));
-  for (const auto& p : xy) farthest = std::max(farthest, p.cwiseAbs().maxCoeff());
-  if (!(farthest > kFarthestElementM)) return "";
-  char text[120];
-  std::snprintf(text, sizeof text, "a coordinate %.3g m from the map's origin (no plan reaches %.0f km: damage?)", farthest,
-                kFarthestElementM / 1000.0);
+  for (const auto& p : xy) farthest = std::max(farthest, (p - middle).cwiseAbs().maxCoeff());
+  if (!std::isnan(farthest) && !(farthest > kFarthestElementM)) return "";
+  char text[140];
+  std::snprintf(text, sizeof text, "a coordinate %.3g m from the middle of the plan's walls (no building is %.0f km long: damage?)",
+                farthest, kFarthestElementM / 1000.0);
   return text;
 }
 
