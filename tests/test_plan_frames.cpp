@@ -7,10 +7,15 @@
 #include <bimloc/bim/building_json.hpp>
 #include <bimloc/bim/ifc_reader.hpp>
 
+#include "bim/extraction.hpp"
+#include "bim/raw_model.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <optional>
+#include <vector>
 #include <string>
 
 using bimloc::test::anyWarningHas;
@@ -152,4 +157,51 @@ TEST(PlanFrames, AnElementFarBeyondAnyPlanIsSkippedOrRefusedByName) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("storeys[0].rooms[3]: a coordinate 1e+30 m from the middle"), std::string::npos) << e.what();
   }
+}
+
+// The rule of each storey's level, case by case, on raw storeys (storey_levels.cpp).
+TEST(PlanFrames, EachStoreyLevelComesFromWhereTheGeometryIs) {
+  namespace d = bimloc::bim::detail;
+  const auto storey = [](int id, std::optional<double> elevation, double placed) {
+    d::RawStorey s;
+    s.entity_id = id, s.global_id = "g" + std::to_string(id), s.name = "S" + std::to_string(id);
+    s.elevation_m = elevation, s.placement_z_m = placed;
+    return s;
+  };
+  const auto levels = [](std::vector<d::RawStorey> storeys, std::vector<std::string>& warnings) {
+    d::RawModel raw;
+    raw.storeys = std::move(storeys);
+    return d::storeyLevels(raw, warnings);
+  };
+  std::vector<std::string> w;
+  // Both agree (within a millimetre): Elevation as written, no warning.
+  auto l = levels({storey(1, 3.1000000000004, 3.1), storey(2, 0.0, 0.0)}, w);
+  EXPECT_EQ(l[0].elevation_m, 3.1000000000004);
+  EXPECT_EQ(l[0].source, "Elevation");
+  EXPECT_TRUE(w.empty());
+  // A site 400 m up: the placements, each named.
+  l = levels({storey(1, 0.0, 400.0), storey(2, 3.0, 403.0)}, w);
+  EXPECT_EQ(l[0].elevation_m, 400.0);
+  EXPECT_EQ(l[1].elevation_m, 403.0);
+  EXPECT_EQ(l[1].source, "placement");
+  EXPECT_EQ(w.size(), 2u);
+  // Placements that do not tell the storeys apart: Elevation.
+  w.clear();
+  l = levels({storey(1, 0.0, 0.0), storey(2, 3.0, 0.0)}, w);
+  EXPECT_EQ(l[1].elevation_m, 3.0);
+  EXPECT_EQ(l[1].source, "Elevation");
+  // No Elevation: the placement (ExampleHOM).
+  l = levels({storey(1, std::nullopt, 2.875)}, w);
+  EXPECT_EQ(l[0].elevation_m, 2.875);
+  EXPECT_EQ(l[0].source, "placement");
+  // An Elevation no floor has: named and ignored; neither usable: 0 m, named.
+  w.clear();
+  l = levels({storey(1, -1e300, 0.0), storey(2, std::nullopt, 1e30)}, w);
+  EXPECT_EQ(l[0].elevation_m, 0.0);
+  EXPECT_EQ(l[0].source, "placement");
+  EXPECT_EQ(l[1].source, "none");
+  EXPECT_EQ(l[1].elevation_m, 0.0);
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_NE(w[0].find("'S1': Elevation -1e+300"), std::string::npos) << w[0];
+  EXPECT_NE(w[1].find("'S2': neither its Elevation nor its placement"), std::string::npos) << w[1];
 }

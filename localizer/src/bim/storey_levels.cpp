@@ -20,7 +20,7 @@ bool usable(double z) { return std::isfinite(z) && std::abs(z) <= kFarthestLevel
 
 std::string metres(double v) {
   char text[40];
-  std::snprintf(text, sizeof text, "%.3f m", v);
+  std::snprintf(text, sizeof text, std::abs(v) < 1e6 ? "%.3f m" : "%.3g m", v);  // millimetres, or the damage's size
   return text;
 }
 
