@@ -1,14 +1,15 @@
 // Moves a georeferenced plan near the origin before its geometry is converted. Plans from
-// surveyed sites place the IfcSite at map coordinates (Swiss LV95 2 600 000 / 1 200 000 m, a
-// UTM northing of 5 500 000 m): there a float, which the storey meshes and the ray caster use,
-// holds 0.25-0.5 m, and IFC++'s boolean cuts lost whole walls (site_office placed at UTM
-// coordinates: 3 of 16 walls "degenerate", its runs' ATE 0.115 m against 0.010 m). So the
-// root placements (IfcLocalPlacement without PlacementRelTo) are moved by one horizontal
-// offset, the first storey's place in whole metres, before the conversion: every product hangs from them, so the plan is
-// the same plan, shifted. bimloc's map frame is then the plan's frame less that offset
-// (Building::map_origin_in_plan_m, in building.json; REP 105's earth -> map). Heights are
-// kept: a site 400 m above sea level is no problem for a float.
-// A plan whose roots lie within kLocalFrameM of its origin is left exactly as it was.
+// surveyed sites place the IfcSite (or the building) at map coordinates (Swiss LV95
+// 2 600 000 / 1 200 000 m, a UTM northing of 5 500 000 m): there a float, which the storey
+// meshes and the ray caster use, holds 0.25-0.5 m, and IFC++'s boolean cuts lost whole walls
+// (site_office placed at UTM coordinates: 3 of 16 walls "degenerate", its runs' ATE 0.115 m
+// against 0.010 m). So the root placements (IfcLocalPlacement without PlacementRelTo) are
+// moved by one horizontal offset, the first storey's place in whole metres, before the
+// conversion: every product hangs from them, so the plan is the same plan, shifted. bimloc's
+// map frame is then the plan's frame less that offset (Building::map_origin_in_plan_m, in
+// building.json; REP 105's earth -> map). Heights are kept: a site 400 m above sea level is no
+// problem for a float. A plan whose first storey lies within kLocalFrameM of its origin is
+// left exactly as it was.
 // Header-only on purpose: included by ifc_geometry.cpp alone, the one IFC++ translation unit.
 #pragma once
 
@@ -41,7 +42,8 @@ constexpr double kLocalFrameM = 8192.0;
 inline Eigen::Vector3d ratios(const shared_ptr<IfcDirection>& d, const Eigen::Vector3d& otherwise) {
   if (!d || d->m_DirectionRatios.size() < 2) return otherwise;
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < 3 && k < d->m_DirectionRatios.size(); ++k) v[static_cast<Eigen::Index>(k)] = d->m_DirectionRatios[k] ? d->m_DirectionRatios[k]->m_value : 0.0;
+  for (std::size_t k = 0; k < 3 && k < d->m_DirectionRatios.size(); ++k)
+    if (d->m_DirectionRatios[k]) v[static_cast<Eigen::Index>(k)] = d->m_DirectionRatios[k]->m_value;
   return v.allFinite() && v.norm() > 1e-12 ? Eigen::Vector3d(v.normalized()) : otherwise;
 }
 
@@ -58,7 +60,7 @@ inline Eigen::Isometry3d chainTransform(const shared_ptr<IfcObjectPlacement>& pl
     Eigen::Isometry3d local = Eigen::Isometry3d::Identity();
     if (rel && rel->m_Location)
       for (std::size_t k = 0; k < 3 && k < rel->m_Location->m_Coordinates.size(); ++k)
-        if (rel->m_Location->m_Coordinates[k]) local.translation()[static_cast<Eigen::Index>(k)] = rel->m_Location->m_Coordinates[k]->m_value;
+        if (const auto& c = rel->m_Location->m_Coordinates[k]) local.translation()[static_cast<Eigen::Index>(k)] = c->m_value;
     if (auto p3 = dynamic_pointer_cast<IfcAxis2Placement3D>(rel)) {
       const Eigen::Vector3d z = ratios(p3->m_Axis, Eigen::Vector3d::UnitZ());
       Eigen::Vector3d x = ratios(p3->m_RefDirection, Eigen::Vector3d::UnitX());
@@ -79,17 +81,14 @@ inline Eigen::Isometry3d chainTransform(const shared_ptr<IfcObjectPlacement>& pl
 
 // Returns the offset taken off (plan frame, metres; zero when none) and says so in `warnings`.
 inline Eigen::Vector2d moveRootsNearOrigin(BuildingModel& model, double length_unit_m, std::vector<std::string>& warnings) {
-  struct Root {
-    IfcLocalPlacement* placement;
-  };
-  std::vector<Root> roots;
+  std::vector<IfcLocalPlacement*> roots;
   // Where the building is: the first storey's placement in the world (the site's location, or
   // the building's under a site at the origin, as some exporters write a survey point).
   std::optional<Eigen::Vector3d> storey_at;
   for (const auto& [id, entity] : model.getMapIfcEntities()) {
-    if (auto local = dynamic_pointer_cast<IfcLocalPlacement>(entity); local && !local->m_PlacementRelTo &&
-                                                                       dynamic_pointer_cast<IfcPlacement>(local->m_RelativePlacement))
-      roots.push_back({local.get()});
+    auto local = dynamic_pointer_cast<IfcLocalPlacement>(entity);
+    if (local && !local->m_PlacementRelTo && dynamic_pointer_cast<IfcPlacement>(local->m_RelativePlacement))
+      roots.push_back(local.get());
     if (auto storey = dynamic_pointer_cast<IfcBuildingStorey>(entity); storey && !storey_at && storey->m_ObjectPlacement)
       storey_at = chainTransform(storey->m_ObjectPlacement).translation() * length_unit_m;
   }
@@ -97,10 +96,10 @@ inline Eigen::Vector2d moveRootsNearOrigin(BuildingModel& model, double length_u
   // Whole metres: the map frame is the plan's less round numbers.
   const Eigen::Vector2d offset_m(std::round(storey_at->x()), std::round(storey_at->y()));
   if (!(offset_m.norm() > kLocalFrameM) || !(offset_m.norm() < 1e9)) return Eigen::Vector2d::Zero();
-  for (const Root& r : roots) {
+  for (IfcLocalPlacement* root : roots) {
     // A new location and a new placement for each root: both may be shared with placements
     // that are not roots (site_office's #4 is every wall's).
-    auto old = dynamic_pointer_cast<IfcPlacement>(r.placement->m_RelativePlacement);
+    auto old = dynamic_pointer_cast<IfcPlacement>(root->m_RelativePlacement);
     shared_ptr<IfcCartesianPoint> moved(new IfcCartesianPoint());
     const std::size_t dims = old->m_Location ? old->m_Location->m_Coordinates.size() : 0;
     for (std::size_t k = 0; k < std::max<std::size_t>(dims, 2); ++k) {
@@ -111,11 +110,11 @@ inline Eigen::Vector2d moveRootsNearOrigin(BuildingModel& model, double length_u
     if (auto p3 = dynamic_pointer_cast<IfcAxis2Placement3D>(old)) {
       shared_ptr<IfcAxis2Placement3D> copy(new IfcAxis2Placement3D(*p3));
       copy->m_Location = moved;
-      r.placement->m_RelativePlacement = copy;
+      root->m_RelativePlacement = copy;
     } else if (auto p2 = dynamic_pointer_cast<IfcAxis2Placement2D>(old)) {
       shared_ptr<IfcAxis2Placement2D> copy(new IfcAxis2Placement2D(*p2));
       copy->m_Location = moved;
-      r.placement->m_RelativePlacement = copy;
+      root->m_RelativePlacement = copy;
     }
   }
   char text[200];
