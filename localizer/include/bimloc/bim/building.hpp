@@ -127,7 +127,7 @@ struct Storey {
   std::string id;  // IFC GlobalId
   std::string name;
   double elevation_m = 0.0;
-  std::string elevation_source;  // "Elevation" or "placement"
+  std::string elevation_source;  // "Elevation", "placement" or "none" (0 m: neither gave a height)
   std::vector<Room> rooms;
   std::vector<Wall> walls;
   TriangleMesh mesh;  // every physical element, floor below and ceiling above; no spaces
