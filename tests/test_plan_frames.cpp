@@ -96,6 +96,22 @@ TEST(PlanFrames, AGeoreferencedSiteReadsAsThePlanAtTheOriginAndNamesTheOffset) {
     for (std::size_t s = 0; s < 2; ++s)
       EXPECT_LT((f.storeys[0].walls[k].faces[s].start - plain.storeys[0].walls[k].faces[s].start - Eigen::Vector3d(0.25, 0.375, 0)).norm(), 1e-6);
   EXPECT_TRUE(converges(utm, "R101"));
+  // The walls hung from a far placement under a storey at the origin (29 placements moved to
+  // #9021): moved by their middle, whole metres; the walls are the plain plan's less the
+  // offset's part beyond the far placement, none lost (IFC++'s cuts lost 3 at UTM before).
+  std::string text = plainPlan();
+  for (std::size_t at = text.find("IFCLOCALPLACEMENT(#21,"); at != std::string::npos; at = text.find("IFCLOCALPLACEMENT(#21,", at))
+    text.replace(at, 22, "IFCLOCALPLACEMENT(#9021,");
+  text = mutated(text, "#22=IFCBUILDINGSTOREY(",
+                 "#9003=IFCCARTESIANPOINT((500000.,5500000.,0.));\n#9004=IFCAXIS2PLACEMENT3D(#9003,#1,#2);\n"
+                 "#9021=IFCLOCALPLACEMENT(#21,#9004);\n#22=IFCBUILDINGSTOREY(");
+  const bim::Building e = bim::readIfc(writeFile(dir, "walls_far.ifc", text));
+  const Eigen::Vector2d beyond = e.map_origin_in_plan_m - Eigen::Vector2d(500000, 5500000);
+  EXPECT_LT(beyond.norm(), 50.0) << e.map_origin_in_plan_m.transpose();
+  EXPECT_EQ(beyond, beyond.array().round().matrix());
+  ASSERT_EQ(e.storeys[0].walls.size(), plain.storeys[0].walls.size());
+  for (std::size_t k = 0; k < e.storeys[0].walls.size(); ++k)
+    EXPECT_LT((e.storeys[0].walls[k].faces[0].start.head<2>() + beyond - plain.storeys[0].walls[k].faces[0].start.head<2>()).norm(), 1e-6);
 }
 
 // A storey written at -1e300 m (one damaged number) aborted the ray caster (an assertion in

@@ -4,12 +4,12 @@
 // meshes and the ray caster use, holds 0.25-0.5 m, and IFC++'s boolean cuts lost whole walls
 // (site_office placed at UTM coordinates: 3 of 16 walls "degenerate", its runs' ATE 0.115 m
 // against 0.010 m). So the root placements (IfcLocalPlacement without PlacementRelTo) are
-// moved by one horizontal offset, the first storey's place in whole metres, before the
-// conversion: every product hangs from them, so the plan is the same plan, shifted. bimloc's
-// map frame is then the plan's frame less that offset (Building::map_origin_in_plan_m, in
-// building.json; REP 105's earth -> map). Heights are kept: a site 400 m above sea level is no
-// problem for a float. A plan whose first storey lies within kLocalFrameM of its origin is
-// left exactly as it was.
+// moved by one horizontal offset, in whole metres, before the conversion (the first storey's
+// place, or the walls' middle where they hang far from it): every product hangs from them, so
+// the plan is the same plan, shifted. bimloc's map frame is then the plan's frame less that
+// offset (Building::map_origin_in_plan_m, in building.json; REP 105's earth -> map). Heights
+// are kept: a site 400 m above sea level is no problem for a float. A plan whose walls lie
+// within kLocalFrameM of its origin is left exactly as it was.
 // Header-only on purpose: included by ifc_geometry.cpp alone, the one IFC++ translation unit.
 #pragma once
 
@@ -19,6 +19,7 @@
 #include <ifcpp/IFC4/include/IfcCartesianPoint.h>
 #include <ifcpp/IFC4/include/IfcDirection.h>
 #include <ifcpp/IFC4/include/IfcReal.h>
+#include <ifcpp/IFC4/include/IfcWall.h>
 #include <ifcpp/IFC4/include/IfcLengthMeasure.h>
 #include <ifcpp/IFC4/include/IfcLocalPlacement.h>
 #include <ifcpp/model/BuildingModel.h>
@@ -83,18 +84,36 @@ inline Eigen::Isometry3d chainTransform(const shared_ptr<IfcObjectPlacement>& pl
 inline Eigen::Vector2d moveRootsNearOrigin(BuildingModel& model, double length_unit_m, std::vector<std::string>& warnings) {
   std::vector<IfcLocalPlacement*> roots;
   // Where the building is: the first storey's placement in the world (the site's location, or
-  // the building's under a site at the origin, as some exporters write a survey point).
+  // the building's under a site at the origin, as some exporters write a survey point); and
+  // where its walls are, the median of their placements (a file may hang them from a far
+  // placement under a storey at the origin).
   std::optional<Eigen::Vector3d> storey_at;
+  std::vector<double> wall_x, wall_y;
   for (const auto& [id, entity] : model.getMapIfcEntities()) {
     auto local = dynamic_pointer_cast<IfcLocalPlacement>(entity);
     if (local && !local->m_PlacementRelTo && dynamic_pointer_cast<IfcPlacement>(local->m_RelativePlacement))
       roots.push_back(local.get());
     if (auto storey = dynamic_pointer_cast<IfcBuildingStorey>(entity); storey && !storey_at && storey->m_ObjectPlacement)
       storey_at = chainTransform(storey->m_ObjectPlacement).translation() * length_unit_m;
+    if (auto wall = dynamic_pointer_cast<IfcWall>(entity); wall && wall->m_ObjectPlacement) {
+      const Eigen::Vector3d at = chainTransform(wall->m_ObjectPlacement).translation() * length_unit_m;
+      if (at.allFinite()) wall_x.push_back(at.x()), wall_y.push_back(at.y());
+    }
   }
-  if (!storey_at || !storey_at->allFinite()) return Eigen::Vector2d::Zero();
+  const auto median = [](std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  std::optional<Eigen::Vector2d> walls_at;
+  if (!wall_x.empty()) walls_at = Eigen::Vector2d(median(wall_x), median(wall_y));
+  // The storey's place where its walls are near it (a whole-metre offset that is the survey
+  // point's own), else the walls' middle; nothing to move where the walls are near the origin.
+  Eigen::Vector2d at = walls_at ? *walls_at : storey_at ? Eigen::Vector2d(storey_at->head<2>()) : Eigen::Vector2d::Zero();
+  if (walls_at && storey_at && storey_at->allFinite() && (storey_at->head<2>() - *walls_at).norm() <= kLocalFrameM)
+    at = storey_at->head<2>();
+  if (!at.allFinite()) return Eigen::Vector2d::Zero();
   // Whole metres: the map frame is the plan's less round numbers.
-  const Eigen::Vector2d offset_m(std::round(storey_at->x()), std::round(storey_at->y()));
+  const Eigen::Vector2d offset_m(std::round(at.x()), std::round(at.y()));
   if (!(offset_m.norm() > kLocalFrameM) || !(offset_m.norm() < 1e9)) return Eigen::Vector2d::Zero();
   for (IfcLocalPlacement* root : roots) {
     // A new location and a new placement for each root: both may be shared with placements
