@@ -211,17 +211,12 @@ Building buildingFromJson(const nlohmann::json& doc) {
   const Eigen::Vector2d middle = detail::planMiddle(wall_points);
   for (std::size_t i = 0; i < b.storeys.size(); ++i) {
     const std::string where = "storeys[" + std::to_string(i) + "]";
-    for (std::size_t k = 0; k < b.storeys[i].walls.size(); ++k) {
-      const Wall& w = b.storeys[i].walls[k];
-      if (const auto far = detail::farFromPlan({w.start.head<2>(), w.end.head<2>()}, w.start.z(), w.start.z() + w.height_m, middle);
-          !far.empty())
+    for (std::size_t k = 0; k < b.storeys[i].walls.size(); ++k)
+      if (const auto far = detail::farFromPlan(b.storeys[i].walls[k], middle); !far.empty())
         throw std::runtime_error(where + ".walls[" + std::to_string(k) + "]: " + far);
-    }
-    for (std::size_t k = 0; k < b.storeys[i].rooms.size(); ++k) {
-      const Room& r = b.storeys[i].rooms[k];
-      if (const auto far = detail::farFromPlan(r.footprint, r.floor_z, r.floor_z + r.height_m, middle); !far.empty())
+    for (std::size_t k = 0; k < b.storeys[i].rooms.size(); ++k)
+      if (const auto far = detail::farFromPlan(b.storeys[i].rooms[k], middle); !far.empty())
         throw std::runtime_error(where + ".rooms[" + std::to_string(k) + "]: " + far);
-    }
   }
   if (version >= 2) {  // version 1 had no stairs
     const json& stairs = field(doc, "stairs", "building");

@@ -30,8 +30,11 @@ constexpr double kFarthestElementM = 1e5;
 // The middle of the plan: the median x and y of the points (the walls' ends), robust to the few
 // a damaged file throws far out; zero when there is none.
 Eigen::Vector2d planMiddle(std::vector<Eigen::Vector2d> points);
-// Why the points put an element out of the plan ("" when none is that far from `middle`).
-std::string farFromPlan(const std::vector<Eigen::Vector2d>& xy, double z_min, double z_max, const Eigen::Vector2d& middle);
+// Why the wall (its ends, base to top) or the room (its footprint, floor to ceiling) is out of
+// the plan ("" when no point of it is that far from `middle`): the one rule of readIfc and of
+// buildingFromJson.
+std::string farFromPlan(const Wall& wall, const Eigen::Vector2d& middle);
+std::string farFromPlan(const Room& room, const Eigen::Vector2d& middle);
 
 // A wall as a straight box: axis, thickness, height and its two faces (paper Eq. 1 and 2).
 // Returns nothing and says why in `problem` when the product has no usable geometry.

@@ -175,10 +175,7 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     std::string problem;
     auto wall = detail::wallFromGeometry(p, problem);
     if (wall)
-      if (std::string far = detail::farFromPlan({wall->start.head<2>(), wall->end.head<2>()}, wall->start.z(),
-                                                 wall->start.z() + wall->height_m, middle);
-          !far.empty())
-        wall.reset(), problem = far;
+      if (std::string far = detail::farFromPlan(*wall, middle); !far.empty()) wall.reset(), problem = far;
     const int s = storeyFor(p, new_index, building.storeys);
     if (!wall || s < 0) {
       building.warnings.push_back(describeProduct(p) + ": wall skipped: " + (problem.empty() ? "no storey" : problem));
@@ -197,8 +194,7 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
     std::string problem;
     auto room = detail::roomFromGeometry(p, problem);
     if (room)
-      if (std::string far = detail::farFromPlan(room->footprint, room->floor_z, room->floor_z + room->height_m, middle); !far.empty())
-        room.reset(), problem = far;
+      if (std::string far = detail::farFromPlan(*room, middle); !far.empty()) room.reset(), problem = far;
     const int s = storeyFor(p, new_index, building.storeys);
     if (!room || s < 0) {
       building.warnings.push_back(describeProduct(p) + ": room skipped: " + (problem.empty() ? "no storey" : problem));

@@ -17,15 +17,16 @@
 #include <ifcpp/IFC4/include/IfcAxis2Placement3D.h>
 #include <ifcpp/IFC4/include/IfcBuildingStorey.h>
 #include <ifcpp/IFC4/include/IfcCartesianPoint.h>
-#include <ifcpp/IFC4/include/IfcDirection.h>
-#include <ifcpp/IFC4/include/IfcReal.h>
 #include <ifcpp/IFC4/include/IfcWall.h>
 #include <ifcpp/IFC4/include/IfcLengthMeasure.h>
 #include <ifcpp/IFC4/include/IfcLocalPlacement.h>
+#include <ifcpp/geometry/Carve/PlacementConverter.h>
 #include <ifcpp/model/BuildingModel.h>
 
+#include "extraction.hpp"
+#include "ifc_profile.hpp"
+
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include <cmath>
 #include <cstdio>
@@ -40,46 +41,6 @@ namespace bimloc::bim::detail {
 // Within this of the origin a float holds a millimetre (its step at 8 192 m is 0.98 mm).
 constexpr double kLocalFrameM = 8192.0;
 
-inline Eigen::Vector3d ratios(const shared_ptr<IfcDirection>& d, const Eigen::Vector3d& otherwise) {
-  if (!d || d->m_DirectionRatios.size() < 2) return otherwise;
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < 3 && k < d->m_DirectionRatios.size(); ++k)
-    if (d->m_DirectionRatios[k]) v[static_cast<Eigen::Index>(k)] = d->m_DirectionRatios[k]->m_value;
-  return v.allFinite() && v.norm() > 1e-12 ? Eigen::Vector3d(v.normalized()) : otherwise;
-}
-
-// The world transform of a local placement chain, file units (IFC++'s converter is not built
-// yet): location, and the axes where given (a rotated site moves what hangs from it).
-inline Eigen::Isometry3d chainTransform(const shared_ptr<IfcObjectPlacement>& placement) {
-  Eigen::Isometry3d world = Eigen::Isometry3d::Identity();
-  std::vector<IfcLocalPlacement*> chain;
-  for (auto p = dynamic_pointer_cast<IfcLocalPlacement>(placement); p && chain.size() < 64;
-       p = dynamic_pointer_cast<IfcLocalPlacement>(p->m_PlacementRelTo))
-    chain.push_back(p.get());
-  for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
-    auto rel = dynamic_pointer_cast<IfcPlacement>((*it)->m_RelativePlacement);
-    Eigen::Isometry3d local = Eigen::Isometry3d::Identity();
-    if (rel && rel->m_Location)
-      for (std::size_t k = 0; k < 3 && k < rel->m_Location->m_Coordinates.size(); ++k)
-        if (const auto& c = rel->m_Location->m_Coordinates[k]) local.translation()[static_cast<Eigen::Index>(k)] = c->m_value;
-    if (auto p3 = dynamic_pointer_cast<IfcAxis2Placement3D>(rel)) {
-      const Eigen::Vector3d z = ratios(p3->m_Axis, Eigen::Vector3d::UnitZ());
-      Eigen::Vector3d x = ratios(p3->m_RefDirection, Eigen::Vector3d::UnitX());
-      x = (x - z * x.dot(z));
-      if (x.norm() > 1e-9) {
-        x.normalize();
-        local.linear().col(0) = x, local.linear().col(1) = z.cross(x), local.linear().col(2) = z;
-      }
-    } else if (auto p2 = dynamic_pointer_cast<IfcAxis2Placement2D>(rel)) {
-      const Eigen::Vector3d x = ratios(p2->m_RefDirection, Eigen::Vector3d::UnitX());
-      const Eigen::Vector3d flat = Eigen::Vector3d(x.x(), x.y(), 0.0).normalized();
-      if (flat.allFinite()) local.linear().col(0) = flat, local.linear().col(1) = Eigen::Vector3d::UnitZ().cross(flat);
-    }
-    world = world * local;
-  }
-  return world;
-}
-
 // Returns the offset taken off (plan frame, metres; zero when none) and says so in `warnings`.
 inline Eigen::Vector2d moveRootsNearOrigin(BuildingModel& model, double length_unit_m, std::vector<std::string>& warnings) {
   std::vector<IfcLocalPlacement*> roots;
@@ -87,25 +48,24 @@ inline Eigen::Vector2d moveRootsNearOrigin(BuildingModel& model, double length_u
   // the building's under a site at the origin, as some exporters write a survey point); and
   // where its walls are, the median of their placements (a file may hang them from a far
   // placement under a storey at the origin).
+  // IFC++'s own placement converter (ProfileReader), the one the geometry is converted with;
+  // its origins are in metres.
+  shared_ptr<PlacementConverter> converter(new PlacementConverter(model.getUnitConverter()));
+  const ProfileReader places(converter, length_unit_m);
   std::optional<Eigen::Vector3d> storey_at;
-  std::vector<double> wall_x, wall_y;
+  std::vector<Eigen::Vector2d> walls;
   for (const auto& [id, entity] : model.getMapIfcEntities()) {
     auto local = dynamic_pointer_cast<IfcLocalPlacement>(entity);
     if (local && !local->m_PlacementRelTo && dynamic_pointer_cast<IfcPlacement>(local->m_RelativePlacement))
       roots.push_back(local.get());
     if (auto storey = dynamic_pointer_cast<IfcBuildingStorey>(entity); storey && !storey_at && storey->m_ObjectPlacement)
-      storey_at = chainTransform(storey->m_ObjectPlacement).translation() * length_unit_m;
-    if (auto wall = dynamic_pointer_cast<IfcWall>(entity); wall && wall->m_ObjectPlacement) {
-      const Eigen::Vector3d at = chainTransform(wall->m_ObjectPlacement).translation() * length_unit_m;
-      if (at.allFinite()) wall_x.push_back(at.x()), wall_y.push_back(at.y());
-    }
+      storey_at = places.placementOrigin(storey->m_ObjectPlacement);
+    if (auto wall = dynamic_pointer_cast<IfcWall>(entity); wall && wall->m_ObjectPlacement)
+      walls.push_back(places.placementOrigin(wall->m_ObjectPlacement).head<2>());
   }
-  const auto median = [](std::vector<double>& v) {
-    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
   std::optional<Eigen::Vector2d> walls_at;
-  if (!wall_x.empty()) walls_at = Eigen::Vector2d(median(wall_x), median(wall_y));
+  if (std::any_of(walls.begin(), walls.end(), [](const Eigen::Vector2d& w) { return w.allFinite(); }))
+    walls_at = planMiddle(walls);
   // The storey's place where its walls are near it (a whole-metre offset that is the survey
   // point's own), else the walls' middle; nothing to move where the walls are near the origin.
   Eigen::Vector2d at = walls_at ? *walls_at : storey_at ? Eigen::Vector2d(storey_at->head<2>()) : Eigen::Vector2d::Zero();

@@ -93,6 +93,8 @@ Eigen::Vector2d planMiddle(std::vector<Eigen::Vector2d> points) {
   return {median(0), median(1)};
 }
 
+namespace {
+
 std::string farFromPlan(const std::vector<Eigen::Vector2d>& xy, double z_min, double z_max, const Eigen::Vector2d& middle) {
   double farthest = std::max(std::abs(z_min), std::abs(z_max));
   for (const auto& p : xy) farthest = std::max(farthest, (p - middle).cwiseAbs().maxCoeff());
@@ -101,6 +103,16 @@ std::string farFromPlan(const std::vector<Eigen::Vector2d>& xy, double z_min, do
   std::snprintf(text, sizeof text, "a coordinate %.3g m from the middle of the plan's walls (no building is %.0f km long: damage?)",
                 farthest, kFarthestElementM / 1000.0);
   return text;
+}
+
+}  // namespace
+
+std::string farFromPlan(const Wall& wall, const Eigen::Vector2d& middle) {
+  return farFromPlan({wall.start.head<2>(), wall.end.head<2>()}, wall.start.z(), wall.start.z() + wall.height_m, middle);
+}
+
+std::string farFromPlan(const Room& room, const Eigen::Vector2d& middle) {
+  return farFromPlan(room.footprint, room.floor_z, room.floor_z + room.height_m, middle);
 }
 
 }  // namespace bimloc::bim::detail
