@@ -3,11 +3,30 @@
 // and RANSAC's cost does not grow with the scan.
 #include "plane_steps.hpp"
 
+#include <bimloc/verbosity.hpp>
+
+#include <pcl/console/print.h>
 #include <pcl/filters/voxel_grid.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include <atomic>
+
+// Here, where PCL is used: its level is one global, set before every use, so the library is
+// quiet without its user having to call anything.
+namespace bimloc {
+namespace {
+std::atomic<bool> g_verbose{false};
+}  // namespace
+void setVerbose(bool verbose) { g_verbose = verbose; }
+bool verbose() { return g_verbose; }
+}  // namespace bimloc
+
 namespace bimloc::planes::detail {
+
+void applyPclVerbosity() {
+  pcl::console::setVerbosityLevel(verbose() ? pcl::console::L_INFO : pcl::console::L_ALWAYS);
+}
 
 Cloud validPoints(const Cloud& points, double min_range_m, double max_range_m) {
   Cloud valid;

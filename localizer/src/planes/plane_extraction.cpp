@@ -206,11 +206,10 @@ PlaneExtraction extractPlanes(const std::vector<Eigen::Vector3f>& points_sensor,
       take(*candidate, standing, &pool, true);
     }
   }
-  const detail::RansacCloud ransac_cloud(cloud);
   for (int attempt = 0; accepted < config.max_planes && attempt < kAttemptsPerPlane * config.max_planes &&
                         pool.size() >= fewest;
        ++attempt) {
-    const auto candidate = detail::ransacPlane(ransac_cloud, pool, config.ransac_iterations, config.distance_threshold_m,
+    const auto candidate = detail::ransacPlane(cloud, pool, config.ransac_iterations, config.distance_threshold_m,
                                                attemptSeed(config.seed, attempt));
     // No plane left worth having: the largest RANSAC found is too small at any range. One too
     // small at its own range (near clutter) leaves the pool (take), and a far wall may follow.

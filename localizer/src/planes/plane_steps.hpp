@@ -1,12 +1,11 @@
 // The steps of the plane extraction, each a function of plain data. PCL is included only by
-// the .cpp files that call it (downsample.cpp, ransac_plane.cpp).
+// the .cpp file that calls it (downsample.cpp).
 #pragma once
 
 #include <bimloc/planes/plane_extraction.hpp>
 
 #include <Eigen/Core>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <vector>
 
@@ -22,32 +21,14 @@ Cloud validPoints(const Cloud& points, double min_range_m, double max_range_m);
 Cloud voxelDownsample(const Cloud& points, double voxel_size_m);
 
 // One RANSAC plane over cloud[pool] (pcl::SampleConsensusModelPlane + RandomSampleConsensus,
-// sampling seeded by `seed`): the plane with the most points within threshold_m, and those points.
+// step for step, sampling seeded by `seed`): the plane with the most points within
+// threshold_m, and those points.
 struct RansacPlane {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   double d = 0;
   Indices inliers;  // indices into cloud, ascending
 };
 std::optional<RansacPlane> ransacPlane(const Cloud& cloud, const Indices& pool, int iterations, double threshold_m,
-                                       std::uint32_t seed);
-// The cloud as PCL's model reads it, made once for every attempt on one scan (each attempt
-// copied the whole scan's voxels into a PCL cloud of its own). PCL stays in ransac_plane.cpp.
-class RansacCloud {
- public:
-  explicit RansacCloud(const Cloud& cloud);
-  ~RansacCloud();
-  RansacCloud(const RansacCloud&) = delete;
-  RansacCloud& operator=(const RansacCloud&) = delete;
-  const Cloud& cloud() const { return *cloud_; }
-  struct Points;
-  const Points& points() const { return *points_; }
-
- private:
-  const Cloud* cloud_;
-  std::unique_ptr<Points> points_;
-};
-// ransacPlane(input.cloud(), pool, ...), the same plane.
-std::optional<RansacPlane> ransacPlane(const RansacCloud& input, const Indices& pool, int iterations, double threshold_m,
                                        std::uint32_t seed);
 
 // standing.cpp. The voxels whose x-y column (cell_m square) holds returns spanning at least

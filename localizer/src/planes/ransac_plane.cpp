@@ -1,35 +1,23 @@
-// One plane by RANSAC (S-Graphs' segmentation: SACMODEL_PLANE, RANSAC, 500 iterations),
-// through PCL's model and estimator directly rather than pcl::SACSegmentation, so that the
-// sampling can be seeded: PCL seeds every model's generator with the constant 12345 (or the
-// wall clock), which would give every call the same sample sequence and no way to vary it.
+// One plane by RANSAC (S-Graphs' segmentation: SACMODEL_PLANE, RANSAC, 500 iterations): PCL's
+// RandomSampleConsensus over its SampleConsensusModelPlane (PCL 1.13), step for step and draw
+// for draw, with two differences. The sampling is seeded: PCL seeds every model's generator
+// with the constant 12345 (or the wall clock), which would give every call the same sample
+// sequence and no way to vary it. And it is written out here, over the packed pool, rather than
+// run through PCL's classes: their indices, dynamic-size vectors, virtual calls and debug
+// prints cost as much as the count itself (issue 28, Speed). The same planes and inliers to the
+// bit: tests/test_ransac_plane.cpp runs PCL's own classes beside it.
 #include "band_count.hpp"
 #include "plane_steps.hpp"
 
-#include <bimloc/verbosity.hpp>
-
-#include <pcl/console/print.h>
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
-#include <pcl/sample_consensus/ransac.h>
-#include <pcl/sample_consensus/sac_model_plane.h>
+#include <boost/random/mersenne_twister.hpp>
+#include <boost/random/uniform_int.hpp>
 
 #include <Eigen/Eigenvalues>
-#include <atomic>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
-
-
-// Here, where PCL is used: its level is one global, set before every use, so the library is
-// quiet without its user having to call anything.
-namespace bimloc {
-namespace {
-std::atomic<bool> g_verbose{false};
-}  // namespace
-void setVerbose(bool verbose) { g_verbose = verbose; }
-bool verbose() { return g_verbose; }
-}  // namespace bimloc
 
 namespace bimloc::planes::detail {
 namespace {
@@ -39,6 +27,8 @@ constexpr double kRansacConfidence = 0.99;
 // A pool spread less than this across its main direction is a line (or a point): it holds no
 // plane, and PCL's model would report every one of its collinear samples on stderr.
 constexpr double kMinPoolWidth_m = 0.01;
+// Draws of collinear points before RANSAC gives up (PCL's max_sample_checks_).
+constexpr int kMaxSampleChecks = 1000;
 
 bool lineLike(const Cloud& cloud, const Indices& pool) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -58,115 +48,135 @@ bool lineLike(const Cloud& cloud, const Indices& pool) {
   return eig.eigenvalues()[1] < kMinPoolWidth_m * kMinPoolWidth_m;  // ascending: [1] is the middle one
 }
 
-// PCL's plane model with two changes. Its (protected) sample generator is reseeded: it is only
-// used to draw samples, and the estimator runs single-threaded (threads_ = -1, PCL's default),
-// so the draws, hence the plane, depend only on the points, the pool and the seed. And its
-// scoring loop, which RANSAC runs once per hypothesis over the whole pool and which PCL's
-// generic build runs through indices and dynamic-size vectors (about 14 ns a point), runs over
-// a packed copy of the pool instead (band_count.hpp): the same count (|n·p + d| < threshold),
-// at a thirtieth of the cost and less, stopped once it cannot beat the best count so far.
-// That best is the largest count returned: RandomSampleConsensus::computeModel (PCL 1.13,
-// ransac.hpp), single-threaded, keeps a hypothesis exactly when its count exceeds every
-// earlier one, starting from 0, and calls countWithinDistance for nothing else. A count
-// stopped early is no larger than that best, and discarded as the full count would be.
-class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
+// PCL's sample draw (SampleConsensusModel::drawIndexSample, PCL 1.13): three swaps in a
+// shuffled copy of the pool, each with a place drawn by boost's uniform_int over [0, INT_MAX]
+// from a Mersenne twister seeded by `seed` (PCL seeds it with 12345 and gives no way to vary it).
+class SampleDraw {
  public:
-  SeededPlaneModel(const PointCloudConstPtr& cloud, const pcl::Indices& indices, std::uint32_t seed)
-      : pcl::SampleConsensusModelPlane<pcl::PointXYZ>(cloud, indices, false) {
-    rng_alg_.seed(seed);
-    // PCL's default constraint, [](auto) { return true; }, takes the coefficients by value: a
-    // VectorXf copied, so allocated and freed, at every hypothesis scored (isModelValid). The
-    // same answer by reference.
-    setModelConstraints([](const Eigen::VectorXf&) { return true; });
-    x_.reserve(indices.size()), y_.reserve(indices.size()), z_.reserve(indices.size());
-    for (const auto i : indices) {
-      const auto& p = (*cloud)[i];
-      x_.push_back(p.x), y_.push_back(p.y), z_.push_back(p.z);
-    }
-  }
-
-  std::size_t countWithinDistance(const Eigen::VectorXf& model, const double threshold) const override {
-    if (!isModelValid(model)) return 0;
-    const std::size_t count = countInBand(x_.data(), y_.data(), z_.data(), x_.size(), model[0], model[1], model[2], model[3],
-                                          static_cast<float>(threshold), best_);
-    best_ = std::max(best_, count);
-    return count;
-  }
-
-  // The chosen plane's inliers, as PCL selects them (band_count.hpp: the same float residual,
-  // the same test), from the packed pool rather than through the indices.
-  void selectWithinDistance(const Eigen::VectorXf& model, const double threshold, pcl::Indices& inliers) override {
-    if (!isModelValid(model)) return;  // PCL's own: an error, and the inliers left as they were
-    inliers.clear(), error_sqr_dists_.clear();
-    pclPlaneInliers(x_.data(), y_.data(), z_.data(), indices_->data(), x_.size(), model[0], model[1], model[2], model[3], threshold,
-                    inliers, error_sqr_dists_);
-  }
-
- protected:
-  // PCL's test, without its message on stderr for every collinear sample (a quiet library: a
-  // degenerate sample is an ordinary event of RANSAC, and the draw simply goes on).
-  bool isSampleGood(const pcl::Indices& samples) const override {
-    if (samples.size() != 3) return false;
-    const Eigen::Vector3f p0 = (*input_)[samples[0]].getVector3fMap(), p1 = (*input_)[samples[1]].getVector3fMap(),
-                          p2 = (*input_)[samples[2]].getVector3fMap();
-    return (p1 - p0).cross(p2 - p0).stableNorm() >= Eigen::NumTraits<float>::dummy_precision();
+  SampleDraw(const Indices& pool, std::uint32_t seed) : shuffled_(pool), engine_(seed), place_(0, std::numeric_limits<int>::max()) {}
+  void draw(int sample[3]) {
+    const std::size_t n = shuffled_.size();
+    for (std::size_t i = 0; i < 3; ++i) std::swap(shuffled_[i], shuffled_[i + (place_(engine_) % (n - i))]);
+    std::copy(shuffled_.begin(), shuffled_.begin() + 3, sample);
   }
 
  private:
-  std::vector<float> x_, y_, z_;
-  mutable std::size_t best_ = 0;  // the largest count returned: RANSAC's best so far
+  Indices shuffled_;
+  boost::mt19937 engine_;
+  boost::uniform_int<> place_;
 };
+
+// One block of Eigen's stableNorm (StableNorm.h, stable_norm_kernel, Eigen 3.4): the running
+// scale rises to the block's largest magnitude, and the sum of squares is kept in its units.
+void stableNormBlock(const float* v, int n, float& ssq, float& scale, float& inv_scale) {
+  float largest = std::abs(v[0]);
+  for (int i = 1; i < n; ++i) largest = std::max(largest, std::abs(v[i]));
+  if (largest > scale) {
+    const float ratio = scale / largest;
+    ssq = ssq * (ratio * ratio);
+    const float inverse = 1.0f / largest;
+    if (inverse > std::numeric_limits<float>::max()) {
+      inv_scale = std::numeric_limits<float>::max(), scale = 1.0f / inv_scale;
+    } else if (largest > std::numeric_limits<float>::max()) {
+      inv_scale = 1.0f, scale = largest;
+    } else {
+      scale = largest, inv_scale = inverse;
+    }
+  } else if (largest != largest) {
+    scale = largest;
+  }
+  if (scale > 0.0f) {
+    float sum = (v[0] * inv_scale) * (v[0] * inv_scale);
+    for (int i = 1; i < n; ++i) sum += (v[i] * inv_scale) * (v[i] * inv_scale);
+    ssq += sum;
+  }
+}
+
+// The cross product's norm as PCL's compiled plane model gets it (libpcl_sample_consensus 1.13,
+// Debian): Eigen's stableNorm cuts a vector into blocks where its storage is 16-byte aligned,
+// and that function holds the 3-vector at an address 4 bytes short of it: one block of the
+// first coordinate, one of the other two. Another cut (or sqrt of the squared norm) differs in
+// the last bit for about one sample in ten, and with it the plane RANSAC keeps.
+float pclCrossNorm(const Eigen::Vector3f& cross) {
+  float ssq = 0.0f, scale = 0.0f, inv_scale = 1.0f;
+  stableNormBlock(cross.data(), 1, ssq, scale, inv_scale);
+  stableNormBlock(cross.data() + 1, 2, ssq, scale, inv_scale);
+  return scale * std::sqrt(ssq);
+}
+
+// The plane through three points (SampleConsensusModelPlane::computeModelCoefficients, with
+// its collinearity test, which isSampleGood makes first with the same numbers): none when the
+// points are collinear or too close. n·p0 summed as PCL's compiled dot product sums it.
+std::optional<Eigen::Vector4f> planeThrough(const Cloud& cloud, const int sample[3]) {
+  const Eigen::Vector3f& p0 = cloud[sample[0]];
+  const Eigen::Vector3f cross = (cloud[sample[1]] - p0).cross(cloud[sample[2]] - p0);
+  const float norm = pclCrossNorm(cross);
+  if (norm < Eigen::NumTraits<float>::dummy_precision()) return std::nullopt;
+  Eigen::Vector4f model;
+  model.head<3>() = cross / norm;
+  model[3] = -1.0f * (model[0] * p0.x() + (model[1] * p0.y() + model[2] * p0.z()));
+  return model;
+}
 
 }  // namespace
 
-void applyPclVerbosity() {
-  pcl::console::setVerbosityLevel(verbose() ? pcl::console::L_INFO : pcl::console::L_ALWAYS);
-}
-
-struct RansacCloud::Points {
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud{new pcl::PointCloud<pcl::PointXYZ>};
-};
-
-RansacCloud::RansacCloud(const Cloud& cloud) : cloud_(&cloud), points_(std::make_unique<Points>()) {
-  points_->cloud->resize(cloud.size());  // filled in place: as push_back, without its bookkeeping per point
-  for (std::size_t i = 0; i < cloud.size(); ++i) (*points_->cloud)[i] = pcl::PointXYZ(cloud[i].x(), cloud[i].y(), cloud[i].z());
-}
-RansacCloud::~RansacCloud() = default;
-
 std::optional<RansacPlane> ransacPlane(const Cloud& cloud, const Indices& pool, int iterations, double threshold_m,
                                        std::uint32_t seed) {
-  if (pool.size() < 3 || iterations < 1 || !(threshold_m > 0)) return std::nullopt;  // before the copy
-  return ransacPlane(RansacCloud(cloud), pool, iterations, threshold_m, seed);
-}
-
-std::optional<RansacPlane> ransacPlane(const RansacCloud& input, const Indices& pool, int iterations, double threshold_m,
-                                       std::uint32_t seed) {
-  applyPclVerbosity();
-  const Cloud& cloud = input.cloud();
   if (pool.size() < 3 || iterations < 1 || !(threshold_m > 0) || lineLike(cloud, pool)) return std::nullopt;
-  const pcl::Indices indices(pool.begin(), pool.end());
+  // The pool packed: RANSAC scores every hypothesis over all of it (band_count.hpp: the same
+  // count as PCL's, |n·p + d| < threshold, at a thirtieth of its cost and less, stopped once
+  // it cannot beat the best count so far; a count stopped early is no larger than that best,
+  // and discarded as the full count would be).
+  std::vector<float> x, y, z;
+  x.reserve(pool.size()), y.reserve(pool.size()), z.reserve(pool.size());
+  for (const int i : pool) x.push_back(cloud[i].x()), y.push_back(cloud[i].y()), z.push_back(cloud[i].z());
+  const float band = static_cast<float>(threshold_m);
 
-  // The model only reads the points (PCL's models keep their input const).
-  auto model = std::make_shared<SeededPlaneModel>(input.points().cloud, indices, seed);
-  pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model, threshold_m);
-  ransac.setMaxIterations(iterations);
-  ransac.setProbability(kRansacConfidence);
-  ransac.setNumberOfThreads(-1);  // sequential: parallel sampling would not be reproducible
-  if (!ransac.computeModel()) return std::nullopt;
+  // RandomSampleConsensus::computeModel (PCL 1.13, ransac.hpp), single-threaded, step for step:
+  // a hypothesis replaces the best when it counts more points; the number of trials needed
+  // for kRansacConfidence follows the best count; at most iterations + 1 trials. A draw of
+  // collinear points is drawn again, up to max_sample_checks_ (1000) times, then RANSAC stops.
+  SampleDraw draws(pool, seed);
+  const double log_probability = std::log(1.0 - kRansacConfidence);
+  const double one_over_indices = 1.0 / static_cast<double>(pool.size());
+  double needed = std::numeric_limits<double>::max();
+  std::size_t best_count = 0;
+  std::optional<Eigen::Vector4f> best;
+  for (int trials = 0;;) {
+    int sample[3];
+    std::optional<Eigen::Vector4f> model;
+    for (int check = 0; check < kMaxSampleChecks && !model; ++check) draws.draw(sample), model = planeThrough(cloud, sample);
+    if (!model) break;
+    const Eigen::Vector4f& m = *model;
+    const std::size_t count = countInBand(x.data(), y.data(), z.data(), x.size(), m[0], m[1], m[2], m[3], band, best_count);
+    if (count > best_count) {
+      best_count = count;
+      best = model;
+      const double w = static_cast<double>(best_count) * one_over_indices;
+      double p_outliers = 1.0 - std::pow(w, 3.0);  // a sample of three holds an outlier
+      p_outliers = std::max(std::numeric_limits<double>::epsilon(), p_outliers);
+      p_outliers = std::min(1.0 - std::numeric_limits<double>::epsilon(), p_outliers);
+      needed = log_probability / std::log(p_outliers);
+    }
+    ++trials;
+    if (trials > needed || trials > iterations) break;
+  }
+  if (!best) return std::nullopt;
 
-  Eigen::VectorXf coefficients;
-  ransac.getModelCoefficients(coefficients);
-  pcl::Indices inliers;
-  ransac.getInliers(inliers);
-  if (coefficients.size() != 4 || !coefficients.allFinite() || inliers.empty()) return std::nullopt;
+  // The best plane's inliers, as PCL selects them (selectWithinDistance).
+  const Eigen::Vector4f& m = *best;
+  Indices inliers;
+  std::vector<double> distances;
+  pclPlaneInliers(x.data(), y.data(), z.data(), pool.data(), x.size(), m[0], m[1], m[2], m[3], threshold_m, inliers, distances);
+  if (!m.allFinite() || inliers.empty()) return std::nullopt;
 
   RansacPlane plane;
-  plane.normal = coefficients.head<3>().cast<double>();
+  plane.normal = m.head<3>().cast<double>();
   const double norm = plane.normal.norm();
   if (!(norm > 0)) return std::nullopt;
   plane.normal /= norm;
-  plane.d = coefficients[3] / norm;
-  plane.inliers.assign(inliers.begin(), inliers.end());
+  plane.d = m[3] / norm;
+  plane.inliers = std::move(inliers);
   std::sort(plane.inliers.begin(), plane.inliers.end());
   return plane;
 }
