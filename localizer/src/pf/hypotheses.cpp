@@ -1,13 +1,12 @@
 #include "hypotheses.hpp"
+#include "pose_sets.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <optional>
 #include <tuple>
-#include <unordered_map>
 
 namespace bimloc::pf::detail {
 namespace {
@@ -93,64 +92,15 @@ void scorePose(const Particle& p, const std::vector<Observation>& obs, double z,
   bound.best = std::max(bound.best, m.log_likelihood);
 }
 
-// With a floor, the order poses are scored in decides how early the best is known, and so how
-// much of every other pose's scan is matched before it falls below the floor; the result does
-// not depend on it. The true pose and its look-alikes are what many pairs of faces agree on:
-// poses in the most crowded cells of (x, y, yaw) first.
-void mostAgreedFirst(std::vector<Particle>& poses) {
-  const auto key = [](const Particle& p) {
-    const auto ix = static_cast<std::int64_t>(std::floor(p.x / 0.25)), iy = static_cast<std::int64_t>(std::floor(p.y / 0.25));
-    const auto ia = static_cast<std::int64_t>(std::floor(p.yaw / (5.0 * M_PI / 180.0)));
-    return (ix * 73856093) ^ (iy * 19349663) ^ (ia * 83492791);
-  };
-  std::unordered_map<std::int64_t, int> votes;
-  for (const auto& p : poses) ++votes[key(p)];
-  std::vector<std::pair<int, std::size_t>> order;
-  order.reserve(poses.size());
-  for (std::size_t k = 0; k < poses.size(); ++k) order.emplace_back(-votes[key(poses[k])], k);
-  std::sort(order.begin(), order.end());
-  std::vector<Particle> sorted;
-  sorted.reserve(poses.size());
-  for (const auto& [v, k] : order) sorted.push_back(poses[k]);
-  poses.swap(sorted);
-}
-
 bool pairable(const std::vector<Observation>& obs, std::size_t i, std::size_t j) { return i != j && atPairAngle(obs[i], obs[j]); }
 
-// The same pose solved from several pairs (collinear pieces of one wall fix the same lines;
-// one pair of faces matched by several pairs of observations along them) is scored once: the
-// first of each bit-identical (x, y, yaw) is kept, in order. A pose's score depends on the pose
-// alone, and a repeat adds to `out` an entry equal to one already there, which the merge of
-// near-duplicates drops: the hypotheses are the same, at a fraction of the scoring.
-void dropRepeatedPoses(std::vector<Particle>& poses) {
-  const auto bits = [](double v) {
-    std::uint64_t u = 0;
-    std::memcpy(&u, &v, sizeof u);
-    return u;
-  };
-  // The poses' bits sorted (ties by position in the list): the first of each run of equal
-  // bits is the first in the list. A sort of one flat array, where a hash set allocated a
-  // node per pose.
-  struct Key {
-    std::uint64_t x, y, yaw;
-    std::size_t at;
-    bool sameBits(const Key& o) const { return x == o.x && y == o.y && yaw == o.yaw; }
-    bool operator<(const Key& o) const { return std::tie(x, y, yaw, at) < std::tie(o.x, o.y, o.yaw, o.at); }
-  };
-  std::vector<Key> keys(poses.size());
-  for (std::size_t k = 0; k < poses.size(); ++k) keys[k] = {bits(poses[k].x), bits(poses[k].y), bits(poses[k].yaw), k};
-  std::sort(keys.begin(), keys.end());
-  std::vector<char> first(poses.size(), 0);
-  for (std::size_t k = 0; k < keys.size(); ++k)
-    if (k == 0 || !keys[k].sameBits(keys[k - 1])) first[keys[k].at] = 1;
-  std::size_t kept = 0;
-  for (std::size_t k = 0; k < poses.size(); ++k)
-    if (first[k]) poses[kept++] = poses[k];
-  poses.resize(kept);
-}
-
-// Each distinct pose scored (dropRepeatedPoses), against the floor when there is one, the
-// poses most pairs agree on first (mostAgreedFirst).
+// Each distinct pose scored, against the floor when there is one, the poses most pairs agree on
+// first (pose_sets.hpp). The same pose solved from several pairs (collinear pieces of one wall
+// fix the same lines) is scored once: a pose's score depends on the pose alone, and a repeat
+// would add an entry equal to one already there, which the merge of near-duplicates drops.
+// With a floor, the order poses are scored in decides how early the best is known, and so how
+// much of every other pose's scan is matched before it falls below the floor; the result does
+// not depend on it. The true pose and its look-alikes are what many pairs of faces agree on.
 void scorePoses(std::vector<Particle>& poses, const std::vector<Observation>& obs, double z, const RoomIndex& rooms,
                 const ParticleFilterConfig& c, bool penalise_outside, Bound& bound, std::vector<Hypothesis>& out) {
   if (std::isfinite(bound.within)) mostAgreedFirst(poses);
@@ -269,32 +219,8 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observati
     return a.log_likelihood != b.log_likelihood ? a.log_likelihood > b.log_likelihood
                                                 : std::tie(a.x, a.y, a.yaw) < std::tie(b.x, b.y, b.yaw);
   });
-  // Best first, without near-duplicates (within 0.2 m and the angle tolerance of a better
-  // one): a grid of 0.2 m cells holds the kept ones, so a look-up visits the 3 x 3 cells around.
-  std::vector<Hypothesis> kept;
-  std::unordered_map<std::int64_t, std::vector<std::size_t>> cells;
-  const auto cellKey = [](std::int64_t ix, std::int64_t iy) { return ix * 73856093 ^ iy * 19349663; };
-  for (const auto& h : all) {
-    const auto ix = static_cast<std::int64_t>(std::floor(h.x / 0.2)), iy = static_cast<std::int64_t>(std::floor(h.y / 0.2));
-    bool duplicate = false;
-    for (std::int64_t dx = -1; dx <= 1 && !duplicate; ++dx)
-      for (std::int64_t dy = -1; dy <= 1 && !duplicate; ++dy) {
-        const auto it = cells.find(cellKey(ix + dx, iy + dy));
-        if (it == cells.end()) continue;
-        for (const std::size_t k : it->second) {
-          const Hypothesis& o = kept[k];
-          if ((h.x - o.x) * (h.x - o.x) + (h.y - o.y) * (h.y - o.y) < 0.04 && std::abs(wrapAngle(h.yaw - o.yaw)) < kAngleTolerance) {
-            duplicate = true;
-            break;
-          }
-        }
-      }
-    if (duplicate) continue;
-    cells[cellKey(ix, iy)].push_back(kept.size());
-    kept.push_back(h);
-    if (kept.size() >= max_count) break;
-  }
-  return kept;
+  // Best first, without near-duplicates (within 0.2 m and the angle tolerance of a better one).
+  return distinctBest(all, max_count);
 }
 
 }  // namespace bimloc::pf::detail
