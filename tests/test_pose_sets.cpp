@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <map>
 #include <random>
 #include <tuple>
@@ -113,28 +114,29 @@ std::vector<Particle> generatedPoses(std::mt19937& rng, std::size_t n) {
 
 }  // namespace
 
-TEST(PoseSets, RepeatsDroppedAsBySorting) {
-  std::mt19937 rng(3611);
-  for (std::size_t n : {0, 1, 2, 5, 40, 300, 5000}) {
+namespace {
+
+// `change` on generated lists of each size against `reference` on the same list.
+template <class Change, class Reference>
+void expectAsReference(std::uint32_t seed, std::initializer_list<std::size_t> sizes, Change change, Reference reference) {
+  std::mt19937 rng(seed);
+  for (const std::size_t n : sizes)
     for (int round = 0; round < 5; ++round) {
       std::vector<Particle> poses = generatedPoses(rng, n);
-      const std::vector<Particle> expected = repeatsDroppedBySorting(poses);
-      bimloc::pf::detail::dropRepeatedPoses(poses);
+      const std::vector<Particle> expected = reference(poses);
+      change(poses);
       expectSameLists(poses, expected);
     }
-  }
+}
+
+}  // namespace
+
+TEST(PoseSets, RepeatsDroppedAsBySorting) {
+  expectAsReference(3611, {0, 1, 2, 5, 40, 300, 5000}, bimloc::pf::detail::dropRepeatedPoses, repeatsDroppedBySorting);
 }
 
 TEST(PoseSets, MostAgreedFirstAsBySorting) {
-  std::mt19937 rng(3612);
-  for (std::size_t n : {0, 1, 3, 50, 700, 20000}) {
-    for (int round = 0; round < 5; ++round) {
-      std::vector<Particle> poses = generatedPoses(rng, n);
-      const std::vector<Particle> expected = agreedFirstBySorting(poses);
-      bimloc::pf::detail::mostAgreedFirst(poses);
-      expectSameLists(poses, expected);
-    }
-  }
+  expectAsReference(3612, {0, 1, 3, 50, 700, 20000}, bimloc::pf::detail::mostAgreedFirst, agreedFirstBySorting);
 }
 
 TEST(PoseSets, DistinctBestAsByComparingEveryPair) {
