@@ -128,11 +128,16 @@ MatchResult matchObservations(const Particle& p, double z_base, const std::vecto
       // compared at the map's origin instead, a heading error of 1 degree would cost 0.17 m of
       // d per 10 m from the origin, and the same view would score worse far from it.
       const double d_landmark = l.d + l.normal.x() * p.x + l.normal.y() * p.y + l.normal.z() * z_base;
-      const double e_az = wrapAngle(azimuth - l.azimuth) * inv_az, e_el = (elevation - l.elevation) * inv_el;
       const double behind = o.d_offset - d_landmark;  // > 0: the plane stands behind the face
       const double e_d = behind * inv_d;
-      const double m2 = e_az * e_az + e_el * e_el + e_d * e_d;
       const bool check_openings = opening_margin_m >= 0.0 && l.openings && !l.openings->empty();
+      // A face farther in d alone than the best so far is passed over before its angles: m2
+      // below adds e_d^2 to a sum of squares, and a float sum of non-negative terms is no
+      // smaller than any of them (rounding is monotonic), so m2 would exceed `best` too: the
+      // same faces pass. Not where a filling may be scored instead (nearer in d: below).
+      if (!check_openings && e_d * e_d > best) return;
+      const double e_az = wrapAngle(azimuth - l.azimuth) * inv_az, e_el = (elevation - l.elevation) * inv_el;
+      const double m2 = e_az * e_az + e_el * e_el + e_d * e_d;
       // In the face's openings, a plane is what fills them (a pane, a frame, a shut door's
       // leaf), which stands anywhere within the wall's body: its d is off by how far it lies
       // outside the face-to-depth span (why: below). Anywhere, not only within the gate of the

@@ -25,7 +25,7 @@ namespace {
 // RANSAC stops early once this confident that no larger plane was missed (PCL's default).
 constexpr double kRansacConfidence = 0.99;
 // A pool spread less than this across its main direction is a line (or a point): it holds no
-// plane, and PCL's model would report every one of its collinear samples on stderr.
+// plane, and its samples are collinear or nearly so (PCL's model reported each on stderr).
 constexpr double kMinPoolWidth_m = 0.01;
 // Draws of collinear points before RANSAC gives up (PCL's max_sample_checks_).
 constexpr int kMaxSampleChecks = 1000;
