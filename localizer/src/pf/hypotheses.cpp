@@ -11,8 +11,6 @@
 namespace bimloc::pf::detail {
 namespace {
 
-constexpr double kAngleTolerance = 5.0 * M_PI / 180.0;
-
 // The best log-likelihood of the hypotheses kept so far, and how far below it the caller
 // still wants them (infinite: all).
 struct Bound {
@@ -76,7 +74,7 @@ std::optional<Particle> solveAt(const std::vector<Observation>& obs, std::size_t
 std::optional<Particle> solvePair(const std::vector<Observation>& obs, std::size_t i, std::size_t j, const Landmark& a,
                                   const Landmark& b, double z, int room, const RoomIndex& rooms, double along_m) {
   const double turn = wrapAngle(obs[j].azimuth_base - obs[i].azimuth_base);
-  if (std::abs(wrapAngle(b.azimuth - a.azimuth - turn)) > kAngleTolerance) return std::nullopt;
+  if (std::abs(wrapAngle(b.azimuth - a.azimuth - turn)) > kHypothesisAngleRad) return std::nullopt;
   if (!atFaceHeight(obs[i], a, z) || !atFaceHeight(obs[j], b, z)) return std::nullopt;
   return solveAt(obs, i, j, a, b, headingOf(obs[i], a), z, room, rooms, along_m);
 }
@@ -130,7 +128,7 @@ void fromLandmarks(const std::vector<Observation>& obs, double z, const std::vec
       for (std::size_t a = 0; a < m; ++a) {
         if (!at_height[i * m + a]) continue;
         for (std::size_t b = 0; b < m; ++b) {
-          if (a == b || !at_height[j * m + b] || std::abs(wrapAngle(marks[b].azimuth - marks[a].azimuth - turn)) > kAngleTolerance)
+          if (a == b || !at_height[j * m + b] || std::abs(wrapAngle(marks[b].azimuth - marks[a].azimuth - turn)) > kHypothesisAngleRad)
             continue;
           const std::size_t ia = i * m + a;
           if (!known[ia]) headings[ia] = headingOf(obs[i], marks[a]), known[ia] = 1;

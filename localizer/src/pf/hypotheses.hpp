@@ -19,6 +19,11 @@ struct Hypothesis {
   int associated = 0;
 };
 
+// How far two faces may turn from the turn between two observed planes and still be solved as
+// their pair; and how far apart in heading two hypotheses within 0.2 m may be and still be one
+// (the merge of near-duplicates, pose_sets.cpp).
+constexpr double kHypothesisAngleRad = 5.0 * M_PI / 180.0;
+
 // A pose's room: any room (-1), or anywhere, in a room or not (kAnywhere: the rival search).
 constexpr int kAnywhere = -2;
 

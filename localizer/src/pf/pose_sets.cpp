@@ -8,7 +8,6 @@
 namespace bimloc::pf::detail {
 namespace {
 
-constexpr double kSameHeadingRad = 5.0 * M_PI / 180.0;  // hypotheses.cpp's
 constexpr std::uint32_t kFreeSlot = 0xFFFFFFFFu;
 
 std::uint64_t poseBits(double v) {
@@ -106,7 +105,7 @@ std::vector<Hypothesis> distinctBest(const std::vector<Hypothesis>& sorted, std:
         if (slots[slot] == kFreeSlot) continue;
         for (std::uint32_t k = head[slots[slot]]; k != kFreeSlot; k = next[k]) {
           const Hypothesis& o = kept[k];
-          if ((h.x - o.x) * (h.x - o.x) + (h.y - o.y) * (h.y - o.y) < 0.04 && std::abs(wrapAngle(h.yaw - o.yaw)) < kSameHeadingRad) {
+          if ((h.x - o.x) * (h.x - o.x) + (h.y - o.y) * (h.y - o.y) < 0.04 && std::abs(wrapAngle(h.yaw - o.yaw)) < kHypothesisAngleRad) {
             duplicate = true;
             break;
           }
