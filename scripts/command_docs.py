@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
 """Keeps the `--help` blocks of docs/commands/*.md what the command prints.
 
+Every help text must also fit 100 columns: a longer line is only allowed where it holds an
+option's name alone (its description then starts on the next line).
+
 A ```text block whose previous non-blank line is "`bimloc CMD --help`, verbatim:" or, under
 a page's "## Options", "`bimloc CMD SUB`:" holds `bimloc CMD [SUB] --help`, verbatim.
 
@@ -24,6 +27,14 @@ def help_text(bimloc, words):
     return text.rstrip("\n") + "\n"
 
 
+WIDTH = 100
+
+
+def too_wide(text):
+    """The lines of a --help text wider than WIDTH that hold more than an option's name."""
+    return [line for line in text.splitlines() if len(line) > WIDTH and "  " in line.strip()]
+
+
 def update(page, bimloc):
     lines = page.read_text().splitlines(keepends=True)
     out, stale, i, last = [], [], 0, ""
@@ -37,6 +48,8 @@ def update(page, bimloc):
             if end == len(lines):
                 raise SystemExit(f"{page}:{i + 1}: a ```text block that never closes")
             want = help_text(bimloc, m.group(1).split()[1:])
+            stale += [f"{page}:{i + 1}: `{m.group(1)} --help` has a line over {WIDTH} columns: {w[:60]}..."
+                      for w in too_wide(want)]
             if "".join(lines[i + 1:end]) != want:
                 stale.append(f"{page}:{i + 1}: `{m.group(1)} --help` has changed")
             out += [line, want, lines[end]]

@@ -64,7 +64,7 @@ void run(BenchArgs args) {
   if (args.plans.empty()) args.plans = defaultPlans();
   if (args.plans.empty()) throw std::runtime_error("no plans given and none found in ../shared/ifc or worlds/");
   nlohmann::json rows = nlohmann::json::array();
-  bimloc::cli::Table table({"plan", "parse [s]", "geometry [s]", "model [s]", "export [s]", "total [s]", "IFC++ share"});
+  bimloc::cli::Table table({"plan", "parse [s]", "geometry [s]", "model [s]", "export [s]", "total [s]", "IFC++"});
   for (const auto& plan : args.plans) {
     if (!args.json) std::cerr << "measuring " << plan << " ...\r" << std::flush;
     std::vector<double> parse, geometry, model, exp, total;
@@ -86,7 +86,7 @@ void run(BenchArgs args) {
   } else {
     std::cerr << std::string(60, ' ') << "\r";
     table.print(std::cout);
-    std::cout << "(median of " << args.repeat << " runs, one thread; IFC++ share = (parse + geometry) / total)\n";
+    std::cout << "(median of " << args.repeat << " runs, one thread; IFC++: its share, (parse + geometry) / total)\n";
   }
 }
 

@@ -139,8 +139,12 @@ void run(const LidarBenchArgs& args) {
   if (site)
     table.add({"VLP-16 model, packets, site " + args.site, fixed(total_rays / site_s / 1e6, 2), fixed(plain_s / site_s, 2),
                fixed(args.turns / site_s, 1)});
-  std::cout << args.plan << ", storey '" << world.building().storeys[storey].name << "': " << world.triangleCount(storey)
-            << " triangles, " << n_rays << " rays a turn, " << args.turns << " turns, " << args.threads << " thread(s)\n\n";
+  std::cout << bimloc::cli::wrapText(args.plan + ", storey '" + world.building().storeys[storey].name + "': " +
+                                         std::to_string(world.triangleCount(storey)) + " triangles, " + std::to_string(n_rays) +
+                                         " rays a turn, " + std::to_string(args.turns) + " turns, " + std::to_string(args.threads) +
+                                         " thread(s)",
+                                     bimloc::cli::kTableColumns)
+            << "\n";
   table.print(std::cout);
 }
 

@@ -41,7 +41,7 @@ void printStairs(const bimloc::bim::Building& b) {
                std::to_string(f.risers), fixed(f.riser_height_m, 3), fixed(f.going_m, 3), fixed(f.width_m, 2),
                f.source});
   }
-  table.print(std::cout, 100);
+  table.print(std::cout);
 }
 
 void printReport(const bimloc::bim::Building& b, double seconds, const std::vector<std::string>& files,

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <sstream>
 
 namespace bimloc::cli {
 namespace {
@@ -202,7 +203,8 @@ void printRunTable(const nlohmann::json& report, std::ostream& out) {
   }
   table.print(out);
   const auto& s = report.at("summary");
-  out << "\n" << s["localized"].get<int>() << " of " << s["runs"].get<std::size_t>() << " localized, "
+  std::ostringstream line;  // one sentence, broken to the table's width
+  line << s["localized"].get<int>() << " of " << s["runs"].get<std::size_t>() << " localized, "
       << s["false_convergences"].get<int>() << " false convergences, median convergence "
       << (s["median_convergence_s"].is_null() ? std::string("-") : fixed(s["median_convergence_s"].get<double>(), 1) + " s")
       << ", median ATE " << (s["median_ate_m"].is_null() ? std::string("-") : fixed(s["median_ate_m"].get<double>(), 3) + " m")
@@ -213,7 +215,8 @@ void printRunTable(const nlohmann::json& report, std::ostream& out) {
       << (s.value("storey_changes_searching", 0) > 0
               ? std::to_string(s.value("storey_changes_searching", 0)) + " storey changes while still searching; "
               : std::string()) << fixed(s["sim_seconds"].get<double>(), 0) << " s simulated in " << fixed(s["wall_seconds"].get<double>(), 1)
-      << " s\n";
+      << " s";
+  out << "\n" << wrapText(line.str(), kTableColumns);
   if (oracle) printOracleSummary(s, out);
   for (const auto& r : results)
     for (const auto& f : r.at("failures")) out << "  " << r.at("name").get<std::string>() << ": " << f.get<std::string>() << "\n";

@@ -34,7 +34,7 @@ void Table::print(std::ostream& out, std::size_t max_width) const {
     blocks.emplace_back(c, end);
     c = end;
   }
-  if (blocks.size() <= 1) return print(out);
+  if (blocks.size() <= 1) return printWide(out);
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     const auto cellsOf = [&](const std::vector<std::string>& row) {
       std::vector<std::string> cells{row.empty() ? std::string() : row[0]};
@@ -44,11 +44,11 @@ void Table::print(std::ostream& out, std::size_t max_width) const {
     Table part(cellsOf(rows_[0]));
     for (std::size_t r = 1; r < rows_.size(); ++r) part.add(cellsOf(rows_[r]));
     if (b > 0) out << "\n";
-    part.print(out);
+    part.printWide(out);
   }
 }
 
-void Table::print(std::ostream& out) const {
+void Table::printWide(std::ostream& out) const {
   const std::vector<std::size_t> widths = this->widths();
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     const auto& row = rows_[r];
