@@ -79,7 +79,7 @@ Localizer::Localizer(const bim::Building& building, const Eigen::Isometry3d& T_b
                                   std::to_string(m.storeys.size()) + " storeys could hold the robot)");
   } else {
     const bim::Storey* storey = building.findStorey(config.storey);
-    if (!storey) throw std::invalid_argument("no storey '" + config.storey + "' in the plan");
+    if (!storey) throw std::invalid_argument(building.storeyLookupError(config.storey));
     m.storeys = {static_cast<std::size_t>(storey - building.storeys.data())};
   }
   if (isPeer(config.method)) {

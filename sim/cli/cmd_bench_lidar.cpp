@@ -114,7 +114,7 @@ void run(const LidarBenchArgs& args) {
   }
   const double total_rays = double(n_rays) * args.turns;
   nlohmann::json result = {
-      {"plan", args.plan}, {"storey", world.building().storeys[storey].name}, {"threads", args.threads},
+      {"plan", args.plan}, {"storey", world.building().storeyLabel(storey)}, {"threads", args.threads},
       {"triangles", world.triangleCount(storey)}, {"rays", n_rays}, {"turns", args.turns}, {"rounds", args.rounds},
       {"plain_rays_per_s", total_rays / plain_s}, {"model_rays_per_s", total_rays / model_s},
       {"ratio", plain_s / model_s}, {"turns_per_s", args.turns / model_s},
@@ -139,7 +139,7 @@ void run(const LidarBenchArgs& args) {
   if (site)
     table.add({"VLP-16 model, packets, site " + args.site, fixed(total_rays / site_s / 1e6, 2), fixed(plain_s / site_s, 2),
                fixed(args.turns / site_s, 1)});
-  std::cout << bimloc::cli::wrapText(args.plan + ", storey '" + world.building().storeys[storey].name + "': " +
+  std::cout << bimloc::cli::wrapText(args.plan + ", storey '" + world.building().storeyLabel(storey) + "': " +
                                          std::to_string(world.triangleCount(storey)) + " triangles, " + std::to_string(n_rays) +
                                          " rays a turn, " + std::to_string(args.turns) + " turns, " + std::to_string(args.threads) +
                                          " thread(s)",
@@ -156,7 +156,7 @@ void addBenchLidarCommand(CLI::App& bench) {
       "lidar", "The VLP-16 model (noise, fields, distortion, 16-ray packets) against a bare rtcIntersect1 loop\n"
                "over exactly the same rays on the same scene, measured in the same run.");
   cmd->add_option("--plan", args->plan, "IFC plan, extract folder or mesh")->required();
-  cmd->add_option("--storey", args->storey, "storey name or index");
+  cmd->add_option("--storey", args->storey, "storey name, index or GlobalId (a name several storeys share: the label `bimloc extract` shows)");
   cmd->add_option("--threads", args->threads, "threads for both loops")->check(CLI::Range(1, 256));
   cmd->add_option("--turns", args->turns, "turns per measurement")->check(CLI::Range(1, 100000));
   cmd->add_option("--rounds", args->rounds, "interleaved rounds; the best of each variant is reported")->check(CLI::Range(1, 100));

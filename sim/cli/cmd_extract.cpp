@@ -22,7 +22,7 @@ struct ExtractArgs {
 // for a flight's end between storeys.
 std::string storeyLabel(const bimloc::bim::Building& b, int s) {
   if (s < 0 || s >= static_cast<int>(b.storeys.size())) return "landing";
-  const std::string& name = b.storeys[static_cast<std::size_t>(s)].name;
+  const std::string name = b.storeyLabel(static_cast<std::size_t>(s));
   return name.size() <= 16 ? name : name.substr(0, 15) + "~";
 }
 
@@ -49,9 +49,11 @@ void printReport(const bimloc::bim::Building& b, double seconds, const std::vect
   using bimloc::cli::fixed;
   std::cout << b.file << " (" << b.schema << "), extracted in " << fixed(seconds, 2) << " s\n\n";
   bimloc::cli::Table table({"storey", "elevation [m]", "rooms", "walls", "wall planes", "mesh triangles"});
-  for (const auto& s : b.storeys)
-    table.add({s.name, fixed(s.elevation_m, 2), std::to_string(s.rooms.size()), std::to_string(s.walls.size()),
+  for (std::size_t i = 0; i < b.storeys.size(); ++i) {
+    const auto& s = b.storeys[i];
+    table.add({b.storeyLabel(i), fixed(s.elevation_m, 2), std::to_string(s.rooms.size()), std::to_string(s.walls.size()),
                std::to_string(s.wallPlaneCount()), std::to_string(s.mesh.triangles.size())});
+  }
   table.print(std::cout);
   printStairs(b);
   if (!b.warnings.empty()) {

@@ -180,7 +180,7 @@ void run(const LocalizeArgs& args) {
   const std::string storey_name =
       !args.storey.empty() && !storey_auto ? args.storey : (rec.storey.empty() ? "0" : rec.storey);
   const bimloc::bim::Storey* storey = building.findStorey(storey_name);
-  if (!storey) throw std::runtime_error(args.plan + ": no storey '" + storey_name + "'");
+  if (!storey) throw std::runtime_error(args.plan + ": " + building.storeyLookupError(storey_name));
   const auto truth_storey = static_cast<std::size_t>(storey - building.storeys.data());
 
   LocalizerSettings settings = args.config.empty() ? LocalizerSettings{} : loadLocalizerConfig(args.config);
@@ -276,7 +276,7 @@ void addLocalizeCommand(CLI::App& app) {
   cmd->add_option("input", args->input, "dataset folder, ROS 1 .bag, or ROS 2 bag (rosbag2 folder, .mcap, .db3)")->required();
   cmd->add_option("--plan", args->plan, "IFC plan")->required();
   cmd->add_option("--storey", args->storey,
-                  "storey name or index (default: as recorded, else 0); auto: not told, every storey with walls and rooms "
+                  "storey name, index or GlobalId (a name several storeys share: the label `bimloc extract` shows) (default: as recorded, else 0); auto: not told, every storey with walls and rooms "
                   "is a candidate (scored against the recorded storey)");
   cmd->add_option("--method", args->method,
                   bimloc::cli::kMethodHelp)

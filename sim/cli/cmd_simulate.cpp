@@ -54,7 +54,7 @@ nlohmann::json metadata(const Simulator& sim, const std::string& scenario_path) 
   return {{"scenario", {{"name", s.name}, {"file", scenario_path}}},
           {"seed", s.seed},
           {"world", s.world},
-          {"storey", sim.world().building().storeys[sim.storey()].name},
+          {"storey", sim.world().building().storeyLabel(sim.storey())},
           {"start", {{"x", sim.start().x}, {"y", sim.start().y}, {"yaw_rad", sim.start().yaw}}},
           {"duration_s", s.duration_s},
           {"sensor", {{"model", "VLP-16"}, {"rpm", c.rpm}, {"min_range_m", c.min_range_m}, {"max_range_m", c.max_range_m},

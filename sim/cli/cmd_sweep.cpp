@@ -17,6 +17,8 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <tuple>
+#include <vector>
 
 namespace {
 
@@ -70,7 +72,9 @@ std::vector<Scenario> spread(const std::vector<Scenario>& all, int rooms, int se
 void run(const SweepArgs& args) {
   bimloc::cli::WorldCache worlds;
   std::vector<Scenario> scenarios;
-  std::vector<std::pair<std::string, std::string>> groups;  // plan, storey of each scenario
+  // Plan, storey of each scenario: a row per storey, by its index (two buildings of one site
+  // may each have a "Ground floor": their label says which).
+  std::vector<std::tuple<std::string, std::size_t, std::string>> groups;
   for (const auto& plan : args.plans) {
     const World& world = worlds.get(plan);
     const auto& storeys = world.building().storeys;
@@ -83,9 +87,9 @@ void run(const SweepArgs& args) {
       if (args.rooms_per_storey > 0) generated = spread(generated, args.rooms_per_storey, args.seeds);
       for (auto& sc : generated) {
         // Each run on its true storey; with --storey auto the localizer is not told which.
-        if (args.storey == "auto") sc.localizer["storey"] = "auto", sc.name = storeys[s].name + "/" + sc.name;
+        if (args.storey == "auto") sc.localizer["storey"] = "auto", sc.name = world.building().storeyLabel(s) + "/" + sc.name;
         scenarios.push_back(std::move(sc));
-        groups.emplace_back(std::filesystem::path(plan).filename().string(), storeys[s].name);
+        groups.emplace_back(plan, s, world.building().storeyLabel(s));
       }
     }
   }
@@ -134,7 +138,7 @@ void run(const SweepArgs& args) {
     std::vector<const ScenarioResult*> group;
     std::size_t j = i;
     for (; j < runs.size() && groups[j] == groups[i]; ++j) group.push_back(&runs[j].result), all.push_back(&runs[j].result);
-    rows.push_back(summarise(groups[i].first, groups[i].second, group));
+    rows.push_back(summarise(std::filesystem::path(std::get<0>(groups[i])).filename().string(), std::get<2>(groups[i]), group));
     i = j;
   }
   nlohmann::json total = summarise("all", "", all);

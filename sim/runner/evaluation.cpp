@@ -78,7 +78,7 @@ bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isomet
     converged_ = true;
     convergence_time_ = t;
     found_room_ = step.room < 0 ? std::string("(outside)") : step.room_name;
-    found_storey_ = found.name;
+    found_storey_ = building_.storeyLabel(*step.storey);
     true_room_ = trueRoom(building_.storeys.at(storey_), truth);
   }
   if (!scored(step)) return first;  // lost: it says it does not know

@@ -68,7 +68,7 @@ RecordingRun localizeRecording(const bim::Building& building, std::size_t truth_
   const auto& last = run.last;
   if (truth.empty()) {
     r.converged = last && last->convergence_stamp_s;
-    if (last && last->storey) r.found_storey = building.storeys[*last->storey].name;
+    if (last && last->storey) r.found_storey = building.storeyLabel(*last->storey);
     r.losses = last ? last->losses : 0;
   } else {
     score.finish(r);

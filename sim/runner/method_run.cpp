@@ -118,7 +118,7 @@ void MethodRun::step(double t, const Eigen::Isometry3d& T_odom_base, const Local
     if (report.path_fit_lowered > 0 && !r_.first_fit_lowered_s) r_.first_fit_lowered_s = t;
     if (trace && report.weighed)
       trace->push_back({t, planarPose(truth), planarPose(step.T_map_base), report,
-                        r_.storey_auto ? building.storeys[bank.leader].name : std::string(), bank.storey_margin,
+                        r_.storey_auto ? building.storeyLabel(bank.leader) : std::string(), bank.storey_margin,
                         step.places.size(), step.goal});
     // The places listed at the end: the last fitted (the localizer fits them at its places_interval_s).
     if (report.path_best && report.places_fitted) last_verdict_ = report, verdict_storey_ = bank.leader;
@@ -143,7 +143,7 @@ ScenarioResult MethodRun::finish(double t_end, const Eigen::Isometry3d& truth_en
   if (!converged && last_verdict_) r_.hypotheses = pathPlaces(*last_verdict_, building.storeys[verdict_storey_]);
   if (localizer_->filter() && !localizer_->filter()->storey() && r_.storey_auto && last_bank_)
     for (const auto& c : last_bank_->candidates)
-      r_.storey_candidates.push_back({building.storeys[c.storey].name, c.converged, c.path_log_likelihood, c.path_best});
+      r_.storey_candidates.push_back({building.storeyLabel(c.storey), c.converged, c.path_log_likelihood, c.path_best});
   // The last picture shows where the particles were left and why, or the graph the tracker built.
   if (snapshot && updates_ > 0 && (!converged || localizer_->tracker())) snapshotNow("end", t_end, truth_end, snapshot);
   score_.finish(r_);

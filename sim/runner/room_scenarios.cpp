@@ -84,7 +84,7 @@ std::vector<Scenario> roomScenarios(const World& world, const RoomScenarioOption
   if (o.storey == "auto") {
     // Every storey that could hold the robot; names say which one the run starts on.
     for (const std::size_t s : pf::StoreyBank::candidateStoreys(world.building()))
-      storeyScenarios(world, o, s, true, world.building().storeys[s].name + "/", out);
+      storeyScenarios(world, o, s, true, world.building().storeyLabel(s) + "/", out);
     return out;
   }
   storeyScenarios(world, o, world.storeyIndex(o.storey), false, "", out);

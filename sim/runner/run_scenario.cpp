@@ -39,7 +39,7 @@ std::vector<ScenarioResult> runLoop(const Scenario& s, const World& world, const
   const Simulator sim(s, world);
   shared.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   const bim::Storey& storey = world.building().storeys[sim.storey()];
-  shared.storey = storey.name;
+  shared.storey = world.building().storeyLabel(sim.storey());
   if (s.start.kind == StartConfig::Kind::OutsideRooms)
     shared.start_room = "(" + outsideKind(storey, Eigen::Vector2d(sim.start().x, sim.start().y)) + ")";
   std::vector<MethodRun> runs;

@@ -216,10 +216,7 @@ std::size_t World::storeyIndex(const std::string& name_or_index) const {
   const auto& storeys = impl_->building.storeys;
   if (const bim::Storey* s = impl_->building.findStorey(name_or_index))
     return static_cast<std::size_t>(s - storeys.data());
-  std::string names;
-  for (std::size_t i = 0; i < storeys.size(); ++i)
-    names += (i ? ", " : "") + std::to_string(i) + " '" + storeys[i].name + "'";
-  throw std::invalid_argument("no storey '" + name_or_index + "' (storeys: " + names + ")");
+  throw std::invalid_argument(impl_->building.storeyLookupError(name_or_index));
 }
 
 void* World::embreeScene(std::size_t storey) const { return impl_->scene(storey); }

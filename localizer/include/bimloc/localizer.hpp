@@ -46,8 +46,9 @@ std::optional<LocalizerMethod> methodFromString(const std::string& name);  // "s
 
 struct LocalizerConfig {
   LocalizerMethod method = LocalizerMethod::SGraph;
-  // The storey the robot is on (name, GlobalId or index); empty: unknown, every storey with
-  // walls and rooms is considered and the scans decide (pf::StoreyBank).
+  // The storey the robot is on (name, GlobalId, index, or Building::storeyLabel where a name is
+  // several storeys'); empty: unknown, every storey with walls and rooms is considered and the
+  // scans decide (pf::StoreyBank).
   std::string storey;
   // Seeds every stage (RANSAC, particles): the stages' own `seed` fields are replaced from it,
   // so one number reproduces a run byte for byte.

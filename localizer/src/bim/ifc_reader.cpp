@@ -254,6 +254,17 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
       raw, building.storeys, [&](const RawProduct& p) -> const TriangleMesh& { return bodyMesh(p, rebuilt); },
       building.warnings);
   if (options.build_meshes) buildStoreyMeshes(raw, new_index, options.door_leaves, rebuilt, building);
+  // Storeys of one name (a site of several buildings, each with its "Ground floor"): the name
+  // alone no longer says which; tables and reports label them by index (Building::storeyLabel).
+  for (std::size_t s = 0; s < building.storeys.size(); ++s) {
+    const std::string& name = building.storeys[s].name;
+    bool first = true, shared = false;
+    for (std::size_t o = 0; o < building.storeys.size(); ++o)
+      if (o != s && building.storeys[o].name == name) shared = true, first = first && o > s;
+    if (shared && first && !name.empty())
+      building.warnings.push_back("storeys named '" + name + "' are several (several buildings?): they are called '" +
+                                  building.storeyLabel(s) + "' and so on, and --storey takes that label, the index or the GlobalId");
+  }
 
   building.times.parse_s = raw.parse_s;
   building.times.geometry_s = raw.geometry_s;

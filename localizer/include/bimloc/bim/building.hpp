@@ -182,7 +182,14 @@ struct Building {
   // at map_origin_in_plan_m + (x, y) in the plan's (REP 105: earth -> map).
   Eigen::Vector2d map_origin_in_plan_m = Eigen::Vector2d::Zero();
 
+  // The storey with that GlobalId, that name or at that index; null when none, and when the
+  // name is several storeys' (a site of two buildings, each with its "Ground floor"): a name
+  // must say which storey it means. storeyLookupError says why it found none.
   const Storey* findStorey(const std::string& name_or_index) const;
+  std::string storeyLookupError(const std::string& name_or_index) const;
+  // The storey's name, or "name [#index]" where other storeys have the same name ("#index"
+  // when it has none): what tables and messages call it, and what --storey takes back.
+  std::string storeyLabel(std::size_t index) const;
 };
 
 }  // namespace bimloc::bim
