@@ -73,7 +73,6 @@ bool RunScore::add(double t, const LocalizationResult& step, const Eigen::Isomet
   losses_ = step.losses;
   if (step.state == LocalizationState::Searching || !step.storey) return false;
   const bool first = !converged_;
-  const bim::Storey& found = building_.storeys.at(*step.storey);
   if (first) {
     converged_ = true;
     convergence_time_ = t;
