@@ -9,6 +9,7 @@
 #include "sim/common/printable.hpp"
 #include "sim/cli/localize_output.hpp"
 #include "sim/cli/run_report.hpp"
+#include "sim/cli/table.hpp"
 #include "sim/dataset/bag_reader.hpp"
 #include "sim/dataset/deskew.hpp"
 #include "sim/ros2/rosbag2_reader.hpp"
@@ -18,6 +19,7 @@
 #include <bimloc/bim/ifc_reader.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -243,8 +245,15 @@ void run(const LocalizeArgs& args) {
     if (last && last->T_map_odom) {
       const Eigen::Isometry3d& T = *last->T_map_odom;
       const Eigen::Quaterniond q(T.linear());
-      std::cout << "map <- odom: xyz " << T.translation().transpose() << ", quaternion xyzw " << q.x() << " " << q.y() << " "
-                << q.z() << " " << q.w() << " (" << bimloc::toString(last->state) << ")\n";
+      // Fixed decimals (0.1 mm, 1e-6 of the quaternion), and no "-0" for a rounding error's sign.
+      const auto at = [](double v, int decimals) {
+        const double unit = std::pow(10.0, -decimals);
+        return bimloc::cli::fixed(std::abs(v) < 0.5 * unit ? 0.0 : v, decimals);
+      };
+      const Eigen::Vector3d t = T.translation();
+      std::cout << "map <- odom: xyz " << at(t.x(), 4) << " " << at(t.y(), 4) << " " << at(t.z(), 4) << ", quaternion xyzw "
+                << at(q.x(), 6) << " " << at(q.y(), 6) << " " << at(q.z(), 6) << " " << at(q.w(), 6) << " ("
+                << bimloc::toString(last->state) << ")\n";
     }
     if (rec.ground_truth.empty())
       std::cout << (is_bag ? "(no " + args.bag.truth_topic + " in the bag: errors not evaluated)\n"
