@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
 
 namespace bimloc::cli {
@@ -93,23 +94,33 @@ nlohmann::json oracleSummary(const nlohmann::json& scenarios) {
   return summary;
 }
 
-void printOracleSummary(const nlohmann::json& s, std::ostream& out) {
+void printOracleSummary(const nlohmann::json& s, std::ostream& out_stream) {
+  // Each sentence on its lines, broken to the tables' width.
+  std::ostringstream out;
+  const auto flush = [&] {
+    out_stream << wrapText(out.str(), kTableColumns);
+    out.str(std::string());
+  };
   out << "oracle: " << s["decidable"].get<int>() << " of " << s["oracle_runs"].get<int>() << " decidable, "
       << s["decidable_localized"].get<int>() << " of them localized; decision lag median " << cell(s["median_decision_lag_s"], 1)
       << " s, p90 " << cell(s["p90_decision_lag_s"], 1) << " s; ratio median " << cell(s["median_decision_ratio"], 2) << ", p90 "
       << cell(s["p90_decision_ratio"], 2) << "; oracle " << cell(s["median_oracle_seconds"], 1) << " s per run (median), "
-      << fixed(s["oracle_seconds"].get<double>(), 0) << " s in all\n";
+      << fixed(s["oracle_seconds"].get<double>(), 0) << " s in all";
+  flush();
   // The plain model's limit is no bar where it rules the true place out (docs/oracle.md).
-  if (s.value("truth_ruled_out", 0) > 0)
+  if (s.value("truth_ruled_out", 0) > 0) {
     out << "oracle: in " << s["truth_ruled_out"].get<int>() << " run(s) its scans rule the TRUE place out: the site is not its plan "
-        << "within the plain model's noise\n";
+        << "within the plain model's noise";
+    flush();
+  }
   if (!s.contains("decidable_robust")) return;
   out << "oracle, one deviation allowed: " << s["decidable_robust"].get<int>() << " decidable, "
       << s["decidable_robust_localized"].get<int>() << " of them localized; decision lag median "
       << cell(s["median_decision_lag_robust_s"], 1) << " s, p90 " << cell(s["p90_decision_lag_robust_s"], 1) << " s; ratio median "
       << cell(s["median_decision_ratio_robust"], 2) << ", p90 " << cell(s["p90_decision_ratio_robust"], 2) << "; CPU "
       << fixed(s["robust_oracle_cpu_seconds"].get<double>(), 1) << " s beside the plain answer's "
-      << fixed(s["oracle_cpu_seconds"].get<double>(), 1) << " s\n";
+      << fixed(s["oracle_cpu_seconds"].get<double>(), 1) << " s";
+  flush();
 }
 
 }  // namespace bimloc::cli
