@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <iostream>
+#include <sstream>
 
 namespace {
 
@@ -75,16 +76,19 @@ void evaluate(const EvalArgs& args) {
     std::cout << j.dump() << "\n";
     return;
   }
-  std::cout << "truth " << args.truth << " (" << e.truth_poses << " poses), estimate " << args.estimate << " ("
-            << e.estimate_poses << " poses): " << e.truth.size() << " associated (max. time difference " << args.max_diff_s
-            << " s)\n";
+  // Two sentences, each broken to the table's width (the paths may be long).
+  std::ostringstream head, how;
+  head << "truth " << args.truth << " (" << e.truth_poses << " poses), estimate " << args.estimate << " (" << e.estimate_poses
+       << " poses): " << e.truth.size() << " associated (max. time difference " << args.max_diff_s << " s)";
   if (o.align == TrajectoryAlignment::None)
-    std::cout << "not aligned";
+    how << "not aligned";
   else
-    std::cout << (o.align == TrajectoryAlignment::SE3 ? "SE(3)" : "Sim(3)") << " Umeyama alignment: translation ("
-              << fixed(t.x(), 4) << ", " << fixed(t.y(), 4) << ", " << fixed(t.z(), 4) << ") m, rotation "
-              << fixed(Eigen::AngleAxisd(r).angle() * 180.0 / M_PI, 3) << " deg, scale " << fixed(e.alignment.scale, 6);
-  std::cout << (o.project_xy ? ", projected to the xy plane\n\n" : "\n\n");
+    how << (o.align == TrajectoryAlignment::SE3 ? "SE(3)" : "Sim(3)") << " Umeyama alignment: translation (" << fixed(t.x(), 4)
+        << ", " << fixed(t.y(), 4) << ", " << fixed(t.z(), 4) << ") m, rotation "
+        << fixed(Eigen::AngleAxisd(r).angle() * 180.0 / M_PI, 3) << " deg, scale " << fixed(e.alignment.scale, 6);
+  if (o.project_xy) how << ", projected to the xy plane";
+  std::cout << bimloc::cli::wrapText(head.str(), bimloc::cli::kTableColumns) << bimloc::cli::wrapText(how.str(), bimloc::cli::kTableColumns)
+            << "\n";
   bimloc::cli::Table table({"metric [m]", "n", "rmse", "mean", "median", "std", "min", "max", "sse"});
   table.add(statsRow("APE translation", e.ape));
   const std::string rpe_name = "RPE translation, delta " + fixed(args.delta, args.delta_unit == "m" ? 2 : 0) + " " + args.delta_unit;
