@@ -245,15 +245,17 @@ void run(const LocalizeArgs& args) {
     if (last && last->T_map_odom) {
       const Eigen::Isometry3d& T = *last->T_map_odom;
       const Eigen::Quaterniond q(T.linear());
-      // Fixed decimals (0.1 mm, 1e-6 of the quaternion), and no "-0" for a rounding error's sign.
+      // Fixed decimals (1 mm, 1e-5 of the quaternion: the TUM file has them all), no "-0" for a
+      // rounding error's sign, within the tables' width.
       const auto at = [](double v, int decimals) {
         const double unit = std::pow(10.0, -decimals);
         return bimloc::cli::fixed(std::abs(v) < 0.5 * unit ? 0.0 : v, decimals);
       };
       const Eigen::Vector3d t = T.translation();
-      std::cout << "map <- odom: xyz " << at(t.x(), 4) << " " << at(t.y(), 4) << " " << at(t.z(), 4) << ", quaternion xyzw "
-                << at(q.x(), 6) << " " << at(q.y(), 6) << " " << at(q.z(), 6) << " " << at(q.w(), 6) << " ("
-                << bimloc::toString(last->state) << ")\n";
+      std::cout << bimloc::cli::wrapText("map <- odom (" + std::string(bimloc::toString(last->state)) + "): xyz " + at(t.x(), 3) + " " +
+                                             at(t.y(), 3) + " " + at(t.z(), 3) + ", quaternion xyzw " + at(q.x(), 5) + " " +
+                                             at(q.y(), 5) + " " + at(q.z(), 5) + " " + at(q.w(), 5),
+                                         bimloc::cli::kTableColumns);
     }
     if (rec.ground_truth.empty())
       std::cout << (is_bag ? "(no " + args.bag.truth_topic + " in the bag: errors not evaluated)\n"
