@@ -93,8 +93,8 @@ void printCompareTables(const nlohmann::json& report, std::ostream& out, bool wi
   const auto methods = report["methods"].get<std::vector<std::string>>();
   std::vector<std::string> header{"start room"};
   header.insert(header.end(), methods.begin(), methods.end());
-  const auto print = [&](const Table& table) { wide ? table.printWide(out) : table.print(out, kNarrowColumns); };
-  const auto say = [&](const std::string& text) { out << (wide ? text + "\n" : wrapText(text, kNarrowColumns)); };
+  const auto print = [&](const Table& table) { wide ? table.printWide(out) : table.print(out); };
+  const auto say = [&](const std::string& text) { out << (wide ? text + "\n" : wrapText(text, kTableColumns)); };
   const std::string plan = report["plan"].get<std::string>();
   std::size_t runs = 0;
   for (const auto& room : report["rooms"]) runs += room["runs"].size();

@@ -40,10 +40,9 @@ struct CompareRun {
 nlohmann::json compareReport(const CompareSetup& setup, const std::vector<CompareRun>& runs, double wall_seconds);
 
 // The convergence-time and ATE tables per start room, the table per method (the best in each
-// column marked), the verdict and what the marks mean: within kNarrowColumns columns (the
+// column marked), the verdict and what the marks mean: within kTableColumns (table.hpp) columns (the
 // tables split into blocks of methods, the plan by its file name); `wide`: each table whole,
 // the plan's path, and the position error at the end of each run too.
-inline constexpr std::size_t kNarrowColumns = 100;
 void printCompareTables(const nlohmann::json& report, std::ostream& out, bool wide = false);
 
 // DIR/convergence_times.png and DIR/errors_over_time.png (the median over the runs of each

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <set>
 #include <tuple>
 #include <unordered_map>
 
@@ -256,12 +257,10 @@ Building readIfc(const std::string& path, const ExtractOptions& options) {
   if (options.build_meshes) buildStoreyMeshes(raw, new_index, options.door_leaves, rebuilt, building);
   // Storeys of one name (a site of several buildings, each with its "Ground floor"): the name
   // alone no longer says which; tables and reports label them by index (Building::storeyLabel).
+  std::set<std::string> named_alike;  // warned once per name, at its first storey
   for (std::size_t s = 0; s < building.storeys.size(); ++s) {
     const std::string& name = building.storeys[s].name;
-    bool first = true, shared = false;
-    for (std::size_t o = 0; o < building.storeys.size(); ++o)
-      if (o != s && building.storeys[o].name == name) shared = true, first = first && o > s;
-    if (shared && first && !name.empty())
+    if (!name.empty() && building.storeyLabel(s) != name && named_alike.insert(name).second)
       building.warnings.push_back("storeys named '" + name + "' are several (several buildings?): they are called '" +
                                   building.storeyLabel(s) + "' and so on, and --storey takes that label, the index or the GlobalId");
   }
