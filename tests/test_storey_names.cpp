@@ -155,6 +155,9 @@ TEST(StoreyNames, TwoBuildingsOfOneSiteKeepTheirStoreysApart) {
   EXPECT_EQ(rooms.count("Ground floor [#0]") + rooms.count("Ground floor [#1]"), 2u);
   EXPECT_EQ(rooms.count("First floor"), 1u);
   EXPECT_EQ(b.findStorey("Ground floor"), nullptr);
+  // The refusal names the plan (a damaged plan that lost a storey is refused so too).
+  EXPECT_EQ(b.storeyLookupError("Ground floor").rfind(b.file + ": 2 storeys are named 'Ground floor'", 0), 0u);
+  EXPECT_EQ(b.storeyLookupError("9").rfind(b.file + ": no storey '9'", 0), 0u);
   // The warning says so, once.
   const auto warned = std::count_if(b.warnings.begin(), b.warnings.end(),
                                     [](const std::string& w) { return w.find("storeys named 'Ground floor' are several") != std::string::npos; });

@@ -182,7 +182,7 @@ void run(const LocalizeArgs& args) {
   const std::string storey_name =
       !args.storey.empty() && !storey_auto ? args.storey : (rec.storey.empty() ? "0" : rec.storey);
   const bimloc::bim::Storey* storey = building.findStorey(storey_name);
-  if (!storey) throw std::runtime_error(args.plan + ": " + building.storeyLookupError(storey_name));
+  if (!storey) throw std::runtime_error(building.storeyLookupError(storey_name));  // it names the plan
   const auto truth_storey = static_cast<std::size_t>(storey - building.storeys.data());
 
   LocalizerSettings settings = args.config.empty() ? LocalizerSettings{} : loadLocalizerConfig(args.config);

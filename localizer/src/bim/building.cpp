@@ -64,6 +64,7 @@ std::string Building::storeyLabel(std::size_t index) const {
 }
 
 std::string Building::storeyLookupError(const std::string& name_or_index) const {
+  const std::string plan = file.empty() ? std::string() : file + ": ";  // the message names the plan it was asked of
   std::string list;
   for (std::size_t i = 0; i < storeys.size(); ++i) list += (i ? ", " : "") + std::to_string(i) + " '" + storeyLabel(i) + "'";
   const std::size_t alike = name_or_index.empty() ? 0 : namedAlike(storeys, name_or_index);
@@ -72,10 +73,10 @@ std::string Building::storeyLookupError(const std::string& name_or_index) const 
     for (std::size_t i = 0; i < storeys.size(); ++i)
       if (storeys[i].name == name_or_index)
         which += std::string(which.empty() ? "" : ", ") + "#" + std::to_string(i) + " (GlobalId " + storeys[i].id + ")";
-    return std::to_string(alike) + " storeys are named '" + name_or_index + "' (" + which +
+    return plan + std::to_string(alike) + " storeys are named '" + name_or_index + "' (" + which +
            "; a site of several buildings?): give its index, its GlobalId or its label (storeys: " + list + ")";
   }
-  return "no storey '" + name_or_index + "' (storeys: " + list + ")";
+  return plan + "no storey '" + name_or_index + "' (storeys: " + list + ")";
 }
 
 }  // namespace bimloc::bim

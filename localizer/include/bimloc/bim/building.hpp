@@ -184,7 +184,7 @@ struct Building {
 
   // The storey with that GlobalId, that name or at that index; null when none, and when the
   // name is several storeys' (a site of two buildings, each with its "Ground floor"): a name
-  // must say which storey it means. storeyLookupError says why it found none.
+  // must say which storey it means. storeyLookupError says why it found none, naming `file`.
   const Storey* findStorey(const std::string& name_or_index) const;
   std::string storeyLookupError(const std::string& name_or_index) const;
   // The storey's name, or "name [#index]" where other storeys have the same name ("#index"
