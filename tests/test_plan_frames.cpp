@@ -138,16 +138,23 @@ TEST(PlanFrames, AStoreyHeightThatIsNoFloorsIsNamedAndIgnored) {
   EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1) << r.err;
 }
 
-// A wall 5 km long (one damaged profile length) makes the storey too large for the simulator's
-// path grid (0.05 m cells). The count was an int cast from a double (1e9 m read 18446743431611941163
-// cells); now it names the plan, the storey and its size.
+// A wall 5 km long (one damaged profile length): the storey is 5 km long. The simulator's path
+// grid (0.05 m cells, stored where its searches go) holds it, and the run runs. A wall 5 km
+// long and 5 km thick makes the storey too large for it (1e10 cells): the run names the plan,
+// the storey and its size. (The count was once an int cast from a double: 1e9 m read
+// 18446743431611941163 cells.)
 TEST(PlanFrames, AStoreyTooLargeForThePathGridIsNamedWithItsSize) {
   const auto dir = tempDir("plan-frames-huge");
   const std::string text = plainPlan();
   const std::string from = "#32=IFCRECTANGLEPROFILEDEF(.AREA.,$,#31,22.2,0.3);";
   ASSERT_NE(text.find(from), std::string::npos);
-  const std::string path = writeFile(dir, "huge.ifc", mutated(text, from, "#32=IFCRECTANGLEPROFILEDEF(.AREA.,$,#31,5000.,0.3);"));
-  const auto r = runBriefly(path);
+  const std::string path = writeFile(dir, "long.ifc", mutated(text, from, "#32=IFCRECTANGLEPROFILEDEF(.AREA.,$,#31,5000.,0.3);"));
+  auto r = runBriefly(path);
+  EXPECT_EQ(r.signal, 0) << r.err;
+  EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1) << r.err;
+  EXPECT_EQ(r.err.find("too large for the path grid"), std::string::npos) << r.err;
+  const std::string huge = writeFile(dir, "huge.ifc", mutated(text, from, "#32=IFCRECTANGLEPROFILEDEF(.AREA.,$,#31,5000.,5000.);"));
+  r = runBriefly(huge);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("huge.ifc: storey 'Ground floor' spans 50"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("too large for the path grid"), std::string::npos) << r.err;

@@ -23,7 +23,10 @@ constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 constexpr double kNudge_m = 1e-3;
 // Grid margin around the rooms and walls: room to walk around the outside of the building.
 constexpr double kGridPad_m = 1.0;
-constexpr std::size_t kMaxCells = 16'000'000;
+// Cells are numbered by int. The grid's cells are stored in chunks made where a search goes
+// (chunked_cells.hpp), so a large storey costs what its paths touch: a billion cells is a
+// storey 1.58 km square. Beyond it, the plan is damaged (a wall a million kilometres long).
+constexpr std::size_t kMaxCells = 1'000'000'000;
 
 // The floor around a spot (bodyCentreZ): the surfaces under a 7 x 7 grid 0.5 m apart (3 x 3 m,
 // more than a table, a bed or a sofa covers of it), and how far above their median a surface is
@@ -132,7 +135,7 @@ void FreeSpace::makeGrid(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   }
   grid_.nx = static_cast<int>(nx), grid_.ny = static_cast<int>(ny);
   const std::size_t cells = static_cast<std::size_t>(grid_.nx) * static_cast<std::size_t>(grid_.ny);
-  grid_.edges.assign(cells, 0);
+  grid_.edges = ChunkedCells<std::uint8_t>(cells, 0);
 }
 
 Eigen::Vector2d FreeSpace::centre(int cell) const {
@@ -151,7 +154,7 @@ bool FreeSpace::edgeClear(int cell, int direction) {
   // Each edge is stored once, at the cell it leaves eastwards or northwards.
   const int owner = direction < 4 ? cell : neighbour;
   const int shift = 2 * (direction % 4);
-  std::uint8_t& bits = grid_.edges[static_cast<std::size_t>(owner)];
+  std::uint8_t& bits = grid_.edges.at(static_cast<std::size_t>(owner));
   const int state = (bits >> shift) & 3;
   if (state != 0) return state == 1;
   const bool clear = passable(centre(cell), centre(neighbour), kMargin_m);
@@ -159,12 +162,12 @@ bool FreeSpace::edgeClear(int cell, int direction) {
   return clear;
 }
 
-std::vector<int> FreeSpace::aStar(int from, int to, std::vector<bool>* reached) {
+std::vector<int> FreeSpace::aStar(int from, int to, ChunkedCells<std::uint8_t>* reached) {
   const std::size_t n = grid_.edges.size();
   const float inf = std::numeric_limits<float>::infinity();
-  std::vector<float> g(n, inf);
-  std::vector<int> parent(n, -1);
-  std::vector<bool> closed(n, false);
+  ChunkedCells<float> g(n, inf);
+  ChunkedCells<int> parent(n, -1);
+  ChunkedCells<std::uint8_t> closed(n, 0);
   const int tx = to % grid_.nx, ty = to / grid_.nx;
   const auto h = [&](int c) {  // octile distance in cells (none without a goal: a flood)
     if (to < 0) return 0.0f;
@@ -173,13 +176,13 @@ std::vector<int> FreeSpace::aStar(int from, int to, std::vector<bool>* reached) 
   };
   using Item = std::pair<float, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
-  g[static_cast<std::size_t>(from)] = 0.0f;
+  g.at(static_cast<std::size_t>(from)) = 0.0f;
   open.emplace(h(from), from);
   while (!open.empty()) {
     const int c = open.top().second;
     open.pop();
     if (closed[static_cast<std::size_t>(c)]) continue;
-    closed[static_cast<std::size_t>(c)] = true;
+    closed.at(static_cast<std::size_t>(c)) = 1;
     if (c == to) break;
     const int cx = c % grid_.nx, cy = c / grid_.nx;
     for (int d = 0; d < 8; ++d) {
@@ -189,8 +192,8 @@ std::vector<int> FreeSpace::aStar(int from, int to, std::vector<bool>* reached) 
       const float cost = g[static_cast<std::size_t>(c)] + static_cast<float>(d % 2 ? M_SQRT2 : 1.0);
       // Sweep only edges that would improve the neighbour: most are never swept at all.
       if (closed[static_cast<std::size_t>(nb)] || cost >= g[static_cast<std::size_t>(nb)] || !edgeClear(c, d)) continue;
-      g[static_cast<std::size_t>(nb)] = cost;
-      parent[static_cast<std::size_t>(nb)] = c;
+      g.at(static_cast<std::size_t>(nb)) = cost;
+      parent.at(static_cast<std::size_t>(nb)) = c;
       open.emplace(cost + h(nb), nb);
     }
   }
@@ -276,7 +279,7 @@ void FreeSpace::useRule(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const bool indoors_only = indoors(a) && indoors(b);
   if (indoors_only != indoors_only_) {
     indoors_only_ = indoors_only;
-    std::fill(grid_.edges.begin(), grid_.edges.end(), std::uint8_t{0});  // cached for the other rule
+    grid_.edges.clear();  // cached for the other rule
   }
 }
 
@@ -309,7 +312,7 @@ std::vector<Eigen::Vector2d> FreeSpace::corners(const Eigen::Vector2d& a, const 
 std::vector<Eigen::Vector2d> FreeSpace::path(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   useRule(a, b);
   if (passable(a, b, kMargin_m)) return {a, b};
-  if (grid_.edges.empty()) makeGrid(a, b);
+  if (grid_.edges.size() == 0) makeGrid(a, b);
   const int from = joinGrid(a), to = joinGrid(b);
   if (from < 0 || to < 0) return {};
   const std::vector<int> cells = aStar(from, to);
@@ -321,24 +324,24 @@ std::vector<Eigen::Vector2d> FreeSpace::pathInto(const Eigen::Vector2d& a, const
                                                  const bim::Polygon2& area) {
   useRule(a, b);
   if (passable(a, b, kMargin_m)) return {a, b};
-  if (grid_.edges.empty()) makeGrid(a, b);
+  if (grid_.edges.size() == 0) makeGrid(a, b);
   const int from = joinGrid(a);
   if (from < 0) return {};
   // b off the grid's free cells (to = -1): A* closes the whole component of `from`.
   const int to = joinGrid(b);
-  std::vector<bool> reached;
+  ChunkedCells<std::uint8_t> reached;
   const std::vector<int> cells = aStar(from, to, &reached);
   if (!cells.empty()) return corners(a, cells, b);
   // The reached cell inside the area nearest b: every reached cell's centre is the end of a
   // clear sweep with the margin, so the body fits there.
   int best = -1;
   double best_d = std::numeric_limits<double>::infinity();
-  for (std::size_t c = 0; c < reached.size(); ++c) {
-    if (!reached[c]) continue;
+  reached.forEachWritten([&](std::size_t c, std::uint8_t is_reached) {
+    if (!is_reached) return;
     const Eigen::Vector2d q = centre(static_cast<int>(c));
     const double d = (q - b).norm();
     if (d < best_d && bim::pointInPolygon(area, q)) best_d = d, best = static_cast<int>(c);
-  }
+  });
   if (best < 0) return {};
   return corners(a, aStar(from, best), centre(best));
 }

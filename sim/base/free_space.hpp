@@ -4,6 +4,7 @@
 // few straight segments, again checked by sweeps.
 #pragma once
 
+#include "sim/base/chunked_cells.hpp"
 #include "sim/base/room_lookup.hpp"
 
 #include <bimloc/bim/geometry2d.hpp>
@@ -59,7 +60,7 @@ class FreeSpace {
   struct Grid {
     Eigen::Vector2d origin = Eigen::Vector2d::Zero();  // centre of cell (0, 0)
     int nx = 0, ny = 0;
-    std::vector<std::uint8_t> edges;  // 2 bits per direction E, NE, N, NW: 0 unknown, 1 clear, 2 blocked
+    ChunkedCells<std::uint8_t> edges;  // 2 bits per direction E, NE, N, NW: 0 unknown, 1 clear, 2 blocked
   };
   void makeGrid(const Eigen::Vector2d& a, const Eigen::Vector2d& b);
   Eigen::Vector2d centre(int cell) const;
@@ -69,8 +70,9 @@ class FreeSpace {
   // segmentClear, and indoors all along when paths must stay in the building.
   bool passable(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double margin_m) const;
   // Cells from `from` to `to`; empty when `to` cannot be reached, and then, if `reached` is
-  // given, the cells that can be (the whole component of `from`: A* closed them all).
-  std::vector<int> aStar(int from, int to, std::vector<bool>* reached = nullptr);
+  // given, the cells that can be (the whole component of `from`: A* closed them all; 1 where
+  // reached).
+  std::vector<int> aStar(int from, int to, ChunkedCells<std::uint8_t>* reached = nullptr);
   int joinGrid(const Eigen::Vector2d& p) const;  // grid point reached from p by a clear segment, -1 if none
   void useRule(const Eigen::Vector2d& a, const Eigen::Vector2d& b);  // indoors_only_ for a path a -> b
   std::vector<Eigen::Vector2d> corners(const Eigen::Vector2d& a, const std::vector<int>& cells,

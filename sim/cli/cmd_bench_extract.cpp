@@ -3,6 +3,7 @@
 // model (walls, rooms, topology, meshes: ours) and export, with the share of the total that
 // is ours against the IFC++ floor measured in the same run.
 #include "sim/cli/commands.hpp"
+#include "sim/cli/progress.hpp"
 #include "sim/cli/table.hpp"
 #include "sim/world/plan_export.hpp"
 
@@ -12,6 +13,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
@@ -65,8 +67,10 @@ void run(BenchArgs args) {
   if (args.plans.empty()) throw std::runtime_error("no plans given and none found in ../shared/ifc or worlds/");
   nlohmann::json rows = nlohmann::json::array();
   bimloc::cli::Table table({"plan", "parse [s]", "geometry [s]", "model [s]", "export [s]", "total [s]", "IFC++"});
+  // A bar on a terminal only: a "measuring ...\r" line ran into the table in a log.
+  auto progress = std::make_unique<bimloc::cli::Progress>("bench extract");
   for (const auto& plan : args.plans) {
-    if (!args.json) std::cerr << "measuring " << plan << " ...\r" << std::flush;
+    progress->update(rows.size(), args.plans.size());
     std::vector<double> parse, geometry, model, exp, total;
     for (int r = 0; r < std::max(1, args.repeat); ++r) {
       const Sample s = measure(plan);
@@ -81,10 +85,10 @@ void run(BenchArgs args) {
     table.add({fs::path(plan).filename().string(), fixed(p, 3), fixed(g, 3), fixed(m, 3), fixed(e, 3), fixed(t, 3),
                fixed(100 * share, 0) + " %"});
   }
+  progress.reset();  // the bar's line cleared before the table
   if (args.json) {
     std::cout << nlohmann::json{{"repeat", args.repeat}, {"plans", rows}}.dump() << "\n";
   } else {
-    std::cerr << std::string(60, ' ') << "\r";
     table.print(std::cout);
     std::cout << "(median of " << args.repeat << " runs, one thread; IFC++: its share, (parse + geometry) / total)\n";
   }

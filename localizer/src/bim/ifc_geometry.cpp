@@ -34,6 +34,7 @@
 #include "ifc_profile.hpp"
 #include "ifc_references.hpp"
 #include "map_origin.hpp"
+#include "own_opening_cuts.hpp"
 #include "spatial_cycles.hpp"
 
 #include <carve/triangulator.hpp>
@@ -273,16 +274,21 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
   // Colours and layers are not needed, and are reached through inverse links the check skips.
   converter.getGeomSettings()->setHandleStyledItems(false);
   converter.getGeomSettings()->setHandleLayerAssignments(false);
-  try {
-    converter.convertGeometry();
-  } catch (const std::exception& e) {
-    raw.warnings.push_back(std::string("geometry conversion stopped early: ") + e.what());
-  } catch (...) {
-    raw.warnings.push_back("geometry conversion stopped early: unknown error");
+  ProfileReader profiles(converter.getRepresentationConverter()->getPlacementConverter(), raw.length_unit_m);
+  {
+    // Openings we cut ourselves (rebuiltBodies) are kept from IFC++'s cut, quadratic in one
+    // wall's openings (own_opening_cuts.hpp); attached again when the conversion is done.
+    const OwnOpeningCuts own_cuts(*model, profiles);
+    try {
+      converter.convertGeometry();
+    } catch (const std::exception& e) {
+      raw.warnings.push_back(std::string("geometry conversion stopped early: ") + e.what());
+    } catch (...) {
+      raw.warnings.push_back("geometry conversion stopped early: unknown error");
+    }
   }
   const auto parent = parentMap(*model);
   const auto whole = wholeMap(*model);
-  ProfileReader profiles(converter.getRepresentationConverter()->getPlacementConverter(), raw.length_unit_m);
 
   // Storeys first: every product is filed under one of them.
   std::unordered_map<int, int> storey_index;
