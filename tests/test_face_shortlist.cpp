@@ -100,7 +100,9 @@ void compareShortlistWithIndex(const bim::Storey& office, const bim::Storey& big
   EXPECT_GT(compared, 2000 * static_cast<int>(margins.size()));
   EXPECT_GT(associated, compared);  // matches, not empty comparisons (7496 in 4680 poses)
   const bool local = std::any_of(margins.begin(), margins.end(), [](double m) { return m >= 0.0; });
-  if (local) EXPECT_GT(hidden_checked, 0);  // some planes behind a solid face, through the shortlist too
+  if (local) {
+    EXPECT_GT(hidden_checked, 0);  // some planes behind a solid face, through the shortlist too
+  }
   EXPECT_GT(shortlisted, 0);
 }
 

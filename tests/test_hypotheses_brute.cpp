@@ -64,10 +64,11 @@ bool bruteSolve(const std::vector<Observation>& obs, std::size_t i, std::size_t 
 // x, y, yaw), near-duplicates (0.2 m, 5 deg of a better one) out, at most max_count.
 std::vector<Hypothesis> bruteHypotheses(const std::vector<Observation>& obs, double z, const RoomIndex& rooms,
                                         const pf::ParticleFilterConfig& c, const std::vector<Landmark>& every_face,
-                                        std::size_t max_count) {
+                                        std::size_t max_count, const std::vector<char>* only_rooms = nullptr) {
   std::vector<Hypothesis> all;
   const int room_count = c.use_rooms ? static_cast<int>(rooms.roomCount()) : 1;
   for (int r = 0; r < room_count; ++r) {
+    if (only_rooms && !(*only_rooms)[static_cast<std::size_t>(r)]) continue;
     const std::vector<Landmark>& faces = c.use_rooms ? rooms.landmarks(r) : every_face;
     for (std::size_t i = 0; i < obs.size(); ++i)
       for (std::size_t j = 0; j < obs.size(); ++j)
@@ -189,4 +190,46 @@ TEST(HypothesesBrute, SeedsOfRandomViewsAreThoseOfBruteForce) {
     with_seeds += want.empty() ? 0 : 1;
   }
   EXPECT_GE(with_seeds, 9) << "most views fix a pose";
+}
+
+TEST(HypothesesBrute, ASeedsShareOfTheRoomsIsBruteForceOverThoseRooms) {
+  // seed_poses_per_weighing: after the first weighing the seeds search the rooms in turn until
+  // a budget of poses is solved. Each share holds exactly brute force's hypotheses over the
+  // rooms it searched; successive shares go round the storey, each room once per round; and
+  // with no budget the share is the whole storey.
+  const RoomIndex rooms(bruteFloor(), true);
+  pf::ParticleFilterConfig config;
+  const auto max_count = static_cast<std::size_t>(config.max_hypotheses);
+  const int count = static_cast<int>(rooms.roomCount());
+  for (const auto& c : kBruteCases) {
+    const auto obs = bruteView(c);
+    RoomShare whole;
+    whole.next_room = 5;
+    const auto all = poseHypotheses(obs, 0.5, rooms, config, max_count, std::numeric_limits<double>::infinity(), false, &whole);
+    EXPECT_EQ(whole.rooms_searched, count) << c.room;
+    EXPECT_EQ(whole.next_room, 5) << c.room;
+    expectSame(all, poseHypotheses(obs, 0.5, rooms, config, max_count), all.size(), c.room);
+
+    RoomShare share;
+    share.poses = 8;
+    std::vector<int> times(static_cast<std::size_t>(count), 0);
+    int calls = 0, searched = 0;
+    while (searched < count) {
+      std::vector<char> in(static_cast<std::size_t>(count), 0);
+      const int first = share.next_room;
+      const auto got = poseHypotheses(obs, 0.5, rooms, config, max_count, std::numeric_limits<double>::infinity(), false, &share);
+      ASSERT_GE(share.rooms_searched, 1) << c.room;
+      for (int k = 0; k < share.rooms_searched; ++k) {
+        in[static_cast<std::size_t>((first + k) % count)] = 1;
+        if (searched + k < count) ++times[static_cast<std::size_t>((first + k) % count)];  // the first round
+      }
+      EXPECT_EQ(share.next_room, (first + share.rooms_searched) % count) << c.room;
+      searched += share.rooms_searched, ++calls;
+      const auto want = bruteHypotheses(obs, 0.5, rooms, config, {}, max_count, &in);
+      EXPECT_EQ(got.size(), want.size()) << c.room << " share " << calls;
+      expectSame(got, want, std::min(got.size(), want.size()), c.room);
+    }
+    EXPECT_GE(calls, 2) << c.room << ": a budget of 8 poses takes several shares";
+    for (int r = 0; r < count; ++r) EXPECT_EQ(times[static_cast<std::size_t>(r)], 1) << c.room << " room " << r;
+  }
 }

@@ -52,6 +52,7 @@ std::vector<Field> pfFields(pf::ParticleFilterConfig& c) {
           {"injection_margin", &c.injection_margin, closed(0, 1e6)},
           {"max_hypotheses", &c.max_hypotheses, closed(1, 1e6)},
           {"seeds_on_window_scans", &c.seeds_on_window_scans},
+          {"seed_poses_per_weighing", &c.seed_poses_per_weighing, closed(0, 1e9)},
           {"evidence_faces", &c.evidence_faces, closed(0, 100)},
           {"evidence_bar_tolerance_faces", &c.evidence_bar_tolerance_faces, closed(0, 1)},
           {"evidence_window_m", &c.evidence_window_m, positive(1000)},

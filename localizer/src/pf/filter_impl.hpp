@@ -48,6 +48,7 @@ struct ParticleFilter::Impl {
   int scans_since_weighing = 0;
   double anneal = 1.0;
   bool weighed_once = false;
+  int next_seed_room = 0;  // where the seeds' next share of the rooms starts (seed_poses_per_weighing)
   std::vector<std::string> pending_warnings;  // from predict(), reported by the next update()
   const RangeProfile* profile = nullptr;      // of the scan being weighed (update's argument)
   // particles' version (ParticleFilter::particlesVersion), and their weighted mean under it:

@@ -18,7 +18,15 @@ std::vector<detail::Hypothesis> ParticleFilter::Impl::seedHypotheses(const std::
   // Between two of the window's scans, the seeds would propose the last one's places again
   // (ParticleFilterConfig::seeds_on_window_scans); the first weighing always seeds.
   if (config.seeds_on_window_scans && weighed_once && !evidence.wouldJoin(planarPose(odom))) return hyps;
-  hyps = detail::poseHypotheses(observations, z, rooms, config, static_cast<std::size_t>(config.max_hypotheses));
+  // The first weighing searches every room (its seeds place most particles); later ones a share
+  // of them in turn, seed_poses_per_weighing poses' worth.
+  detail::RoomShare share;
+  share.poses = weighed_once ? static_cast<std::size_t>(std::max(0, config.seed_poses_per_weighing)) : 0;
+  share.next_room = next_seed_room;
+  hyps = detail::poseHypotheses(observations, z, rooms, config, static_cast<std::size_t>(config.max_hypotheses),
+                                std::numeric_limits<double>::infinity(), false, &share);
+  next_seed_room = share.next_room;
+  report.seed_rooms = share.rooms_searched;
   if (prior.active())  // no pose the prior rules out, not even as a seed
     hyps.erase(std::remove_if(hyps.begin(), hyps.end(), [&](const detail::Hypothesis& h) { return !admitted({h.x, h.y, h.yaw}); }),
                hyps.end());

@@ -178,7 +178,7 @@ void fromIndex(const std::vector<Observation>& obs, double z, const FaceIndex& i
 
 std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observations, double z_base,
                                        const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count,
-                                       double wanted_within, bool outside_rooms) {
+                                       double wanted_within, bool outside_rooms, RoomShare* share) {
   std::vector<Hypothesis> all;
   if (observations.size() < 2 || rooms.roomCount() == 0) return all;
   Bound bound;
@@ -191,8 +191,17 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observati
   std::vector<char> at_height, known;
   std::vector<Heading> headings;
   if (config.use_rooms) {
-    for (int r = 0; r < static_cast<int>(rooms.roomCount()); ++r)
+    // The rooms' order does not change the result (the poses are scored, then sorted by score
+    // and pose), only which rooms a share reaches.
+    const int count = static_cast<int>(rooms.roomCount());
+    const int first = share ? ((share->next_room % count) + count) % count : 0;
+    int searched = 0;
+    while (searched < count) {
+      const int r = (first + searched++) % count;
       fromLandmarks(observations, z_base, rooms.landmarks(r), r, rooms, along_m, poses, at_height, headings, known);
+      if (share && share->poses > 0 && poses.size() >= share->poses) break;
+    }
+    if (share) share->next_room = (first + searched) % count, share->rooms_searched = searched;
   } else {
     // The ablation: every room holds every face; one pass over them is enough.
     if (const FaceIndex* index = rooms.fineIndex())

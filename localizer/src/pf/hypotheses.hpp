@@ -34,7 +34,17 @@ constexpr int kAnywhere = -2;
 void posesFromEnds(const std::vector<Observation>& obs, double z, const std::vector<Landmark>& marks, int room,
                    const RoomIndex& rooms, double margin_m, std::vector<Particle>& poses);
 
-// Hypotheses over every room (best first, near-duplicates merged, at most max_count).
+// A share of the storey's rooms for one search (the filter's seeds after its first weighing):
+// rooms in turn from `next_room`, until `poses` poses are solved (0: every room). The search
+// sets `next_room` to where the next one goes on and `rooms_searched` to how many it took.
+struct RoomShare {
+  std::size_t poses = 0;
+  int next_room = 0;
+  int rooms_searched = 0;
+};
+
+// Hypotheses over every room (best first, near-duplicates merged, at most max_count), or over
+// the rooms of `share` (with rooms).
 // With a finite `wanted_within`, the caller only wants those within it of the best: a pose
 // whose scan already scores below the best found so far less that is not scored to the end
 // (matchObservations' floor). Every hypothesis within it of the best is still there, with the
@@ -44,6 +54,6 @@ void posesFromEnds(const std::vector<Observation>& obs, double z, const std::vec
 std::vector<Hypothesis> poseHypotheses(const std::vector<Observation>& observations, double z_base,
                                        const RoomIndex& rooms, const ParticleFilterConfig& config, std::size_t max_count,
                                        double wanted_within = std::numeric_limits<double>::infinity(),
-                                       bool outside_rooms = false);
+                                       bool outside_rooms = false, RoomShare* share = nullptr);
 
 }  // namespace bimloc::pf::detail

@@ -87,6 +87,15 @@ struct ParticleFilterConfig {
   // shared plans' construction site 9 starts decided later, 2 sooner; on new floors it lost a
   // start (docs/results/2026-11-28-h28seeds2.md).
   bool seeds_on_window_scans = false;
+  // The seeds' budget after the first weighing: rooms are searched in turn, from where the last
+  // weighing stopped, until this many poses are solved (each is then scored as a particle is),
+  // so a weighing's search costs no more than weighing the particles, however large the storey;
+  // the storey is covered over a few weighings. Without it the cost grew with the rooms: on a
+  // 600-room office floor 30 000-50 000 poses a weighing, the seeds 38 % of the search loop.
+  // The first weighing searches every room (its seeds place most particles). The convergence
+  // test's own search over every face (PathEvidence::proposeEveryFit) is not bounded by it.
+  // 0: every room at every weighing.
+  int seed_poses_per_weighing = 6000;
   // Path evidence (beyond the paper): no convergence until the recent path fits the estimate
   // better than any other place of the storey, and when it does, particles go there. A single
   // scan cannot tell look-alike rooms apart; the path through the building can. The margin is
@@ -214,6 +223,7 @@ struct UpdateReport {
   bool resampled = false;
   bool weighed = false;      // false: the robot had not moved enough since the last weighing
   int hypotheses = 0;        // poses computed from the scan
+  int seed_rooms = 0;        // rooms the seeds searched for them (seed_poses_per_weighing)
   int injected = 0;          // particles moved to them
   bool converged = false;    // this update declared convergence (or it held before)
   // The path evidence: its best pose (map x, y, yaw) and how much better the recent path
