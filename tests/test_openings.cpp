@@ -332,3 +332,36 @@ TEST(Openings, ExampleHomOpeningsAreAllCutAndTheWallsKeepTheirFaces) {
   }
   EXPECT_EQ(walls, 16);
 }
+
+// The elements whose openings IFC++ was not asked to cut (own_opening_cuts.hpp) are cut by
+// rebuiltBodies; should one not cut as read, the storey mesh has it whole and the reader says so.
+TEST(Openings, AnElementLeftToUsWhoseOpeningsDoNotCutIsNamed) {
+  const WallFrame w;
+  bim::detail::RawModel raw;
+  bim::detail::RawProduct wall;
+  wall.entity_id = 7, wall.global_id = "3vB2YO$MX4xv5uCqZZG05x", wall.name = "W", wall.ifc_class = "IfcWall";
+  wall.mesh = bim::detail::prismMesh(w.body());
+  wall.sole_body = w.body();
+  raw.walls.push_back(wall);
+  raw.openings_left_to_us = {7};
+  bim::detail::RawOpening door;
+  door.voided_entity_id = 7, door.extrusion = w.opening(1.0, 1.9, 0.0, 2.1), door.sole = true;
+  raw.openings.push_back(door);
+  std::vector<std::string> warnings;
+  auto bodies = bim::detail::rebuiltBodies(raw, warnings);
+  EXPECT_EQ(bodies.count(7), 1u);  // cut, unsaid
+  EXPECT_TRUE(warnings.empty());
+
+  // The same door turned 0.3 rad off the wall: not a box along it, not cut.
+  for (auto& c : raw.openings[0].extrusion->corners) c = w.at(1.45, 0.15, 0) + Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) * (c - w.at(1.45, 0.15, 0));
+  bodies = bim::detail::rebuiltBodies(raw, warnings);
+  EXPECT_EQ(bodies.count(7), 0u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("IfcWall #7 3vB2YO$MX4xv5uCqZZG05x 'W': its openings are not cut from the storey mesh"), std::string::npos)
+      << warnings[0];
+  // Not left to us: IFC++ cut it, its mesh is kept, nothing to say.
+  raw.openings_left_to_us.clear(), warnings.clear();
+  bodies = bim::detail::rebuiltBodies(raw, warnings);
+  EXPECT_EQ(bodies.count(7), 0u);
+  EXPECT_TRUE(warnings.empty());
+}

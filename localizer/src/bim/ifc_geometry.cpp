@@ -279,6 +279,7 @@ RawModel readRawModel(const PlanText& plan, const std::string& path) {
     // Openings we cut ourselves (rebuiltBodies) are kept from IFC++'s cut, quadratic in one
     // wall's openings (own_opening_cuts.hpp); attached again when the conversion is done.
     const OwnOpeningCuts own_cuts(*model, profiles);
+    raw.openings_left_to_us = own_cuts.elements();
     try {
       converter.convertGeometry();
     } catch (const std::exception& e) {

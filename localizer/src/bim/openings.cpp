@@ -215,16 +215,24 @@ std::unordered_map<int, TriangleMesh> rebuiltBodies(const RawModel& raw, std::ve
       if (!p.mesh.empty()) {
         // IFC++ cut its openings with Carve, whose CSG orders by heap address: on some plans
         // (Office_A_20110811.ifc) it cuts a different subset of a wall's windows from run to
-        // run. A body that is one box with box openings is cut here instead, exactly; any
-        // other keeps IFC++'s mesh.
+        // run. A body that is one box with box openings is cut here instead, exactly (and
+        // IFC++ was not asked to: own_opening_cuts.hpp); any other keeps IFC++'s mesh.
         const auto& own = openings_of[p.entity_id];
-        if (!p.sole_body || own.empty() ||
-            !std::all_of(own.begin(), own.end(), [](const RawOpening* o) { return o->extrusion && o->sole; }))
-          continue;
-        std::vector<Extrusion> solids;
-        for (const RawOpening* o : own) solids.push_back(*o->extrusion);
-        OpeningCut cut = cutOpenings(*p.sole_body, solids);
-        if (cut.not_cut.empty() && cut.cut == solids.size()) bodies.emplace(p.entity_id, std::move(cut.mesh));
+        const bool left_to_us = std::binary_search(raw.openings_left_to_us.begin(), raw.openings_left_to_us.end(), p.entity_id);
+        bool cut_here = false;
+        if (p.sole_body && !own.empty() &&
+            std::all_of(own.begin(), own.end(), [](const RawOpening* o) { return o->extrusion && o->sole; })) {
+          std::vector<Extrusion> solids;
+          for (const RawOpening* o : own) solids.push_back(*o->extrusion);
+          OpeningCut cut = cutOpenings(*p.sole_body, solids);
+          cut_here = cut.not_cut.empty() && cut.cut == solids.size();
+          if (cut_here) bodies.emplace(p.entity_id, std::move(cut.mesh));
+        }
+        // The reader checked that every one of these cuts before it kept IFC++ from cutting
+        // them; should one not, the storey mesh would have the element whole, unsaid.
+        if (left_to_us && !cut_here)
+          warnings.push_back(describeProduct(p) + ": its openings are not cut from the storey mesh (they could not be " +
+                             "cut as read): the element stands whole there");
         continue;
       }
       if (!p.extrusion) continue;

@@ -41,6 +41,7 @@ class OwnOpeningCuts {
       if (cutsAll(element, profiles)) {
         detached_.emplace_back(element, std::move(element->m_HasOpenings_inverse));
         element->m_HasOpenings_inverse.clear();
+        ids_.push_back(id);
       }
     }
   }
@@ -50,7 +51,8 @@ class OwnOpeningCuts {
   OwnOpeningCuts(const OwnOpeningCuts&) = delete;
   OwnOpeningCuts& operator=(const OwnOpeningCuts&) = delete;
 
-  std::size_t detached() const { return detached_.size(); }
+  // The entity ids of the elements detached, ascending.
+  const std::vector<int>& elements() const { return ids_; }
 
  private:
   // rebuiltBodies' rule for an element with an IFC++ mesh: a sole extrusion as its body, every
@@ -62,8 +64,10 @@ class OwnOpeningCuts {
     if (!body) return false;
     std::vector<Extrusion> solids;
     for (const auto& weak : element->m_HasOpenings_inverse) {
+      // The relation as the reader lists it for rebuiltBodies (ifc_geometry.cpp): whole, and
+      // naming this element (a damaged file may leave one in the list that names another).
       const auto rel = weak.lock();
-      if (!rel || !rel->m_RelatedOpeningElement) return false;
+      if (!rel || !rel->m_RelatedOpeningElement || rel->m_RelatingBuildingElement != element) return false;
       const auto& opening = rel->m_RelatedOpeningElement;
       if (!profiles.bodyIsOneExtrusion(opening)) return false;
       auto solid = profiles.bodyExtrusion(opening, unread);
@@ -75,6 +79,7 @@ class OwnOpeningCuts {
   }
 
   std::vector<std::pair<shared_ptr<IfcElement>, std::vector<weak_ptr<IfcRelVoidsElement>>>> detached_;
+  std::vector<int> ids_;
 };
 
 }  // namespace bimloc::bim::detail

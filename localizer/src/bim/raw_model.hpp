@@ -95,6 +95,9 @@ struct RawModel {
   // flights and landings are the elements whose whole_entity_id is theirs).
   std::vector<RawProduct> stairs;
   std::vector<RawOpening> openings;  // those of the elements that have no IFC++ mesh
+  // The elements whose openings IFC++ was not asked to cut (own_opening_cuts.hpp): their mesh
+  // is the uncut body, and rebuiltBodies must cut them (it names any it cannot).
+  std::vector<int> openings_left_to_us;
   std::vector<std::string> warnings;
   double parse_s = 0.0;
   double geometry_s = 0.0;
