@@ -167,7 +167,7 @@ TEST(RoomGrid, TheLocalizersRoomAtIsTheScanOverEveryRoom) {
     };
     if (const int r = index(p); r >= 0) return r;
     for (const double step : {0.15, 0.3})
-      for (const Eigen::Vector2d d : {Eigen::Vector2d(1, 0), Eigen::Vector2d(-1, 0), Eigen::Vector2d(0, 1), Eigen::Vector2d(0, -1)})
+      for (const Eigen::Vector2d& d : {Eigen::Vector2d(1, 0), Eigen::Vector2d(-1, 0), Eigen::Vector2d(0, 1), Eigen::Vector2d(0, -1)})
         if (const int r = index(p + step * d); r >= 0) return r;
     return -1;
   };
