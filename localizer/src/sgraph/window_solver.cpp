@@ -7,7 +7,8 @@
 
 #include <ceres/ceres.h>
 
-#include <Eigen/Cholesky>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 
 #include <chrono>
 #include <cmath>
@@ -30,15 +31,21 @@ std::optional<Eigen::Matrix3d> newestCovariance(ceres::Problem& problem, const s
   options.num_threads = 1;
   ceres::CRSMatrix crs;
   if (!problem.Evaluate(options, nullptr, nullptr, nullptr, &crs)) return std::nullopt;
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  // Sparse, as the solve is: the window's walls bring in the rooms along them with all their
+  // walls (a corridor wall of a 600-room floor, 150 offices), and a dense J'J of 2 000 columns
+  // was 97 % of the tracking's CPU there (3.4-15x real time, against 110x on the default world).
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(crs.values.size());
   for (int r = 0; r < crs.num_rows; ++r)
     for (int k = crs.rows[static_cast<std::size_t>(r)]; k < crs.rows[static_cast<std::size_t>(r) + 1]; ++k)
-      J(r, crs.cols[static_cast<std::size_t>(k)]) = crs.values[static_cast<std::size_t>(k)];
-  const Eigen::MatrixXd H = J.transpose() * J;
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(H);
+      entries.emplace_back(r, crs.cols[static_cast<std::size_t>(k)], crs.values[static_cast<std::size_t>(k)]);
+  Eigen::SparseMatrix<double> J(crs.num_rows, crs.num_cols);
+  J.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SparseMatrix<double> H = Eigen::SparseMatrix<double>(J.transpose()) * J;
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H);
+  if (ldlt.info() != Eigen::Success) return std::nullopt;
   const Eigen::VectorXd pivots = ldlt.vectorD();
-  if (ldlt.info() != Eigen::Success || pivots.size() < 3 || pivots.minCoeff() <= 1e-12 * std::max(pivots.maxCoeff(), 1e-300))
-    return std::nullopt;
+  if (pivots.size() < 3 || pivots.minCoeff() <= 1e-12 * std::max(pivots.maxCoeff(), 1e-300)) return std::nullopt;
   // The newest pose comes first in `blocks`: its covariance is the top-left 3x3 of H^-1.
   const Eigen::MatrixXd columns = ldlt.solve(Eigen::MatrixXd::Identity(H.rows(), 3));
   Eigen::Matrix3d covariance = columns.topRows<3>();
