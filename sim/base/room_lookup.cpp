@@ -44,9 +44,6 @@ namespace {
 constexpr double kPad_m = 1e-6;
 // A plan spanning kilometres still gets a grid of bounded size (coarser cells).
 constexpr double kMaxLookupCells = 1 << 20;
-// A cell is decided as a whole when no footprint edge comes within this many cells of its
-// centre: a cell's half diagonal (0.71) and a margin (as the localizer's RoomIndex).
-constexpr double kCellSure = 0.75;
 
 }  // namespace
 
@@ -76,43 +73,11 @@ RoomGrid::RoomGrid(const bim::Storey& storey) : storey_(&storey) {
     for (int iy = y0; iy <= y1; ++iy)
       for (int ix = x0; ix <= x1; ++ix) cells_[static_cast<std::size_t>(iy) * nx_ + ix].push_back(r);
   }
-  // A cell no footprint edge comes within kCellSure cells of its centre (a cell's half diagonal
-  // is 0.71) is inside or outside each footprint as a whole: the crossing test gives every point
-  // of it the answer it gives the centre. Edges marked cell by cell over their boxes; a
-  // footprint with a coordinate that is not finite leaves its cells to the test.
-  const double sure_m = kCellSure * cell_m_;
-  std::vector<char> near(cells_.size(), 0);
-  for (const auto& room : storey.rooms) {
-    const auto& f = room.footprint;
-    for (std::size_t i = 0, n = f.size(), j = n - 1; i < n; j = i++) {
-      const Eigen::Vector2d& a = f[j];
-      const Eigen::Vector2d& b = f[i];
-      const bool finite = a.allFinite() && b.allFinite();
-      const Eigen::Vector2d box_lo = finite ? Eigen::Vector2d(a.cwiseMin(b)) : origin_;
-      const Eigen::Vector2d box_hi = finite ? Eigen::Vector2d(a.cwiseMax(b)) : Eigen::Vector2d(origin_ + Eigen::Vector2d(nx_, ny_) * cell_m_);
-      const int x0 = std::max(0, cellX(box_lo.x() - sure_m)), x1 = std::min(nx_ - 1, cellX(box_hi.x() + sure_m));
-      const int y0 = std::max(0, cellY(box_lo.y() - sure_m)), y1 = std::min(ny_ - 1, cellY(box_hi.y() + sure_m));
-      for (int iy = y0; iy <= y1; ++iy)
-        for (int ix = x0; ix <= x1; ++ix) {
-          const Eigen::Vector2d centre = origin_ + cell_m_ * Eigen::Vector2d(ix + 0.5, iy + 0.5);
-          if (!finite || !(bim::distanceToSegment(centre, a, b) > sure_m)) near[static_cast<std::size_t>(iy) * nx_ + ix] = 1;
-        }
-    }
-  }
-  sure_.assign(cells_.size(), kUnsure);
-  for (int iy = 0; iy < ny_; ++iy)
-    for (int ix = 0; ix < nx_; ++ix) {
-      const std::size_t k = static_cast<std::size_t>(iy) * nx_ + ix;
-      if (near[k]) continue;
-      const Eigen::Vector2d centre = origin_ + cell_m_ * Eigen::Vector2d(ix + 0.5, iy + 0.5);
-      int answer = -1;
-      for (const int r : cells_[k])
-        if (bim::pointInPolygon(storey.rooms[static_cast<std::size_t>(r)].footprint, centre)) {
-          answer = r;  // the first candidate holding it, as at() returns
-          break;
-        }
-      sure_[k] = answer;
-    }
+  // A cell no footprint edge comes near is answered as a whole (geometry2d.hpp), as the
+  // localizer's RoomIndex does.
+  std::vector<const bim::Polygon2*> footprints;
+  for (const auto& room : storey.rooms) footprints.push_back(&room.footprint);
+  sure_ = bim::wholeCellAnswers(footprints, cells_, origin_, cell_m_, nx_, ny_);
 }
 
 int RoomGrid::cellX(double x) const { return static_cast<int>(std::floor((x - origin_.x()) / cell_m_)); }
@@ -123,7 +88,7 @@ const bim::Room* RoomGrid::at(const Eigen::Vector2d& p) const {
   const double fx = std::floor((p.x() - origin_.x()) / cell_m_), fy = std::floor((p.y() - origin_.y()) / cell_m_);
   if (fx < 0 || fy < 0 || fx >= nx_ || fy >= ny_) return nullptr;  // beyond every footprint's box
   const std::size_t k = static_cast<std::size_t>(fy) * nx_ + static_cast<std::size_t>(fx);
-  if (const int sure = sure_[k]; sure != kUnsure) return sure < 0 ? nullptr : &storey_->rooms[static_cast<std::size_t>(sure)];
+  if (const int sure = sure_[k]; sure != bim::kCellUnsure) return sure < 0 ? nullptr : &storey_->rooms[static_cast<std::size_t>(sure)];
   for (const int r : cells_[k])
     if (bim::pointInPolygon(storey_->rooms[static_cast<std::size_t>(r)].footprint, p)) return &storey_->rooms[static_cast<std::size_t>(r)];
   return nullptr;

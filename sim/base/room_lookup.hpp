@@ -35,9 +35,9 @@ class RoomGrid {
   int nx_ = 0, ny_ = 0;
   std::vector<std::vector<int>> cells_;
   // Per cell, its answer for every point in it where no footprint edge comes near it (the room's
-  // index, -1 for none), else kUnsure: a comb-shaped corridor's footprint of hundreds of corners
-  // (a 600-room office floor) lies over every cell, and the planner asks at every step.
-  static constexpr int kUnsure = -2;
+  // index, -1 for none), else bim::kCellUnsure (bim::wholeCellAnswers): a comb-shaped
+  // corridor's footprint of hundreds of corners (a 600-room office floor) lies over every
+  // cell, and the planner asks at every step.
   std::vector<int> sure_;
   int cellX(double x) const;
   int cellY(double y) const;

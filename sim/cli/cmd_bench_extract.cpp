@@ -13,7 +13,6 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
-#include <memory>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
@@ -67,25 +66,27 @@ void run(BenchArgs args) {
   if (args.plans.empty()) throw std::runtime_error("no plans given and none found in ../shared/ifc or worlds/");
   nlohmann::json rows = nlohmann::json::array();
   bimloc::cli::Table table({"plan", "parse [s]", "geometry [s]", "model [s]", "export [s]", "total [s]", "IFC++"});
-  // A bar on a terminal only: a "measuring ...\r" line ran into the table in a log.
-  auto progress = std::make_unique<bimloc::cli::Progress>("bench extract");
-  for (const auto& plan : args.plans) {
-    progress->update(rows.size(), args.plans.size());
-    std::vector<double> parse, geometry, model, exp, total;
-    for (int r = 0; r < std::max(1, args.repeat); ++r) {
-      const Sample s = measure(plan);
-      parse.push_back(s.parse_s), geometry.push_back(s.geometry_s), model.push_back(s.model_s);
-      exp.push_back(s.export_s), total.push_back(s.total_s);
+  {
+    // A bar on a terminal only (a "measuring ...\r" line ran into the table in a log), its line
+    // cleared when it goes, before the table.
+    bimloc::cli::Progress progress("bench extract");
+    for (const auto& plan : args.plans) {
+      progress.update(rows.size(), args.plans.size());
+      std::vector<double> parse, geometry, model, exp, total;
+      for (int r = 0; r < std::max(1, args.repeat); ++r) {
+        const Sample s = measure(plan);
+        parse.push_back(s.parse_s), geometry.push_back(s.geometry_s), model.push_back(s.model_s);
+        exp.push_back(s.export_s), total.push_back(s.total_s);
+      }
+      const double p = median(parse), g = median(geometry), m = median(model), e = median(exp), t = median(total);
+      const double share = (p + g) / t;  // the IFC++ reference: what reading the file alone costs
+      rows.push_back({{"plan", plan}, {"parse_s", p}, {"geometry_s", g}, {"model_s", m}, {"export_s", e},
+                      {"total_s", t}, {"ifcpp_share", share}, {"under_2s", t < 2.0}});
+      using bimloc::cli::fixed;
+      table.add({fs::path(plan).filename().string(), fixed(p, 3), fixed(g, 3), fixed(m, 3), fixed(e, 3), fixed(t, 3),
+                 fixed(100 * share, 0) + " %"});
     }
-    const double p = median(parse), g = median(geometry), m = median(model), e = median(exp), t = median(total);
-    const double share = (p + g) / t;  // the IFC++ reference: what reading the file alone costs
-    rows.push_back({{"plan", plan}, {"parse_s", p}, {"geometry_s", g}, {"model_s", m}, {"export_s", e},
-                    {"total_s", t}, {"ifcpp_share", share}, {"under_2s", t < 2.0}});
-    using bimloc::cli::fixed;
-    table.add({fs::path(plan).filename().string(), fixed(p, 3), fixed(g, 3), fixed(m, 3), fixed(e, 3), fixed(t, 3),
-               fixed(100 * share, 0) + " %"});
   }
-  progress.reset();  // the bar's line cleared before the table
   if (args.json) {
     std::cout << nlohmann::json{{"repeat", args.repeat}, {"plans", rows}}.dump() << "\n";
   } else {

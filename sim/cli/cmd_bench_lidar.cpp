@@ -156,7 +156,7 @@ void addBenchLidarCommand(CLI::App& bench) {
       "lidar", "The VLP-16 model (noise, fields, distortion, 16-ray packets) against a bare rtcIntersect1 loop\n"
                "over exactly the same rays on the same scene, measured in the same run.");
   cmd->add_option("--plan", args->plan, "IFC plan, extract folder or mesh")->required();
-  cmd->add_option("--storey", args->storey, "storey name, index or GlobalId (a name several storeys share: the label `bimloc extract` shows)");
+  cmd->add_option("--storey", args->storey, bimloc::cli::kStoreyHelp);
   cmd->add_option("--threads", args->threads, "threads for both loops")->check(CLI::Range(1, 256));
   cmd->add_option("--turns", args->turns, "turns per measurement")->check(CLI::Range(1, 100000));
   cmd->add_option("--rounds", args->rounds, "interleaved rounds; the best of each variant is reported")->check(CLI::Range(1, 100));

@@ -153,7 +153,7 @@ void addCompareCommand(CLI::App& app) {
       "method) and errors_over_time.png (each method's median position error over time). Exit status 1 when a\n"
       "run could not be made; a method that does not localize is a result, not an error.");
   cmd->add_option("--plan", args->plan, "IFC plan (or extract folder)")->required();
-  cmd->add_option("--storey", args->storey, "storey name, index or GlobalId (a name several storeys share: the label `bimloc extract` shows)")->capture_default_str();
+  cmd->add_option("--storey", args->storey, bimloc::cli::kStoreyHelp)->capture_default_str();
   cmd->add_flag("--all-rooms", args->all_rooms, "start in every room of the storey");
   cmd->add_option("--rooms", args->rooms, "start only in these rooms (comma-separated)")->delimiter(',');
   cmd->add_option("--seeds", args->seeds, "runs per start room (seeds 1..K: the same runs as `bimloc run --all-rooms`)")

@@ -287,7 +287,7 @@ void addLocalizeCommand(CLI::App& app) {
   cmd->add_option("input", args->input, "dataset folder, ROS 1 .bag, or ROS 2 bag (rosbag2 folder, .mcap, .db3)")->required();
   cmd->add_option("--plan", args->plan, "IFC plan")->required();
   cmd->add_option("--storey", args->storey,
-                  "storey name, index or GlobalId (a name several storeys share: the label `bimloc extract` shows) (default: as recorded, else 0); auto: not told, every storey with walls and rooms "
+                  std::string(bimloc::cli::kStoreyHelp) + " (default: as recorded, else 0); auto: not told, every storey with walls and rooms "
                   "is a candidate (scored against the recorded storey)");
   cmd->add_option("--method", args->method,
                   bimloc::cli::kMethodHelp)

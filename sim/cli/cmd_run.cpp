@@ -156,7 +156,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("scenarios", args->scenarios, "scenario files (YAML)");
   cmd->add_option("--plan", args->plan, "IFC plan (or extract folder) for --all-rooms");
   cmd->add_option("--storey", args->storey,
-                  "storey name, index or GlobalId (a name several storeys share: the label `bimloc extract` shows, e.g. 'Ground floor [#1]') for --all-rooms / --starts; auto: every storey with walls and rooms, each run on "
+                  std::string(bimloc::cli::kStoreyHelp) + " for --all-rooms / --starts; auto: every storey with walls and rooms, each run on "
                   "its true storey, the localizer not told which")
       ->capture_default_str();
   cmd->add_flag("--all-rooms", args->all_rooms, "one scenario per room of the storey: random start in it, walk out");

@@ -20,6 +20,10 @@ inline constexpr int kExitUnusableInput = 2;  // the input cannot be used: an er
 // and bad options exit kExitUnusableInput. The other commands exit 1 on any error.
 bool usesLocalizeExitCodes(const std::string& command);
 
+// `--storey`: what findStorey takes, on every command that names a storey.
+inline constexpr const char* kStoreyHelp =
+    "storey name, index or GlobalId (a name several storeys share: the label `bimloc extract` shows, e.g. 'Ground floor [#1]')";
+
 // `--method`, the same on every command that runs the localizer.
 inline constexpr const char* kMethodHelp =
     "sgraph (the paper: the filter, then the S-Graph tracks), pf (the filter tracks), pf-no-rooms (the ablation), "

@@ -61,6 +61,44 @@ double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, con
   return (a + t * ab - p).norm();
 }
 
+std::vector<int> wholeCellAnswers(const std::vector<const Polygon2*>& footprints, const std::vector<std::vector<int>>& candidates,
+                                  const Eigen::Vector2d& origin, double cell_m, int nx, int ny) {
+  const std::size_t cells = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
+  const double sure_m = 0.75 * cell_m;
+  const auto centre = [&](int ix, int iy) { return Eigen::Vector2d(origin + cell_m * Eigen::Vector2d(ix + 0.5, iy + 0.5)); };
+  const auto cellOf = [&](double v, double o, int n) {
+    const double c = std::floor((v - o) / cell_m);
+    return static_cast<int>(std::clamp(c, 0.0, static_cast<double>(n - 1)));
+  };
+  std::vector<char> near(cells, 0);
+  for (const Polygon2* f : footprints)
+    for (std::size_t i = 0, n = f->size(), j = n - 1; i < n; j = i++) {
+      const Eigen::Vector2d& a = (*f)[j];
+      const Eigen::Vector2d& b = (*f)[i];
+      const bool finite = a.allFinite() && b.allFinite();
+      const int x0 = finite ? cellOf(std::min(a.x(), b.x()) - sure_m, origin.x(), nx) : 0;
+      const int x1 = finite ? cellOf(std::max(a.x(), b.x()) + sure_m, origin.x(), nx) : nx - 1;
+      const int y0 = finite ? cellOf(std::min(a.y(), b.y()) - sure_m, origin.y(), ny) : 0;
+      const int y1 = finite ? cellOf(std::max(a.y(), b.y()) + sure_m, origin.y(), ny) : ny - 1;
+      for (int iy = y0; iy <= y1; ++iy)
+        for (int ix = x0; ix <= x1; ++ix)
+          if (!finite || !(distanceToSegment(centre(ix, iy), a, b) > sure_m)) near[static_cast<std::size_t>(iy) * nx + ix] = 1;
+    }
+  std::vector<int> sure(cells, kCellUnsure);
+  for (int iy = 0; iy < ny; ++iy)
+    for (int ix = 0; ix < nx; ++ix) {
+      const std::size_t k = static_cast<std::size_t>(iy) * nx + ix;
+      if (near[k]) continue;
+      sure[k] = -1;
+      for (const int r : candidates[k])
+        if (pointInPolygon(*footprints[static_cast<std::size_t>(r)], centre(ix, iy))) {
+          sure[k] = r;
+          break;
+        }
+    }
+  return sure;
+}
+
 bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
   const double d1 = cross(q - p, a - p), d2 = cross(q - p, b - p), d3 = cross(b - a, p - a), d4 = cross(b - a, q - a);

@@ -32,9 +32,6 @@ namespace {
 // A doorway belongs to no room's footprint: the robot crossing it is walking from one room
 // into the next, and either room's walls are what it sees. Walls are at most 0.6 m thick.
 constexpr double kDoorwayM = 0.3;
-// A cell is decided as a whole when no footprint edge comes within this many cells of its
-// centre: a cell's half diagonal (0.71) and a margin.
-constexpr double kCellSureFactor = 0.75;
 
 // A face as a landmark, with its wall line.
 Landmark landmarkOf(const bim::Storey& storey, std::size_t w, int f, const std::vector<LineSpan>& lines) {
@@ -142,28 +139,11 @@ RoomIndex::RoomIndex(const bim::Storey& storey, bool use_rooms, bool neighbours,
     for (int ix = x0; ix <= x1; ++ix)
       for (int iy = y0; iy <= y1; ++iy) cells_[static_cast<std::size_t>(iy * nx_ + ix)].push_back(r);
   }
-  // A cell no footprint edge of its candidates comes near is inside or outside each of them as
-  // a whole: the crossing test gives every point of it the answer it gives the centre (its
-  // rounding is 1e-14 m at a storey's coordinates, the margin a cell's half diagonal and more).
-  const double sure_m = kCellSureFactor * cell_m_;
-  sure_.assign(cells_.size(), kUnsure);
-  for (int iy = 0; iy < ny_; ++iy)
-    for (int ix = 0; ix < nx_; ++ix) {
-      const std::size_t k = static_cast<std::size_t>(iy * nx_ + ix);
-      const Eigen::Vector2d centre = origin_ + cell_m_ * Eigen::Vector2d(ix + 0.5, iy + 0.5);
-      int answer = -1;
-      bool sure = true;
-      for (const int r : cells_[k]) {
-        const auto& f = rooms_[static_cast<std::size_t>(r)]->footprint;
-        for (std::size_t i = 0, n = f.size(), j = n - 1; i < n && sure; j = i++) sure = bim::distanceToSegment(centre, f[j], f[i]) > sure_m;
-        if (!sure) break;
-        if (bim::pointInPolygon(f, centre)) {
-          answer = r;  // the first candidate holding it, as containing() returns
-          break;
-        }
-      }
-      if (sure) sure_[k] = answer;
-    }
+  // A cell no footprint edge comes near is inside or outside each footprint as a whole
+  // (geometry2d.hpp; the crossing test's rounding is 1e-14 m at a storey's coordinates).
+  std::vector<const bim::Polygon2*> footprints;
+  for (const bim::Room* room : rooms_) footprints.push_back(&room->footprint);
+  sure_ = bim::wholeCellAnswers(footprints, cells_, origin_, cell_m_, nx_, ny_);
 }
 
 int RoomIndex::roomAt(double x, double y) const {
@@ -178,7 +158,7 @@ int RoomIndex::containing(double x, double y) const {
   const int ix = static_cast<int>(std::floor(per_cell_(x - origin_.x())));
   const int iy = static_cast<int>(std::floor(per_cell_(y - origin_.y())));
   if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_) return -1;
-  if (const int sure = sure_[static_cast<std::size_t>(iy * nx_ + ix)]; sure != kUnsure) return sure;
+  if (const int sure = sure_[static_cast<std::size_t>(iy * nx_ + ix)]; sure != bim::kCellUnsure) return sure;
   for (const int r : cells_[static_cast<std::size_t>(iy * nx_ + ix)])
     if (bim::pointInPolygon(rooms_[static_cast<std::size_t>(r)]->footprint, {x, y})) return r;
   return -1;

@@ -89,9 +89,8 @@ class RoomIndex {
   int nx_ = 0, ny_ = 0;
   std::vector<std::vector<int>> cells_;  // candidate rooms per cell
   // Per cell, what containing() answers for every point of it, where that does not depend on the
-  // point: the room (or -1, none) when every footprint edge of the cell's candidates lies
-  // farther from the cell's centre than kCellSureM; kUnsure (the polygons asked) otherwise.
-  static constexpr int kUnsure = -2;
+  // point: the room (or -1, none) where no footprint edge comes near the cell;
+  // bim::kCellUnsure (the polygons asked) otherwise (bim::wholeCellAnswers).
   std::vector<int> sure_;
   std::vector<std::array<double, 4>> boxes_;  // per room: x and y least, x and y most, grown (mayBeIn)
   int containing(double x, double y) const;

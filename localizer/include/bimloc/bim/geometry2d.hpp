@@ -17,6 +17,19 @@ double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, con
 bool segmentsCross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
 Polygon2 convexHull(std::vector<Eigen::Vector2d> points);  // counter-clockwise
 
+// Point-in-room lookups on a grid of cells (cell (ix, iy) spans origin + cell_m [ix, ix + 1) x
+// [iy, iy + 1), nx x ny of them, candidates[iy * nx + ix] the footprints, by index, that may
+// hold its points, in the order the lookup tries them). Per cell: the first candidate holding
+// the cell's centre (-1: none) where no edge of any footprint comes within 0.75 cells of the
+// centre, which a cell's half diagonal (0.71) and a margin keep off the whole cell, so that the
+// crossing test gives every point of the cell the centre's answer; kCellUnsure elsewhere (the
+// lookup asks the polygons), and wherever a footprint with a coordinate that is not finite
+// reaches. The edges are marked cell by cell over their boxes: a footprint of hundreds of
+// corners over every cell (a comb-shaped corridor) costs its edges' cells, not cells x corners.
+inline constexpr int kCellUnsure = -2;
+std::vector<int> wholeCellAnswers(const std::vector<const Polygon2*>& footprints, const std::vector<std::vector<int>>& candidates,
+                                  const Eigen::Vector2d& origin, double cell_m, int nx, int ny);
+
 // Minimum-area enclosing rectangle of a convex polygon (rotating calipers).
 struct Rectangle2 {
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
