@@ -113,13 +113,13 @@ int FreeSpaceMap::regionKey(const Eigen::Vector2d& p) const {
   return (iy << 14) | ix;
 }
 
-void FreeSpaceMap::crossings(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0, double dz_per_m, double max_t,
-                             double lateral_per_m, double position_sigma_m, std::vector<Crossing>& out,
-                             std::vector<std::uint32_t>* scratch) const {
-  out.clear();
-  if (faces_.empty() || !(max_t > 0.0)) return;
-  // Amanatides-Woo traversal of the cells along the ray, to max_t (a crossing found in a cell
-  // may lie in a later one: faces span cells; sorted by t at the end).
+std::optional<FreeSpaceMap::Crossing> FreeSpaceMap::firstCrossing(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0,
+                                                                  double dz_per_m, double max_t, double lateral_per_m,
+                                                                  double position_sigma_m, std::vector<std::uint32_t>* scratch) const {
+  std::optional<Crossing> best;
+  if (faces_.empty() || !(max_t > 0.0)) return best;
+  // Amanatides-Woo traversal of the cells along the ray; a crossing found in a cell may lie in
+  // a later one (faces span cells), so the walk stops once the cells begin beyond it.
   double gx = (o.x() - origin_.x()) / cell_m_, gy = (o.y() - origin_.y()) / cell_m_;
   int ix = static_cast<int>(std::floor(gx)), iy = static_cast<int>(std::floor(gy));
   const int sx = u.x() > 0 ? 1 : -1, sy = u.y() > 0 ? 1 : -1;
@@ -131,7 +131,7 @@ void FreeSpaceMap::crossings(const Eigen::Vector2d& o, const Eigen::Vector2d& u,
   std::vector<std::uint32_t> own;
   std::vector<std::uint32_t>& tried = scratch ? *scratch : own;
   tried.clear();
-  while (t_cell <= max_t) {
+  while (t_cell <= max_t && (!best || t_cell <= best->t)) {
     if (ix >= 0 && iy >= 0 && ix < nx_ && iy < ny_) {
       for (const std::uint32_t i : cells_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix)]) {
         if (std::find(tried.begin(), tried.end(), i) != tried.end()) continue;
@@ -139,7 +139,7 @@ void FreeSpaceMap::crossings(const Eigen::Vector2d& o, const Eigen::Vector2d& u,
         const Face& f = faces_[i];
         double t = 0, s = 0;
         if (!f.meets(o, u, t, s)) continue;  // parallel: the ray runs along it
-        if (!(t > 1e-6) || t > max_t) continue;
+        if (!(t > 1e-6) || t > max_t || (best && t >= best->t)) continue;
         // Where along the face the ray crosses is known to the place's pose: its heading moves
         // the ray t sigma_yaw sideways, which is that over cos(incidence) along the face; its
         // position moves the crossing by sigma_pos along the face and, across it, by sigma_pos
@@ -167,7 +167,7 @@ void FreeSpaceMap::crossings(const Eigen::Vector2d& o, const Eigen::Vector2d& u,
                       z <= hole.z_max_m + kFreeSpaceOpeningMarginM;  // at its frame: a jamb or the hole, no verdict
         Crossing c;
         c.t = t, c.wall = f.wall, c.cos_incidence = cos_incidence, c.uncertain = corner;
-        out.push_back(c);
+        best = c;
       }
     }
     if (tx < ty) {
@@ -177,8 +177,7 @@ void FreeSpaceMap::crossings(const Eigen::Vector2d& o, const Eigen::Vector2d& u,
     }
     if (!std::isfinite(t_cell)) break;
   }
-  // Stable: of two faces crossed at the same t (where they meet), the one the walk found first.
-  std::stable_sort(out.begin(), out.end(), [](const Crossing& a, const Crossing& b) { return a.t < b.t; });
+  return best;
 }
 
 std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpaceParams& params, const Eigen::Vector3d& pose, double z_base,
@@ -192,9 +191,7 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
   // bound taken for a sigma is the safe side of a uniform error's (bound / sqrt 3).
   const double sigma_yaw = std::hypot(params.sigma_yaw_rad, profile.skew_yaw_rad);
   const double sigma_m = std::hypot(params.sigma_m, profile.skew_m);
-  std::vector<std::uint32_t> tried;  // crossings', reused ray after ray
-  std::vector<FreeSpaceMap::Crossing> along;
-  std::vector<int> walls_through;  // this ray's
+  std::vector<std::uint32_t> tried;  // firstCrossing's, reused ray after ray
   for (std::size_t ray = 0; ray < profile.ends_base.size(); ++ray) {
     const Eigen::Vector3f& e = profile.ends_base[ray];
     const auto index = static_cast<std::int32_t>(ray);
@@ -204,8 +201,8 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
     if (!(r > 1e-3)) continue;
     const Eigen::Vector2d u = v / r;
     const double dz = (z_base + e.z() - z0) / r;
-    map.crossings(o, u, z0, dz, r + params.open_m, sigma_yaw, sigma_m, along, &tried);
-    if (along.empty()) {
+    const auto x = map.firstCrossing(o, u, z0, dz, r + params.open_m, sigma_yaw, sigma_m, &tried);
+    if (!x) {
       // Nothing solid along the ray up to open_m past its end: it ended in the place's open ...
       const double reach = params.gate_sigmas * sigma_m / kFreeSpaceMinCos;
       const auto pass = map.openingPass(o, u, z0, dz, r, reach, &tried);
@@ -213,7 +210,7 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
           pass && std::abs(r - pass->t) <= params.gate_sigmas * sigma_m / std::max(kFreeSpaceMinCos, pass->cos_incidence);
       // ... unless it ended in one of the place's own openings at its frame: within the gate of
       // the opening's face and, along it, within the margin of a jamb or of the head where a
-      // crossing gets no verdict (crossings). There the plan has the wall's body, the
+      // crossing gets no verdict (firstCrossing). There the plan has the wall's body, the
       // opening's reveal and frame, which its two faces do not draw: no evidence. Counted as
       // open, the true place paid a quarter face for each doorway whose jamb its rays grazed, up
       // to the open term's whole face: on a corridor of doorways (random_residential_25546) the
@@ -232,43 +229,29 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
         hits.push_back({(pass->doorway ? kInDoorwayBase : kInWindowBase) + pass->wall, 0.0f, index});
       continue;
     }
-    // Every solid wall the ray went through, in order, is one the place needs missing to explain
-    // it (each one face's worth, as a wall is counted once: a ray through two walls of the place
-    // is two walls not built, as two rays through one wall each would be). The first crossing
-    // the ray does not pass (it ended on it or short of it), a corner, or a grazing one ends the
-    // verdicts: beyond it, where the ray would have gone is not known.
-    walls_through.clear();
-    for (const FreeSpaceMap::Crossing& x : along) {
-      if (x.uncertain) break;
-      // The range along the ray is uncertain by the range noise over the incidence, and by the
-      // place's heading: a candidate fitted on a few scans is known to sigma_yaw, which moves the
-      // ray sideways by r sigma_yaw at the wall and so along it by that times tan(incidence). At
-      // grazing incidence on a wall far away that is metres: a ray that ended on the hall's far
-      // corner must not count as through the side wall beside it (random hall, 1 deg off).
-      // Exactly, not to first order: the ray meets the face at the angle a (sin a = |cos| of the
-      // incidence), from h = t sin a off the face's line; turned away from the face by the gate's
-      // heading g sigma_yaw it crosses at h / sin(a - g sigma_yaw), and at a <= g sigma_yaw it may
-      // run parallel to the face and never cross it: no verdict. Likewise the place's position
-      // across the face moves the crossing by sigma_m / sin a, unbounded at grazing. (A floor of
-      // |cos| 0.3 on both, as before, made the truth's rays down a 50 m school corridor, 3.6 deg
-      // to its side walls, pay a wall each: 1.3 deg of heading moves a crossing from 10.7 to 16.7 m.)
-      const double sin_a = x.cos_incidence, g = params.gate_sigmas;
-      const double a = std::asin(std::min(1.0, sin_a)), tilt = g * sigma_yaw;
-      if (!(a > tilt)) break;
-      const double lateral = x.t * (sin_a / std::sin(a - tilt) - 1.0) / g;  // one sigma's worth of the gate's slip
-      const double sigma = std::hypot(sigma_m / sin_a, lateral);
-      const double beyond = r - x.t;
-      const bool passed = std::find(walls_through.begin(), walls_through.end(), x.wall) != walls_through.end();
-      if (beyond > params.gate_sigmas * sigma) {
-        // A wall's second face (the ray left the wall it entered): the same wall, counted once.
-        if (passed) continue;
-        walls_through.push_back(x.wall);
-        hits.push_back({x.wall, static_cast<float>(throughCost(beyond, sigma, params.face_worth)), index});
-        continue;
-      }
-      if (params.explained && beyond >= -params.gate_sigmas * sigma && !passed) hits.push_back({kOnWallBase + x.wall, 0.0f, index});
-      break;
-    }
+    if (x->uncertain) continue;
+    // The range along the ray is uncertain by the range noise over the incidence, and by the
+    // place's heading: a candidate fitted on a few scans is known to sigma_yaw, which moves the
+    // ray sideways by r sigma_yaw at the wall and so along it by that times tan(incidence). At
+    // grazing incidence on a wall far away that is metres: a ray that ended on the hall's far
+    // corner must not count as through the side wall beside it (random hall, 1 deg off).
+    // Exactly, not to first order: the ray meets the face at the angle a (sin a = |cos| of the
+    // incidence), from h = t sin a off the face's line; turned away from the face by the gate's
+    // heading g sigma_yaw it crosses at h / sin(a - g sigma_yaw), and at a <= g sigma_yaw it may
+    // run parallel to the face and never cross it: no verdict. Likewise the place's position
+    // across the face moves the crossing by sigma_m / sin a, unbounded at grazing. (A floor of
+    // |cos| 0.3 on both, as before, made the truth's rays down a 50 m school corridor, 3.6 deg
+    // to its side walls, pay a wall each: 1.3 deg of heading moves a crossing from 10.7 to 16.7 m.)
+    const double sin_a = x->cos_incidence, g = params.gate_sigmas;
+    const double a = std::asin(std::min(1.0, sin_a)), tilt = g * sigma_yaw;
+    if (!(a > tilt)) continue;
+    const double lateral = x->t * (sin_a / std::sin(a - tilt) - 1.0) / g;  // one sigma's worth of the gate's slip
+    const double sigma = std::hypot(sigma_m / sin_a, lateral);
+    const double beyond = r - x->t;
+    if (beyond > params.gate_sigmas * sigma)
+      hits.push_back({x->wall, static_cast<float>(throughCost(beyond, sigma, params.face_worth)), index});
+    else if (params.explained && beyond >= -params.gate_sigmas * sigma)
+      hits.push_back({kOnWallBase + x->wall, 0.0f, index});
   }
   return hits;
 }

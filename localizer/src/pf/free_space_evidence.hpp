@@ -3,9 +3,8 @@
 // on planes for as long as the robot stays in one of them, although every ray through the true
 // door went through the other office's solid wall. Here each ray of a scan's range profile
 // (range_profile.hpp) is cast from a candidate place through the plan's wall faces:
-//   - through: it ends beyond a solid face it crosses (not in an opening) by more than
-//     gate_sigmas sigmas of its range: the place has a wall where the scan saw none (every wall
-//     the ray passed, each under its own key);
+//   - through: it ends beyond the first solid face it crosses (not in an opening) by more than
+//     gate_sigmas sigmas of its range: the place has a wall where the scan saw none;
 //   - open: it ends open_m or more short of every face along it: the place has free space where
 //     the scan saw something;
 //   - else it is consistent (ended on a wall, or short of one by clutter): no cost.
@@ -91,20 +90,20 @@ class FreeSpaceMap {
     double cos_incidence = 1; // |cos| between the ray and the face normal
     bool uncertain = false;   // within a few centimetres of the face's end: a corner, no verdict
   };
-  // The solid crossings of the ray o + t u (u unit, map x y; its height goes from z0 at t = 0 by
-  // dz_per_m), 0 < t <= max_t, in `out` by t (a wall's two faces are two crossings). Openings
-  // the ray passes through are not crossings. lateral_per_m (the place's heading sigma) and
-  // position_sigma_m (its position's) say how far along a face the crossing may be off: that
-  // close to a face's end or an opening's edge it is `uncertain`. `scratch` (optional): a list
-  // to hold the faces tried, so that a caller casting many rays allocates it once.
-  void crossings(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0, double dz_per_m, double max_t,
-                 double lateral_per_m, double position_sigma_m, std::vector<Crossing>& out,
-                 std::vector<std::uint32_t>* scratch = nullptr) const;
+  // The first solid crossing of the ray o + t u (u unit, map x y; its height goes from z0 at
+  // t = 0 by dz_per_m), 0 < t <= max_t. Openings the ray passes through are not crossings.
+  // lateral_per_m (the place's heading sigma) and position_sigma_m (its position's) say how far
+  // along a face the crossing may be off: that close to a face's end or an opening's edge it
+  // is `uncertain`. `scratch` (optional): a list to hold the faces tried, so that a caller
+  // casting many rays allocates it once.
+  std::optional<Crossing> firstCrossing(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double z0, double dz_per_m,
+                                        double max_t, double lateral_per_m = 0.0, double position_sigma_m = 0.0,
+                                        std::vector<std::uint32_t>* scratch = nullptr) const;
   int regionKey(const Eigen::Vector2d& p) const;  // a 2 m cell of the floor
   // Where the ray passes through one of the plan's openings within `reach` of t_ref along it
   // (the nearest such pass): the opening's wall, and whether it is a doorway (it reaches down
   // to the wall's base: a leaf, shut or not, stands in it) or a window (a sill: a pane fills it).
-  // `scratch`, as crossings': the faces tried, reused ray after ray.
+  // `scratch`, as firstCrossing's: the faces tried, reused ray after ray.
   struct OpeningPass {
     double t = 0;
     int wall = -1;
@@ -124,7 +123,7 @@ class FreeSpaceMap {
     const std::vector<bim::FaceOpening>* openings = nullptr;
     int wall = -1;
     // Where the ray o + t u meets the face's line start + s direction (t along the ray, s along
-    // the face); false when it runs parallel to it. crossings' and openingPass' test.
+    // the face); false when it runs parallel to it. firstCrossing's and openingPass' test.
     bool meets(const Eigen::Vector2d& o, const Eigen::Vector2d& u, double& t, double& s) const {
       const double denom = u.x() * direction.y() - u.y() * direction.x();
       if (std::abs(denom) < 1e-9) return false;

@@ -28,7 +28,7 @@ std::optional<FreeSpaceMap::OpeningPass> FreeSpaceMap::openingPass(const Eigen::
   std::optional<OpeningPass> best;
   if (faces_.empty() || !(reach >= 0.0)) return best;
   // The cells the ray's stretch [t_ref - reach, t_ref + reach] lies in: a box of them (the
-  // stretch is a metre or two; crossings' walk is for whole rays).
+  // stretch is a metre or two; firstCrossing's walk is for whole rays).
   const Eigen::Vector2d a = o + u * std::max(0.0, t_ref - reach), b = o + u * (t_ref + reach);
   const auto cell = [&](double v, double origin) { return static_cast<int>(std::floor((v - origin) / cell_m_)); };
   const int x0 = std::max(0, cell(std::min(a.x(), b.x()), origin_.x())), x1 = std::min(nx_ - 1, cell(std::max(a.x(), b.x()), origin_.x()));
