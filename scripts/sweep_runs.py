@@ -159,10 +159,10 @@ def main():
         print(f"\noracle: {'group':<16} {'runs':>5} {'decidable':>10} {'localized':>10} {'lag med':>8} {'lag p90':>8} "
               f"{'ratio med':>9} {'ratio p90':>9}")
         for r in result["oracle"]:
-            for name in ("plain", "robust"):
-                o = r[name]
+            for limit in ("plain", "robust"):
+                o = r[limit]
                 share = f"{o['decidable_localized']} ({100.0 * o['decidable_localized'] / o['decidable']:.1f}%)" if o["decidable"] else "-"
-                print(f"{name:<7} {r['group']:<16} {r['runs']:>5} {o['decidable']:>10} {share:>10} {fmt(o['median_lag_s']):>8} "
+                print(f"{limit:<7} {r['group']:<16} {r['runs']:>5} {o['decidable']:>10} {share:>10} {fmt(o['median_lag_s']):>8} "
                       f"{fmt(o['p90_lag_s']):>8} {fmt(o['median_ratio']):>9} {fmt(o['p90_ratio']):>9}")
     falses = [k for k, s in a.items() if s["false_convergence"]]
     if args.list_false:

@@ -167,6 +167,21 @@ TEST(FreeSpace, EachWallCountsOnceAndAtMostOneFace) {
   EXPECT_NEAR(freeSpacePenalty({&two}, params), 8.0, 1e-5);
 }
 
+TEST(FreeSpace, ARayThroughTwoWallsCountsAgainstTheFirstOnly) {
+  const FreeSpaceParams params = defaultParams();
+  // Ending 1 m past the wall behind (its far face at x = 7.1): walls in one line of sight are
+  // one deviation (missing together), so the first wall alone, at the ray's distance beyond it.
+  const auto both = hitsOf(oneWall(), {{8.1, 0.0}});
+  ASSERT_EQ(both.size(), 1u);
+  EXPECT_EQ(both[0].key, 0);
+  EXPECT_NEAR(both[0].cost, throughCost(8.1 - 4.9, params.sigma_m, kFaceWorth), 1e-5);
+  // Through a door in the first wall, then through the wall behind: the wall behind is the
+  // first solid one.
+  const auto door = hitsOf(oneWall(std::make_pair(-1.0, 1.0)), {{8.1, 0.0}});
+  ASSERT_EQ(door.size(), 1u);
+  EXPECT_EQ(door[0].key, 1);
+}
+
 TEST(FreeSpace, ATurnNotDeSkewedIsJudgedWithItsOwnSkew) {
   // A wall 20 m away (face at x = 19.9) with a door y -1..1; a ray through the wall 0.3 m past
   // the door's edge. With the heading known to 0.1 deg, it went through the wall.

@@ -229,6 +229,12 @@ std::vector<FreeSpaceHit> freeSpaceHits(const FreeSpaceMap& map, const FreeSpace
         hits.push_back({(pass->doorway ? kInDoorwayBase : kInWindowBase) + pass->wall, 0.0f, index});
       continue;
     }
+    // Only the first solid wall counts, not every wall the ray went on through: walls in one
+    // line of sight are taken to be missing together (a part of the site not built yet), one
+    // deviation. Counting each (a ray through two walls as two missing walls) decided Jesse.1
+    // and the construction sets sooner but made the truth pay for every missing wall behind a
+    // missing wall: on the heavy site (20 % of the walls missing) it added false convergences
+    // (docs/results/2026-11-30-session39.md).
     if (x->uncertain) continue;
     // The range along the ray is uncertain by the range noise over the incidence, and by the
     // place's heading: a candidate fitted on a few scans is known to sigma_yaw, which moves the
