@@ -23,17 +23,13 @@ import subprocess
 import sys
 import tempfile
 
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+from script_checks import check, failures  # noqa: E402 (after the line above)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FIXTURE = os.path.join(ROOT, "tests", "fixtures", "results")
 EXPECTED = os.path.join(FIXTURE, "expected")
 SCRIPT = os.path.join(ROOT, "scripts", "results.py")
-failures = []
-
-
-def check(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAILED:", what)
 
 
 def render(work):
